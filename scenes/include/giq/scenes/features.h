@@ -1,0 +1,31 @@
+#pragma once
+// What a scene contains, derived from its content. Renderers specialise on it (model only
+// what the scene requires) and reject what they do not support at load time.
+
+#include <string>
+#include <vector>
+
+namespace giq::scenes {
+
+struct FeatureSet {
+  bool directional_lights = false;
+  bool point_lights = false;
+  bool spot_lights = false;
+  bool emissive_meshes = false;
+  bool environment = false;  // constant environment radiance (extras)
+  bool specular = false;     // some material has a GGX lobe (Material::has_specular_lobe)
+  bool textures = false;     // some material samples a texture
+  bool normal_maps = false;
+  bool alpha_mask = false;
+  bool double_sided = false;  // some material is double-sided
+  bool one_sided = false;     // some material is not (its back faces are black)
+  bool animation = false;     // the sequence moves something
+
+  // Stable lower-case names of the features present, e.g. {"point_lights", "specular"}; used
+  // for `giq scene info`, shader #defines (upper-cased, "GIQ_" prefixed) and reports.
+  std::vector<std::string> names() const;
+
+  bool operator==(const FeatureSet&) const = default;
+};
+
+}  // namespace giq::scenes

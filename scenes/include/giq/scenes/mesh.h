@@ -1,0 +1,30 @@
+#pragma once
+// One glTF primitive as instanced by one node, flattened to triangles in the scene's local
+// frame. Renderers read these arrays directly.
+
+#include <glm/glm.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace giq::scenes {
+
+struct Mesh {
+  std::string name;  // the node's name (or "node<i>"), which leak regions refer to
+  int node = -1;     // glTF node index
+  int mesh = -1;     // glTF mesh index
+  int primitive = 0;
+  // Value of the `objectId` layer for this mesh's pixels: glTF node index + 1 (0 = no hit).
+  uint32_t object_id = 0;
+  int material = 0;  // index into Scene::materials (always valid; a default one is added)
+
+  std::vector<glm::vec3> positions;   // local frame
+  std::vector<glm::vec3> normals;     // unit; flat normals generated when the file has none
+  std::vector<glm::vec4> tangents;    // xyz unit, w = bitangent sign; empty when absent
+  std::vector<glm::vec2> uvs;         // TEXCOORD_0; empty when absent
+  std::vector<glm::uvec3> triangles;  // vertex indices; degenerate triangles removed
+
+  size_t triangle_count() const { return triangles.size(); }
+};
+
+}  // namespace giq::scenes

@@ -1,0 +1,109 @@
+#pragma once
+// The scene model every renderer reads: a glTF 2.0 file posed at one instant, flattened to
+// world-space triangles in a local frame, plus the toolkit's extras (views, sequence,
+// leak regions, environment). See docs/scene-format.md for the extras schema and units.
+//
+// A Scene is a value: renderers only read it; Scene::at(t) returns the scene posed at another
+// time. Tests may also build one in code: fill the content fields, then call derive().
+
+#include <filesystem>
+#include <glm/glm.hpp>
+#include <limits>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "giq/scenes/camera.h"
+#include "giq/scenes/features.h"
+#include "giq/scenes/light.h"
+#include "giq/scenes/material.h"
+#include "giq/scenes/mesh.h"
+#include "giq/scenes/texture.h"
+
+namespace giq::scenes {
+
+struct Bounds {
+  glm::vec3 lo{std::numeric_limits<float>::infinity()};
+  glm::vec3 hi{-std::numeric_limits<float>::infinity()};
+  void extend(glm::vec3 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
+  bool empty() const { return lo.x > hi.x; }
+  glm::vec3 extent() const { return empty() ? glm::vec3(0.0f) : hi - lo; }
+};
+
+// Frames of a sequence: frame f shows the scene at time f / fps.
+struct Sequence {
+  int frames = 1;
+  double fps = 30.0;
+  int animation = -1;  // glTF animation that plays; -1 = none
+};
+
+// An emissive triangle as an area light; the reference picks these by power.
+struct EmissiveTriangle {
+  uint32_t mesh = 0;      // index into Scene::meshes
+  uint32_t triangle = 0;  // index into that mesh's triangles
+  float area = 0.0f;
+  glm::vec3 radiance{0.0f};  // mean emitted radiance over the triangle (texture averaged)
+  float power = 0.0f;        // pi * area * luminance(radiance), times 2 when double-sided
+};
+
+struct SceneStats {
+  size_t triangles = 0;
+  size_t vertices = 0;
+  size_t degenerate_triangles_dropped = 0;  // zero-area or non-finite triangles in the file
+  double total_light_power = 0.0;           // luminance-weighted, emissive + punctual (rough)
+};
+
+struct SceneSource;  // the parsed glTF document kept to pose the scene at other times
+
+class Scene {
+ public:
+  // --- provenance
+  std::filesystem::path path;  // empty for a scene built in code
+  std::string content_hash;    // hash of the glTF and every file it references
+  // World position of the local frame every position below is relative to. Chosen at load
+  // (the centre of the scene's bounds at t = 0, computed in double precision) and kept for
+  // all times, so geometry far from the world origin keeps full float precision.
+  glm::dvec3 origin{0.0};
+
+  // --- content at this instant
+  double time = 0.0;
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<Light> lights;
+  glm::vec3 environment{0.0f};  // constant environment radiance; 0 = none
+  std::vector<View> views;      // glTF camera nodes first, then the views from extras
+  Sequence sequence;
+  std::vector<std::string> leak_regions;  // node names declared in extras
+  std::vector<uint32_t> leak_object_ids;  // their object ids (Mesh::object_id)
+
+  // --- derived by derive(); do not edit
+  FeatureSet features;
+  std::vector<EmissiveTriangle> emissive_triangles;
+  Bounds bounds;
+  SceneStats stats;
+
+  // Recomputes features, emissive triangles, bounds and stats from the content.
+  void derive();
+
+  // The scene posed at time t in seconds (animations evaluated, lights and cameras moved).
+  // Same origin, materials and textures. For a scene without animation, a copy.
+  Scene at(double t) const;
+  Scene at_frame(int frame) const { return at(frame / sequence.fps); }
+  double duration() const;  // of the playing animation; 0 when static
+
+  // A view by name, or by index when `name_or_index` is a number; throws InputError naming
+  // the available views when there is no such view.
+  const View& view(std::string_view name_or_index) const;
+
+ private:
+  friend Scene load(const std::filesystem::path&);
+  std::shared_ptr<const SceneSource> source_;
+};
+
+// Loads a .gltf or .glb file. Throws InputError (file, glTF path, what was expected) for
+// anything malformed, hostile or unsupported; never crashes on bad input.
+Scene load(const std::filesystem::path& path);
+
+}  // namespace giq::scenes

@@ -1,0 +1,12 @@
+#pragma once
+// Each subcommand lives in its own cmd_<name>.cpp and registers itself on the app with one
+// add_<name>_command call in main.cpp. A command reports failure by throwing InputError
+// (exit 2) or by returning a non-zero exit code through `exit_code` (1 = gate failed).
+
+#include <CLI/CLI.hpp>
+
+namespace giq::cli {
+
+void add_scene_command(CLI::App& app, int& exit_code);
+
+}  // namespace giq::cli
