@@ -15,15 +15,16 @@ namespace {
 double luminance(glm::vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
 // Mean of the emissive texture over a triangle: the triangle is split into k^2 congruent
-// sub-triangles (k chosen from its footprint in texels) and the texture is sampled at each
-// sub-triangle's centroid; exact for textures linear over the triangle, and converging to
-// the area average as k grows.
+// sub-triangles (k even and at least the longest edge in texels) and the texture is sampled
+// at each sub-triangle's centroid. Exact for textures linear over the triangle, and for
+// nearest-filtered texels whose edges fall on the subdivision; converging to the area
+// average as k grows otherwise.
 glm::vec3 mean_emission(const Mesh& m, const glm::uvec3& t, const Texture& tex) {
   if (m.uvs.empty()) return glm::vec3(tex.sample(glm::vec2(0.0f)));
   const glm::vec2 a = m.uvs[t.x], b = m.uvs[t.y], c = m.uvs[t.z];
   const glm::vec2 size(float(tex.width), float(tex.height));
   const float edge = std::max({glm::length((b - a) * size), glm::length((c - b) * size), glm::length((a - c) * size)});
-  const int k = std::clamp(int(std::ceil(std::isfinite(edge) ? edge : 1.0f)), 1, 64);
+  const int k = 2 * std::clamp(int(std::ceil(0.5f * (std::isfinite(edge) ? edge : 1.0f))), 1, 32);
   glm::dvec3 sum(0.0);
   int count = 0;
   // Sub-triangles of a k-subdivision: "upward" (i, j) and "downward" ones, in barycentric
