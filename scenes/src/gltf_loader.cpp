@@ -325,6 +325,8 @@ Scene load(const std::filesystem::path& path) {
   glm::dvec3 lo, hi;
   world_bounds(*src, world, lo, hi);
   s.origin = lo.x <= hi.x ? 0.5 * (lo + hi) : glm::dvec3(0.0);
+  if (lo.x <= hi.x && !std::isfinite(glm::length(hi - lo) + glm::length(s.origin)))
+    throw InputError(doc.file, "nodes", "the scene's world bounds overflow double precision; expected transforms of finite scale");
   for (const auto& v : extras.views) {
     View view;
     view.name = v.name;

@@ -11,8 +11,15 @@
 namespace giq::scenes::gltf {
 namespace {
 
-// Larger images are refused before decoding so a forged header cannot exhaust memory.
+// Larger images are refused before decoding so a forged header cannot exhaust memory: 2^26
+// texels are 1 GiB as float RGBA.
 constexpr int kMaxImageSide = 16384;
+constexpr int64_t kMaxImageTexels = int64_t(1) << 26;
+
+std::string decode_failure() {
+  const char* r = stbi_failure_reason();
+  return r ? r : "unknown reason";
+}
 
 // IEC 61966-2-1 sRGB electro-optical transfer function.
 float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
@@ -79,9 +86,10 @@ class TextureTable {
     const int n = int(bytes.size());
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_memory(bytes.data(), n, &w, &h, &comp))
-      ctx_.fail(where, std::string("cannot decode the image (") + stbi_failure_reason() + "); expected a PNG or JPEG file");
-    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide)
-      ctx_.fail(where, std::to_string(w) + "x" + std::to_string(h) + " image; expected sides of 1 to " + std::to_string(kMaxImageSide) + " pixels");
+      ctx_.fail(where, "cannot decode the image (" + decode_failure() + "); expected a PNG or JPEG file");
+    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide || int64_t(w) * h > kMaxImageTexels)
+      ctx_.fail(where, std::to_string(w) + "x" + std::to_string(h) + " image; expected sides of 1 to " + std::to_string(kMaxImageSide) +
+                           " pixels and at most " + std::to_string(kMaxImageTexels) + " pixels in all");
     auto texels = std::make_shared<std::vector<glm::vec4>>(size_t(w) * size_t(h));
     auto convert = [&](auto* pixels, float max) {
       for (size_t i = 0; i < texels->size(); ++i) {
@@ -93,11 +101,11 @@ class TextureTable {
     int dw = 0, dh = 0;
     if (stbi_is_16_bit_from_memory(bytes.data(), n)) {
       std::unique_ptr<stbi_us, void (*)(void*)> px(stbi_load_16_from_memory(bytes.data(), n, &dw, &dh, &comp, 4), stbi_image_free);
-      if (!px || dw != w || dh != h) ctx_.fail(where, std::string("cannot decode the image (") + stbi_failure_reason() + ")");
+      if (!px || dw != w || dh != h) ctx_.fail(where, "cannot decode the image (" + decode_failure() + ")");
       convert(px.get(), 65535.0f);
     } else {
       std::unique_ptr<stbi_uc, void (*)(void*)> px(stbi_load_from_memory(bytes.data(), n, &dw, &dh, &comp, 4), stbi_image_free);
-      if (!px || dw != w || dh != h) ctx_.fail(where, std::string("cannot decode the image (") + stbi_failure_reason() + ")");
+      if (!px || dw != w || dh != h) ctx_.fail(where, "cannot decode the image (" + decode_failure() + ")");
       convert(px.get(), 255.0f);
     }
     tex.width = w, tex.height = h, tex.texels = texels;

@@ -145,6 +145,10 @@ void pose(const SceneSource& src, const std::vector<glm::dmat4>& world, Scene& o
   for (int i : preorder(src)) {
     const NodeSource& n = src.nodes[size_t(i)];
     const glm::dmat4& M = world[size_t(i)];
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r)
+        if (!std::isfinite(M[c][r]))
+          throw InputError(src.file, "nodes[" + std::to_string(i) + "]", "the node's world transform overflows; expected transforms of finite scale");
     const glm::dmat3 L(M);
     const glm::dvec3 at = glm::dvec3(M[3]) - out.origin;
     if (n.mesh >= 0) {
