@@ -284,6 +284,57 @@ void check_binary_data(Document& d, Hasher& hash) {
   }
 }
 
+// The shape of the arrays and accessor fields, checked here so that a malformed document
+// is reported at its glTF path rather than in the parser's words.
+void check_structure(const Document& d) {
+  for (const char* key : {"accessors", "animations", "buffers", "bufferViews", "cameras", "images", "materials", "meshes",
+                          "nodes", "samplers", "scenes", "skins", "textures"})
+    array_of_objects(d, key);
+  const size_t n_views = array_of_objects(d, "bufferViews").size();
+  const json& accessors = array_of_objects(d, "accessors");
+  for (size_t i = 0; i < accessors.size(); ++i) {
+    const std::string where = "accessors[" + std::to_string(i) + "]";
+    const uint64_t ct = unsigned_property(d, accessors[i], "componentType", where, true);
+    if (ct < 5120 || ct > 5126 || ct == 5124)
+      throw InputError(d.file, where + ".componentType", "is " + std::to_string(ct) + "; expected 5120, 5121, 5122, 5123, 5125 or 5126");
+    const json* type = member(accessors[i], "type");
+    static const char* kTypes[] = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
+    if (!type || !type->is_string() ||
+        std::none_of(std::begin(kTypes), std::end(kTypes), [&](const char* t) { return type->get<std::string>() == t; }))
+      throw InputError(d.file, where + ".type", std::string(type ? "is " + type->dump() : "missing") + "; expected SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3 or MAT4");
+    unsigned_property(d, accessors[i], "count", where, true);
+    unsigned_property(d, accessors[i], "byteOffset", where, false);
+    if (member(accessors[i], "bufferView")) {
+      const uint64_t v = unsigned_property(d, accessors[i], "bufferView", where, true);
+      if (v >= n_views)
+        throw InputError(d.file, where + ".bufferView", "is " + std::to_string(v) + "; the file has " + std::to_string(n_views) + " buffer views");
+    }
+  }
+  const json& meshes = array_of_objects(d, "meshes");
+  for (size_t m = 0; m < meshes.size(); ++m) {
+    const std::string mw = "meshes[" + std::to_string(m) + "].primitives";
+    const json* prims = member(meshes[m], "primitives");
+    if (!prims || !prims->is_array() || prims->empty()) throw InputError(d.file, mw, "missing or empty; expected an array of primitives");
+    for (size_t p = 0; p < prims->size(); ++p) {
+      const std::string pw = mw + "[" + std::to_string(p) + "]";
+      const json& prim = (*prims)[p];
+      if (!prim.is_object()) throw InputError(d.file, pw, "must be a JSON object");
+      const json* attrs = member(prim, "attributes");
+      if (!attrs || !attrs->is_object()) throw InputError(d.file, pw + ".attributes", "missing or not an object");
+      for (const auto& [name, value] : attrs->items()) {
+        const uint64_t a = unsigned_property(d, *attrs, name.c_str(), pw + ".attributes", true);
+        if (a >= accessors.size())
+          throw InputError(d.file, pw + ".attributes." + name, "is " + std::to_string(a) + "; the file has " + std::to_string(accessors.size()) + " accessors");
+      }
+      if (member(prim, "indices")) {
+        const uint64_t a = unsigned_property(d, prim, "indices", pw, true);
+        if (a >= accessors.size())
+          throw InputError(d.file, pw + ".indices", "is " + std::to_string(a) + "; the file has " + std::to_string(accessors.size()) + " accessors");
+      }
+    }
+  }
+}
+
 // tinygltf file-system callbacks: only files already read and checked above exist.
 bool fs_exists(const std::string& path, void* user) {
   const auto* d = static_cast<const Document*>(user);
@@ -352,6 +403,7 @@ Document read_document(const fs::path& path) {
   check_extensions(d);
   Hasher hash;
   hash.add(d.bytes.data(), d.bytes.size());
+  check_structure(d);
   check_binary_data(d, hash);
   d.content_hash = hash.hex();
   return d;
