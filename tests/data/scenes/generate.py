@@ -313,6 +313,13 @@ def hostile():
         d["nodes"] = [{"children": [2]}, {"children": [2]}, {"mesh": 0}]
         d["scenes"] = [{"nodes": [0, 1]}]
     case("two_parents.gltf", "nodes[1].children", minimal(a=two_parents))
+    inf = json.dumps(minimal(a=setp(("nodes", 0, "translation"), [0, "INF", 0]))).replace('"INF"', "1e400")
+    case("inf_translation.gltf", "JSON", (inf + "\n").encode())  # JSON itself cannot hold NaN or Inf
+
+    def overflow(d, g):
+        d["nodes"] = [{"scale": [1e300] * 3, "children": [1]}, {"scale": [1e300] * 3, "mesh": 0}]
+        d["scenes"] = [{"nodes": [0]}]
+    case("overflowing_transform.gltf", "nodes", minimal(a=overflow))
     case("bad_child.gltf", "nodes[0].children", minimal(a=setp(("nodes", 0, "children"), [5])))
     case("unsupported_extension.gltf", "extensionsRequired[0]",
          minimal(a=setp(("extensionsRequired",), ["KHR_texture_transform"]), b=setp(("extensionsUsed",), ["KHR_texture_transform"])))
