@@ -176,6 +176,60 @@ TEST(Loader, EmissiveRadianceIsTextureAveraged) {
   }
 }
 
+TEST(Loader, MaterialsAndExtensions) {
+  const Scene s = load(data("materials.gltf"));
+  ASSERT_EQ(s.materials.size(), 3u);
+  const Material& lambert = s.materials[0];
+  EXPECT_EQ(lambert.name, "lambert");
+  EXPECT_EQ(lambert.base_color, glm::vec4(0.5f, 0.25f, 0.125f, 1.0f));
+  EXPECT_EQ(lambert.metallic, 0.0f);
+  EXPECT_EQ(lambert.roughness, 1.0f);  // glTF default
+  EXPECT_EQ(lambert.specular, 0.0f);
+  EXPECT_FALSE(lambert.has_specular_lobe());  // KHR_materials_specular factor 0: pure Lambert
+  EXPECT_EQ(lambert.alpha_mode, AlphaMode::Opaque);
+  EXPECT_FALSE(lambert.double_sided);
+
+  const Material& masked = s.materials[1];
+  EXPECT_EQ(masked.alpha_mode, AlphaMode::Mask);
+  EXPECT_EQ(masked.alpha_cutoff, 0.25f);
+  EXPECT_TRUE(masked.double_sided);
+  EXPECT_EQ(masked.roughness, 0.3f);
+  EXPECT_EQ(masked.specular, 0.5f);
+  EXPECT_EQ(masked.specular_color, glm::vec3(1.0f, 0.5f, 0.25f));
+  EXPECT_TRUE(masked.has_specular_lobe());
+  EXPECT_EQ(masked.normal_scale, 0.5f);
+  ASSERT_GE(masked.normal_texture, 0);
+  ASSERT_GE(masked.specular_color_texture, 0);
+  // One image (texel 128, 128, 255) in two colour spaces: the normal map as stored, the
+  // specular colour decoded from sRGB.
+  EXPECT_EQ(s.textures.size(), 2u);
+  const glm::vec4 n = (*s.textures[size_t(masked.normal_texture)].texels)[0];
+  const glm::vec4 c = (*s.textures[size_t(masked.specular_color_texture)].texels)[0];
+  EXPECT_NEAR(n.r, 128.0f / 255.0f, 1e-6f);
+  EXPECT_NEAR(c.r, kLin128, 1e-6f);
+  EXPECT_NEAR(c.b, 1.0f, 1e-6f);
+
+  EXPECT_EQ(s.materials[2].emissive, glm::vec3(8.0f, 4.0f, 2.0f));  // factor x strength 8
+  EXPECT_TRUE(s.features.alpha_mask && s.features.double_sided && s.features.one_sided);
+  EXPECT_TRUE(s.features.normal_maps && s.features.textures && s.features.specular && s.features.emissive_meshes);
+}
+
+TEST(Loader, TangentsFollowTheNodeAndItsHandedness) {
+  const Scene s = load(data("materials.gltf"));
+  ASSERT_EQ(s.meshes.size(), 4u);
+  const Mesh& plain = s.meshes[1];
+  const Mesh& mirror = s.meshes[3];
+  EXPECT_EQ(mirror.name, "masked_mirror");
+  ASSERT_EQ(plain.tangents.size(), 4u);
+  ASSERT_EQ(mirror.tangents.size(), 4u);
+  for (const auto& t : plain.tangents) EXPECT_EQ(t, glm::vec4(1, 0, 0, 1));
+  // scale (-1, 1, 1): the tangent turns to -X and the bitangent sign flips with the mirror.
+  for (const auto& t : mirror.tangents) EXPECT_EQ(t, glm::vec4(-1, 0, 0, -1));
+  for (const auto& nrm : mirror.normals) expect_vec(nrm, {0, 1, 0});
+  for (size_t t = 0; t < mirror.triangles.size(); ++t) expect_vec(face_normal(mirror, t), {0, 1, 0});
+  EXPECT_EQ(mirror.uvs.size(), 4u);
+}
+
 TEST(Loader, LightsCamerasAndExtras) {
   const Scene s = load(data("lights_cameras.gltf"));
   EXPECT_EQ(s.origin, glm::dvec3(100, 0, 0));  // the floor, under the room node's translation

@@ -219,6 +219,35 @@ def lights_cameras():
     return d
 
 
+def materials():
+    g = Gltf()
+    png = png_rgba(1, 1, [[(128, 128, 255, 255)]])
+    g.add("images", {"uri": "data:image/png;base64," + base64.b64encode(png).decode()})
+    g.add("textures", {"source": 0})
+    g.doc["extensionsUsed"] = ["KHR_materials_specular", "KHR_materials_emissive_strength"]
+    g.add("materials", {  # Lambert: dielectric with the specular layer switched off
+        "name": "lambert", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 0.125, 1.0], "metallicFactor": 0.0},
+        "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}})
+    g.add("materials", {  # glossy dielectric, alpha-masked, double-sided, normal-mapped
+        "name": "masked", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.3},
+        "alphaMode": "MASK", "alphaCutoff": 0.25, "doubleSided": True,
+        "normalTexture": {"index": 0, "scale": 0.5},
+        "extensions": {"KHR_materials_specular": {"specularFactor": 0.5, "specularColorFactor": [1.0, 0.5, 0.25],
+                                                  "specularColorTexture": {"index": 0}}}})
+    g.add("materials", {  # emitter: factor x strength
+        "name": "lamp", "emissiveFactor": [1.0, 0.5, 0.25],
+        "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 8.0}}})
+    uvs = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    tangents = [(1, 0, 0, 1)] * 4
+    for k in range(3):
+        attrs = {"POSITION": g.accessor(QUAD_P, "VEC3", minmax=True), "NORMAL": g.accessor(QUAD_N, "VEC3"),
+                 "TEXCOORD_0": g.accessor(uvs, "VEC2"), "TANGENT": g.accessor(tangents, "VEC4")}
+        g.add("meshes", {"primitives": [{"attributes": attrs, "indices": g.accessor(QUAD_I, "SCALAR", USHORT), "material": k}]})
+        g.node(name=["lambert", "masked", "lamp"][k], mesh=k, translation=[3 * k, 0, 0])
+    g.node(name="masked_mirror", mesh=1, scale=[-1, 1, 1], translation=[0, 0, 5])
+    return g.finish()
+
+
 def external():
     g = Gltf()
     g.mesh("tri", TRI_P)
@@ -393,6 +422,7 @@ def main():
     write(os.path.join(HERE, "textured.gltf"), textured())
     write(os.path.join(HERE, "animated.gltf"), animated())
     write(os.path.join(HERE, "lights_cameras.gltf"), lights_cameras())
+    write(os.path.join(HERE, "materials.gltf"), materials())
     write(os.path.join(HERE, "external.gltf"), external())
     with open(os.path.join(HERE, "quad_tri.glb"), "wb") as f:
         f.write(glb(None))
