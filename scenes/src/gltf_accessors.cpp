@@ -156,15 +156,18 @@ AccessorData read_accessor(const Context& ctx, int index, const std::string& fie
   const uint64_t csize = uint64_t(component_size(ct));
   const uint64_t elem = uint64_t(comps) * csize;
   if (a.count < 1) ctx.fail(where + ".count", "is 0; expected at least 1");
-  // 2^28 elements (several GiB of doubles) is far beyond any scene giq can render; refusing
-  // it keeps a lying count from exhausting memory before the bounds checks below.
+  // 2^28 elements (several GiB once expanded to doubles) is far beyond any scene giq renders.
   if (a.count > (size_t(1) << 28)) ctx.fail(where + ".count", "is " + std::to_string(a.count) + "; at most 268435456 elements are supported");
 
   AccessorData out;
   out.components = comps;
   out.count = a.count;
-  out.values.assign(a.count * size_t(comps), 0.0);  // no bufferView: zeros (spec 3.6.2.3)
-  if (a.bufferView >= 0) {
+  if (a.bufferView < 0) {
+    // No bufferView: zeros (spec 3.6.2.3), only useful under sparse substitution. Nothing in
+    // the file backs the count, so it is bounded before anything is allocated.
+    if (a.count > (size_t(1) << 24)) ctx.fail(where + ".count", "is " + std::to_string(a.count) + " without a bufferView; at most 16777216 elements are supported");
+    out.values.assign(a.count * size_t(comps), 0.0);
+  } else {
     const auto [bytes, size] = view_bytes(ctx, a.bufferView, where + ".bufferView");
     const auto& bv = m.bufferViews[size_t(a.bufferView)];
     const uint64_t stride = bv.byteStride ? uint64_t(bv.byteStride) : elem;
@@ -173,6 +176,7 @@ AccessorData read_accessor(const Context& ctx, int index, const std::string& fie
     if (!fits(a.byteOffset, a.count, stride, elem, size))
       ctx.fail(where, "byteOffset " + std::to_string(a.byteOffset) + " + " + std::to_string(a.count) + " elements of " + std::to_string(elem) + " bytes (stride " +
                           std::to_string(stride) + ") exceed bufferViews[" + std::to_string(a.bufferView) + "] of " + std::to_string(size) + " bytes");
+    out.values.resize(a.count * size_t(comps));
     for (size_t i = 0; i < a.count; ++i)
       for (int c = 0; c < comps; ++c)
         out.values[i * comps + c] = component(bytes + a.byteOffset + i * stride + c * csize, ct, a.normalized);

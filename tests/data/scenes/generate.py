@@ -312,6 +312,10 @@ def hostile():
     case("accessor_exceeds_view.gltf", "accessors[0]", minimal(a=setp(("accessors", 0, "count"), 40)))
     case("accessor_out_of_range.gltf", "meshes[0].primitives[0].attributes.POSITION",
          minimal(a=setp(tri_mesh_prim + ("attributes", "POSITION"), 7)))
+    def huge_zeros(d, g):
+        del d["accessors"][0]["bufferView"]
+        d["accessors"][0]["count"] = 4000000000
+    case("huge_count.gltf", "accessors[0].count", minimal(a=huge_zeros))
     case("wrong_component_type.gltf", "accessors[0].componentType", minimal(a=setp(("accessors", 0, "componentType"), USHORT)))
     case("wrong_type.gltf", "accessors[0].type", minimal(a=setp(("accessors", 0, "type"), "VEC2")))
     case("index_wrong_type.gltf", "accessors[1].componentType", minimal(a=setp(("accessors", 1, "componentType"), FLOAT)))
