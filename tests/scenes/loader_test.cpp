@@ -301,6 +301,17 @@ TEST(Loader, BinaryGltf) {
   expect_world(s, s.meshes[1].positions[0], {0, 0, 2});
 }
 
+TEST(Loader, BinaryGltfWithImageInTheBinChunk) {
+  const Scene s = load(data("textured.glb"));
+  ASSERT_EQ(s.textures.size(), 1u);
+  const Texture& t = s.textures[0];
+  ASSERT_EQ(t.width, 1);
+  ASSERT_EQ(t.height, 2);
+  EXPECT_EQ((*t.texels)[0], glm::vec4(1, 0, 0, 1));  // sRGB 255 and 0 decode exactly
+  EXPECT_EQ((*t.texels)[1], glm::vec4(0, 0, 1, 1));
+  EXPECT_EQ(s.materials[0].base_color_texture, 0);
+}
+
 TEST(Loader, ContentHashCoversReferencedFiles) {
   namespace fs = std::filesystem;
   const Scene original = load(data("external.gltf"));

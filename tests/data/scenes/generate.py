@@ -273,6 +273,25 @@ def glb(doc_fn):
     return struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body
 
 
+def textured_glb():
+    """A .glb whose PNG lives in the BIN chunk, reached through a buffer view."""
+    g = Gltf()
+    png = png_rgba(1, 2, [[(255, 0, 0, 255)], [(0, 0, 255, 255)]])
+    g.add("images", {"bufferView": g.view(png), "mimeType": "image/png"})
+    g.add("textures", {"source": 0})
+    g.add("materials", {"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}})
+    g.mesh("quad", QUAD_P, QUAD_I, QUAD_N, [(0, 0), (1, 0), (1, 1), (0, 1)], material=0)
+    g.node(name="quad", mesh=0)
+    d = g.finish()
+    while len(g.bin) % 4:
+        g.bin.append(0)
+    d["buffers"] = [{"byteLength": len(g.bin)}]
+    js = json.dumps(d).encode()
+    js += b" " * (-len(js) % 4)
+    body = struct.pack("<II", len(js), 0x4E4F534A) + js + struct.pack("<II", len(g.bin), 0x004E4942) + bytes(g.bin)
+    return struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body
+
+
 def minimal(**patch):
     """One triangle, everything valid; `patch` then breaks exactly one thing."""
     g = Gltf()
@@ -430,6 +449,8 @@ def main():
     write(os.path.join(HERE, "external.gltf"), external())
     with open(os.path.join(HERE, "quad_tri.glb"), "wb") as f:
         f.write(glb(None))
+    with open(os.path.join(HERE, "textured.glb"), "wb") as f:
+        f.write(textured_glb())
     os.makedirs(HOSTILE, exist_ok=True)
     lines = ["# hostile file\tglTF path the error must name (tests/scenes/hostile_test.cpp, tests/cli)"]
     for name, field, content in hostile():
