@@ -33,6 +33,10 @@ std::vector<unsigned char> read_file(const std::string& file, const fs::path& pa
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
     throw InputError(file, field, "'" + path.string() + "' does not exist or is not a regular file");
+  // glTF files and their buffers are limited to 4 GiB (uint32 lengths in .glb); checking
+  // before reading keeps a stray huge file from being loaded into memory first.
+  if (fs::file_size(path, ec) > std::numeric_limits<uint32_t>::max() || ec)
+    throw InputError(file, field, "'" + path.string() + "' is larger than 4 GiB or its size cannot be read");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(file, field, "cannot open '" + path.string() + "' for reading");
   std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -378,8 +382,6 @@ Document read_document(const fs::path& path) {
   std::error_code ec;
   d.folder = fs::canonical(fs::absolute(path, ec).parent_path(), ec);
   if (ec) throw InputError(d.file, "", "cannot resolve the scene's folder: " + ec.message());
-  if (d.bytes.size() > std::numeric_limits<uint32_t>::max())
-    throw InputError(d.file, "", "file of " + std::to_string(d.bytes.size()) + " bytes; glTF files are limited to 4 GiB");
   d.binary = d.bytes.size() >= 4 && std::memcmp(d.bytes.data(), "glTF", 4) == 0;
   if (d.binary) {
     read_glb_layout(d);
