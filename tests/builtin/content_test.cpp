@@ -21,7 +21,9 @@ GltfFile scene(const std::string& name) {
   return GltfFile::read(fs::path(GIQ_SCENES_DIR) / (name + ".gltf"));
 }
 
-glm::dvec3 vec3(const json& j) { return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()}; }
+glm::dvec3 vec3(const json& j) {
+  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
 
 glm::dquat rotation(const json& node) {
   if (!node.contains("rotation")) return {1.0, 0.0, 0.0, 0.0};
@@ -81,7 +83,9 @@ void expect_facing(const Surface& s, glm::dvec3 point, bool away, const std::str
   }
 }
 
-const json& material(const GltfFile& f, const Surface& s) { return f.doc["materials"][s.material]; }
+const json& material(const GltfFile& f, const Surface& s) {
+  return f.doc["materials"][s.material];
+}
 
 double specular_factor(const json& m) {
   return m.value("/extensions/KHR_materials_specular/specularFactor"_json_pointer, 1.0);
@@ -96,8 +100,8 @@ constexpr double kPositionTolerance = 1e-6;
 TEST(CornellFile, HasThePublishedDimensionsAndLight) {
   const GltfFile f = scene("cornell");
   glm::dvec3 lo(INFINITY), hi(-INFINITY);
-  for (const char* name : {"floor", "ceiling", "back_wall", "red_wall", "green_wall",
-                           "short_block", "tall_block", "light"}) {
+  for (const char* name : {"floor", "ceiling", "back_wall", "red_wall", "green_wall", "short_block",
+                           "tall_block", "light"}) {
     const Surface s = surface(f, name);
     lo = glm::min(lo, s.lo());
     hi = glm::max(hi, s.hi());
@@ -114,7 +118,8 @@ TEST(CornellFile, HasThePublishedDimensionsAndLight) {
   EXPECT_LT(light.hi().y, 548.8 * kMm);  // just below the ceiling
   EXPECT_GT(light.lo().y, 548.8 * kMm - 0.002);
   const json& m = material(f, light);
-  const glm::dvec3 radiance = vec3(m["emissiveFactor"]) *
+  const glm::dvec3 radiance =
+      vec3(m["emissiveFactor"]) *
       m["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"].get<double>();
   EXPECT_NEAR(radiance.r, 17.0, 1e-5);
   EXPECT_NEAR(radiance.g, 12.0, 1e-5);
@@ -152,7 +157,8 @@ TEST(CornellFile, WallsFaceInBlocksFaceOutAndRedIsOnTheLeft) {
   // The camera's right (+X) is world -x: the red wall (x = 552.8 mm) appears on the left.
   EXPECT_NEAR(glm::length(q * glm::dvec3(1, 0, 0) - glm::dvec3(-1, 0, 0)), 0.0, 1e-6);
   EXPECT_GT(surface(f, "red_wall").lo().x, 0.5);
-  const double yfov = f.doc["cameras"][cam["camera"].get<int>()]["perspective"]["yfov"].get<double>();
+  const double yfov =
+      f.doc["cameras"][cam["camera"].get<int>()]["perspective"]["yfov"].get<double>();
   EXPECT_NEAR(yfov, 2.0 * std::atan(12.5 / 35.0), 1e-6);
 }
 
@@ -271,7 +277,8 @@ TEST(MovingLightFile, LightFollowsTheDocumentedPath) {
   ASSERT_GE(rig, 0);
   EXPECT_EQ(f.doc["nodes"][rig]["children"], json::array({light}));
   auto position = [&](int frame) {
-    glm::dvec3 rig_t = translation(f.doc["nodes"][rig]), light_t = translation(f.doc["nodes"][light]);
+    glm::dvec3 rig_t = translation(f.doc["nodes"][rig]),
+               light_t = translation(f.doc["nodes"][light]);
     for (const json& ch : anim["channels"]) {
       EXPECT_EQ(ch["target"]["path"], "translation");
       const glm::dvec3 v = sample(f, anim["samplers"][ch["sampler"].get<int>()], frame / 30.0);
@@ -291,7 +298,8 @@ TEST(MovingLightFile, LightFollowsTheDocumentedPath) {
     EXPECT_NEAR(glm::length(position(frame) - circle(frame)), 0.0, kPositionTolerance) << frame;
   for (int frame : {30, 45, 59})
     EXPECT_NEAR(glm::length(position(frame) - glm::dvec3(0.47, 0.12, 0.15)), 0.0,
-                kPositionTolerance) << frame;
+                kPositionTolerance)
+        << frame;
 
   // Same power as the cornell ceiling light: I = A L / 4, A = 0.13 m x 0.105 m.
   const json& l = f.doc["extensions"]["KHR_lights_punctual"]["lights"][0];

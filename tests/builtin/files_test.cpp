@@ -20,7 +20,9 @@ namespace {
 
 const std::vector<std::string> kScenes = {"cornell", "leak", "sunroom", "movinglight"};
 
-fs::path scene_path(const std::string& name) { return fs::path(GIQ_SCENES_DIR) / (name + ".gltf"); }
+fs::path scene_path(const std::string& name) {
+  return fs::path(GIQ_SCENES_DIR) / (name + ".gltf");
+}
 
 // Float data are written from doubles rounded once to float: a unit normal is off by at most a
 // few float ulps (2^-24 relative each), far inside this bound.
@@ -41,7 +43,8 @@ void collect_extensions(const json& j, std::set<std::string>& out) {
 }  // namespace
 
 TEST(BuiltinScenes, RegeneratingGivesTheCommittedBytes) {
-  const fs::path dir = fs::temp_directory_path() / ("giq-scenegen-test-" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("giq-scenegen-test-" + std::to_string(::getpid()));
   fs::remove_all(dir);
   const std::string command = std::string("\"") + GIQ_SCENEGEN + "\" \"" + dir.string() +
                               "\" --doc \"" + (dir / "builtin-scenes.md").string() + "\"";
@@ -50,7 +53,8 @@ TEST(BuiltinScenes, RegeneratingGivesTheCommittedBytes) {
     SCOPED_TRACE(name);
     EXPECT_TRUE(giq::test::read_bytes(dir / (name + ".gltf")) ==
                 giq::test::read_bytes(scene_path(name)))
-        << "scenes/" << name << ".gltf differs from the generator's output: run tools/scenes-update";
+        << "scenes/" << name
+        << ".gltf differs from the generator's output: run tools/scenes-update";
   }
   EXPECT_TRUE(giq::test::read_bytes(dir / "builtin-scenes.md") ==
               giq::test::read_bytes(fs::path(GIQ_SOURCE_DIR) / "docs" / "builtin-scenes.md"))
@@ -119,7 +123,8 @@ TEST_P(BuiltinFile, ExtensionsUsedListsExactlyTheExtensionsUsed) {
   std::set<std::string> used;
   collect_extensions(f.doc, used);
   std::set<std::string> declared;
-  for (const auto& e : f.doc.value("extensionsUsed", json::array())) declared.insert(e.get<std::string>());
+  for (const auto& e : f.doc.value("extensionsUsed", json::array()))
+    declared.insert(e.get<std::string>());
   EXPECT_EQ(declared, used);
 }
 
@@ -132,7 +137,8 @@ TEST_P(BuiltinFile, NamesViewsAndExtrasFollowTheSchema) {
   }
   const json& giq = f.doc.at("extras").at("giq");
   for (const auto& [key, ignored] : giq.items())
-    EXPECT_TRUE(key == "views" || key == "sequence" || key == "leak_regions" || key == "environment")
+    EXPECT_TRUE(key == "views" || key == "sequence" || key == "leak_regions" ||
+                key == "environment")
         << key;
   std::set<std::string> views;
   for (const auto& n : f.doc.at("nodes"))

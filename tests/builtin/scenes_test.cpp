@@ -22,7 +22,9 @@ Scene load(const std::string& name) {
   return giq::scenes::load(fs::path(GIQ_SCENES_DIR) / (name + ".gltf"));
 }
 
-glm::dvec3 world(const Scene& s, glm::vec3 local) { return glm::dvec3(local) + s.origin; }
+glm::dvec3 world(const Scene& s, glm::vec3 local) {
+  return glm::dvec3(local) + s.origin;
+}
 
 // Positions are floats relative to Scene::origin, a few metres at most: ~1e-6 m precision.
 constexpr double kPositionTolerance = 1e-5;
@@ -52,7 +54,8 @@ FeatureSet features(std::initializer_list<bool FeatureSet::*> flags) {
 const Expected kExpected[] = {
     {"cornell", 32, 0, 2, "front", 0, 1,
      features({&FeatureSet::emissive_meshes, &FeatureSet::one_sided})},
-    {"leak", 32, 1, 3, "roomB", 6, 1, features({&FeatureSet::point_lights, &FeatureSet::one_sided})},
+    {"leak", 32, 1, 3, "roomB", 6, 1,
+     features({&FeatureSet::point_lights, &FeatureSet::one_sided})},
     {"sunroom", 56, 1, 3, "interior", 0, 1,
      features({&FeatureSet::directional_lights, &FeatureSet::specular, &FeatureSet::one_sided})},
     {"movinglight", 30, 1, 2, "front", 0, 60,
@@ -86,7 +89,8 @@ TEST(CornellScene, EmissivePowerIsPiTimesAreaTimesLuminance) {
   // Published light: (343 - 213) mm x (332 - 227) mm, radiance (17, 12, 4), one-sided.
   const double area = 0.130 * 0.105;
   const glm::dvec3 radiance(17.0, 12.0, 4.0);
-  const double luminance = 0.2126 * radiance.r + 0.7152 * radiance.g + 0.0722 * radiance.b;  // BT.709
+  const double luminance =
+      0.2126 * radiance.r + 0.7152 * radiance.g + 0.0722 * radiance.b;  // BT.709
   double total_area = 0.0, total_power = 0.0;
   for (const auto& t : s.emissive_triangles) {
     total_area += t.area;
@@ -149,9 +153,11 @@ TEST(MovingLightScene, LightFollowsThePath) {
     const double a = 2.0 * std::numbers::pi * f / 30.0;
     return centre + 0.15 * glm::dvec3(std::cos(a), 0.0, std::sin(a));
   };
-  const std::pair<int, glm::dvec3> keys[] = {
-      {0, {0.428, 0.45, 0.2796}},  {15, {0.128, 0.45, 0.2796}}, {29, circle(29)},
-      {30, {0.47, 0.12, 0.15}},    {59, {0.47, 0.12, 0.15}}};
+  const std::pair<int, glm::dvec3> keys[] = {{0, {0.428, 0.45, 0.2796}},
+                                             {15, {0.128, 0.45, 0.2796}},
+                                             {29, circle(29)},
+                                             {30, {0.47, 0.12, 0.15}},
+                                             {59, {0.47, 0.12, 0.15}}};
   for (const auto& [frame, position] : keys) {
     const Scene posed = s.at_frame(frame);
     ASSERT_EQ(posed.lights.size(), 1u);

@@ -33,7 +33,9 @@ MeshData block(const std::array<Quad, 5>& faces) {
 
 }  // namespace
 
-double yfov_deg() { return glm::degrees(2.0 * std::atan(kFilmMm / 2.0 / kFocalLengthMm)); }
+double yfov_deg() {
+  return glm::degrees(2.0 * std::atan(kFilmMm / 2.0 / kFocalLengthMm));
+}
 
 void add_box(GltfWriter& gltf, bool ceiling_light) {
   // Pure Lambert: KHR_materials_specular factor 0 removes glTF's dielectric specular layer.
@@ -42,10 +44,10 @@ void add_box(GltfWriter& gltf, bool ceiling_light) {
   const int green = gltf.add_material({"green", kGreen, 0.0, 1.0, 0.0, {}});
 
   // Published "Cornell Box Data" quads, vertex order as published (orientation is computed).
-  gltf.add_mesh_node("floor",
-                     wall({mm(552.8, 0.0, 0.0), mm(0.0, 0.0, 0.0), mm(0.0, 0.0, 559.2),
-                           mm(549.6, 0.0, 559.2)}),
-                     white);
+  gltf.add_mesh_node(
+      "floor",
+      wall({mm(552.8, 0.0, 0.0), mm(0.0, 0.0, 0.0), mm(0.0, 0.0, 559.2), mm(549.6, 0.0, 559.2)}),
+      white);
   gltf.add_mesh_node("ceiling",
                      wall({mm(556.0, 548.8, 0.0), mm(556.0, 548.8, 559.2), mm(0.0, 548.8, 559.2),
                            mm(0.0, 548.8, 0.0)}),
@@ -60,19 +62,19 @@ void add_box(GltfWriter& gltf, bool ceiling_light) {
                      wall({mm(552.8, 0.0, 0.0), mm(549.6, 0.0, 559.2), mm(556.0, 548.8, 559.2),
                            mm(556.0, 548.8, 0.0)}),
                      red);
-  gltf.add_mesh_node("green_wall",
-                     wall({mm(0.0, 0.0, 559.2), mm(0.0, 0.0, 0.0), mm(0.0, 548.8, 0.0),
-                           mm(0.0, 548.8, 559.2)}),
-                     green);
+  gltf.add_mesh_node(
+      "green_wall",
+      wall({mm(0.0, 0.0, 559.2), mm(0.0, 0.0, 0.0), mm(0.0, 548.8, 0.0), mm(0.0, 548.8, 559.2)}),
+      green);
   gltf.add_mesh_node("short_block",
                      block({{{mm(130.0, 165.0, 65.0), mm(82.0, 165.0, 225.0),
                               mm(240.0, 165.0, 272.0), mm(290.0, 165.0, 114.0)},
                              {mm(290.0, 0.0, 114.0), mm(290.0, 165.0, 114.0),
                               mm(240.0, 165.0, 272.0), mm(240.0, 0.0, 272.0)},
-                             {mm(130.0, 0.0, 65.0), mm(130.0, 165.0, 65.0),
-                              mm(290.0, 165.0, 114.0), mm(290.0, 0.0, 114.0)},
-                             {mm(82.0, 0.0, 225.0), mm(82.0, 165.0, 225.0),
-                              mm(130.0, 165.0, 65.0), mm(130.0, 0.0, 65.0)},
+                             {mm(130.0, 0.0, 65.0), mm(130.0, 165.0, 65.0), mm(290.0, 165.0, 114.0),
+                              mm(290.0, 0.0, 114.0)},
+                             {mm(82.0, 0.0, 225.0), mm(82.0, 165.0, 225.0), mm(130.0, 165.0, 65.0),
+                              mm(130.0, 0.0, 65.0)},
                              {mm(240.0, 0.0, 272.0), mm(240.0, 165.0, 272.0),
                               mm(82.0, 165.0, 225.0), mm(82.0, 0.0, 225.0)}}}),
                      white);
@@ -100,9 +102,9 @@ void add_box(GltfWriter& gltf, bool ceiling_light) {
   }
 
   // The published camera: at (278, 273, -800) mm looking +z; yfov = 2 atan(film / 2 / focal).
-  gltf.add_camera_node({"front", mm(278.0, 273.0, -800.0), mm(278.0, 273.0, 0.0), {0.0, 1.0, 0.0},
-                        yfov_deg()},
-                       1.0, 0.01);
+  gltf.add_camera_node(
+      {"front", mm(278.0, 273.0, -800.0), mm(278.0, 273.0, 0.0), {0.0, 1.0, 0.0}, yfov_deg()}, 1.0,
+      0.01);
   // From inside the open front near the green wall, into the corner of the red wall, the back
   // wall and the ceiling: the colour bleeding the front view sees only at grazing angles.
   gltf.add_view({"corner", mm(80.0, 300.0, 40.0), mm(500.0, 420.0, 520.0), {0.0, 1.0, 0.0}, 55.0});
@@ -131,14 +133,16 @@ BuiltinScene make_cornell() {
           " mm below the ceiling so the two never share a plane; it is single-sided and faces "
           "down.",
       "Reflectances and light radiance: the RGB fits used by the cornell-box scene of Bitterli's "
-      "\"Rendering Resources\" (2016, for pbrt-v3 and Mitsuba): white " + vec(kWhite) + ", red " +
-          vec(kRed) + ", green " + vec(kGreen) + ", light radiance " + vec(kLightRadiance) +
+      "\"Rendering Resources\" (2016, for pbrt-v3 and Mitsuba): white " +
+          vec(kWhite) + ", red " + vec(kRed) + ", green " + vec(kGreen) + ", light radiance " +
+          vec(kLightRadiance) +
           ". All materials are pure Lambert (metallic 0, roughness 1, KHR_materials_specular "
           "specularFactor 0).",
       "The view `front` is the published camera at (278, 273, -800) mm looking +z with up +y (" +
           num(kFocalLengthMm) + " mm focal length on a " + num(kFilmMm) +
           " mm square film: yfov = 2 atan(" + num(kFilmMm / 2.0) + "/" + num(kFocalLengthMm) +
-          ") = " + num(yfov_deg(), 4) + " degrees, square aspect). glTF is right-handed: looking "
+          ") = " + num(yfov_deg(), 4) +
+          " degrees, square aspect). glTF is right-handed: looking "
           "+z, +x is to the left, so the red wall (x = 552.8 mm) is on the left as in the "
           "photograph.",
   };

@@ -10,7 +10,9 @@
 namespace giq::scenegen::cornell {
 
 // Published coordinates are in millimetres.
-constexpr glm::dvec3 mm(double x, double y, double z) { return {x / 1000.0, y / 1000.0, z / 1000.0}; }
+constexpr glm::dvec3 mm(double x, double y, double z) {
+  return {x / 1000.0, y / 1000.0, z / 1000.0};
+}
 
 // The published light is at the ceiling's height (548.8 mm). It is lowered by 1 mm so the two
 // quads never share a plane: rasterisers would z-fight and ray tracers with a ~1e-4 m offset

@@ -7,7 +7,9 @@
 namespace giq::scenegen {
 namespace {
 
-std::string range(double lo, double hi) { return num(lo, 4) + " .. " + num(hi, 4); }
+std::string range(double lo, double hi) {
+  return num(lo, 4) + " .. " + num(hi, 4);
+}
 
 std::string material_row(const MaterialSpec& m) {
   std::string specular =
@@ -22,13 +24,13 @@ std::string light_row(const LightFacts& l) {
   if (l.spec.kind == LightKind::Directional)
     return "| " + l.spec.name + " | directional | irradiance " + vec(radiant, 4) +
            " W/m^2 | travels along " + vec(l.direction, 4) + " |\n";
-  return "| " + l.spec.name + " | point | radiant intensity " + vec(radiant, 6) +
-         " W/sr | at " + vec(l.position, 4) + " m at rest |\n";
+  return "| " + l.spec.name + " | point | radiant intensity " + vec(radiant, 6) + " W/sr | at " +
+         vec(l.position, 4) + " m at rest |\n";
 }
 
 std::string view_row(const ViewSpec& v, const char* source) {
-  return "| " + v.name + " | " + source + " | " + vec(v.eye, 4) + " | " + vec(v.target, 4) +
-         " | " + vec(v.up, 4) + " | " + num(v.yfov_deg, 4) + " |\n";
+  return "| " + v.name + " | " + source + " | " + vec(v.eye, 4) + " | " + vec(v.target, 4) + " | " +
+         vec(v.up, 4) + " | " + num(v.yfov_deg, 4) + " |\n";
 }
 
 std::string scene_section(const BuiltinScene& s) {
@@ -56,13 +58,15 @@ std::string scene_section(const BuiltinScene& s) {
   for (const MaterialSpec& m : g.material_specs()) out += material_row(m);
 
   if (!g.light_facts().empty()) {
-    out += "\nPunctual lights (KHR_lights_punctual, read radiometrically):\n\n"
-           "| light | type | power | where |\n|---|---|---|---|\n";
+    out +=
+        "\nPunctual lights (KHR_lights_punctual, read radiometrically):\n\n"
+        "| light | type | power | where |\n|---|---|---|---|\n";
     for (const LightFacts& l : g.light_facts()) out += light_row(l);
   }
 
-  out += "\nViews (the first is the default):\n\n"
-         "| view | from | eye | target | up | yfov (degrees) |\n|---|---|---|---|---|---|\n";
+  out +=
+      "\nViews (the first is the default):\n\n"
+      "| view | from | eye | target | up | yfov (degrees) |\n|---|---|---|---|---|---|\n";
   for (const ViewSpec& v : g.camera_views()) out += view_row(v, "camera node");
   for (const ViewSpec& v : g.extra_views()) out += view_row(v, "extras.giq.views");
 
@@ -104,14 +108,14 @@ std::string documentation(const std::vector<BuiltinScene>& scenes) {
       "more views are in `extras.giq.views` as {name, eye, target, up, yfov_deg}. Animated "
       "scenes name their sequence in `extras.giq.sequence` {frames, fps, animation}; leak "
       "regions are in `extras.giq.leak_regions`.\n\n";
-  out += "| scene | surfaces | triangles | punctual lights | views | frames |\n"
-         "|---|---|---|---|---|---|\n";
+  out +=
+      "| scene | surfaces | triangles | punctual lights | views | frames |\n"
+      "|---|---|---|---|---|---|\n";
   for (const BuiltinScene& s : scenes) {
     size_t triangles = 0;
     for (const NodeFacts& n : s.gltf.node_facts()) triangles += n.triangles;
     out += "| `" + s.name + "` | " + std::to_string(s.gltf.node_facts().size()) + " | " +
-           std::to_string(triangles) + " | " + std::to_string(s.gltf.light_facts().size()) +
-           " | " +
+           std::to_string(triangles) + " | " + std::to_string(s.gltf.light_facts().size()) + " | " +
            std::to_string(s.gltf.camera_views().size() + s.gltf.extra_views().size()) + " | " +
            std::to_string(s.gltf.sequence_frames()) + " |\n";
   }

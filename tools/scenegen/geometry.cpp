@@ -30,7 +30,9 @@ void append_triangle(MeshData& mesh, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
 
 }  // namespace
 
-glm::dvec3 centroid(const Quad& q) { return (q[0] + q[1] + q[2] + q[3]) * 0.25; }
+glm::dvec3 centroid(const Quad& q) {
+  return (q[0] + q[1] + q[2] + q[3]) * 0.25;
+}
 
 void add_quad(MeshData& mesh, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 d,
               glm::dvec3 facing) {

@@ -30,7 +30,9 @@ float clean(double v) {
   return static_cast<float>(v);
 }
 
-Json vec3(glm::dvec3 v) { return Json::array({clean(v.x), clean(v.y), clean(v.z)}); }
+Json vec3(glm::dvec3 v) {
+  return Json::array({clean(v.x), clean(v.y), clean(v.z)});
+}
 
 std::string base64(const std::vector<uint8_t>& bytes) {
   // RFC 4648 §4, with padding: the encoding data URIs use (RFC 2397).
@@ -119,8 +121,8 @@ int GltfWriter::add_accessor(const void* data, size_t bytes, int component_type,
   return static_cast<int>(accessors_.size() - 1);
 }
 
-int GltfWriter::add_vec3_accessor(const std::vector<glm::dvec3>& values,
-                                  std::optional<int> target, bool bounds) {
+int GltfWriter::add_vec3_accessor(const std::vector<glm::dvec3>& values, std::optional<int> target,
+                                  bool bounds) {
   std::vector<float> data;
   data.reserve(values.size() * 3);
   glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-lo);
@@ -144,8 +146,8 @@ int GltfWriter::add_material(const MaterialSpec& spec) {
   Json m;
   m["name"] = spec.name;
   Json pbr;
-  pbr["baseColorFactor"] =
-      Json::array({clean(spec.base_color.r), clean(spec.base_color.g), clean(spec.base_color.b), 1.0f});
+  pbr["baseColorFactor"] = Json::array(
+      {clean(spec.base_color.r), clean(spec.base_color.g), clean(spec.base_color.b), 1.0f});
   pbr["metallicFactor"] = clean(spec.metallic);
   pbr["roughnessFactor"] = clean(spec.roughness);
   m["pbrMetallicRoughness"] = std::move(pbr);
@@ -283,9 +285,9 @@ int GltfWriter::add_animation(const std::string& name,
     std::vector<float> times;
     for (double t : track.times) times.push_back(clean(t));
     // §3.11: sampler input accessors must declare min and max.
-    const int input = add_accessor(times.data(), times.size() * sizeof(float), kFloat,
-                                   times.size(), "SCALAR", std::nullopt,
-                                   Json::array({times.front()}), Json::array({times.back()}));
+    const int input =
+        add_accessor(times.data(), times.size() * sizeof(float), kFloat, times.size(), "SCALAR",
+                     std::nullopt, Json::array({times.front()}), Json::array({times.back()}));
     const int output = add_vec3_accessor(track.values, std::nullopt, false);
     Json sampler;
     sampler["input"] = input;
@@ -305,7 +307,9 @@ int GltfWriter::add_animation(const std::string& name,
   return static_cast<int>(animations_.size() - 1);
 }
 
-void GltfWriter::add_view(const ViewSpec& view) { extra_views_.push_back(view); }
+void GltfWriter::add_view(const ViewSpec& view) {
+  extra_views_.push_back(view);
+}
 
 void GltfWriter::set_sequence(int frames, double fps, int animation) {
   Json s;
@@ -354,8 +358,9 @@ std::string GltfWriter::dump() const {
   if (!animations_.empty()) doc["animations"] = animations_;
   doc["accessors"] = accessors_;
   doc["bufferViews"] = buffer_views_;
-  doc["buffers"] = Json::array(
-      {{{"byteLength", buffer_.size()}, {"uri", "data:application/octet-stream;base64," + base64(buffer_)}}});
+  doc["buffers"] =
+      Json::array({{{"byteLength", buffer_.size()},
+                    {"uri", "data:application/octet-stream;base64," + base64(buffer_)}}});
   return doc.dump(2) + "\n";
 }
 

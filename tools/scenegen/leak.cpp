@@ -85,8 +85,8 @@ BuiltinScene make_leak() {
   s.notes = {
       "Rooms: " + num(kRoomWidth) + " m (x) by " + num(kRoomHeight) + " m (y) by " +
           num(kRoomDepth) + " m (z) inside each, either side of a thin wall " +
-          num(kWallThickness * 100.0) + " cm thick (x from " + num(-kHalf) + " to " +
-          num(kHalf) + " m), modelled as a closed box.",
+          num(kWallThickness * 100.0) + " cm thick (x from " + num(-kHalf) + " to " + num(kHalf) +
+          " m), modelled as a closed box.",
       "Sealed: each room's floor, ceiling, front and back walls run on to x = 0, under, over "
       "and beside the thin wall, so the seams are backed by surfaces and the truth in room B "
       "is exactly zero.",

@@ -52,8 +52,8 @@ BuiltinScene make_movinglight() {
   // light itself (one animation may target each node's translation only once).
   const glm::dvec3 jump = kJumpTarget - on_circle(kLoopFrames);
   const int rig = s.gltf.add_group_node("light_rig", {});
-  const int light = s.gltf.add_light_node(
-      {"moving_light", LightKind::Point, radiant / peak, peak}, {on_circle(0)}, rig);
+  const int light = s.gltf.add_light_node({"moving_light", LightKind::Point, radiant / peak, peak},
+                                          {on_circle(0)}, rig);
 
   TranslationTrack circle{light, Interpolation::Linear, {}, {}};
   for (int k = 0; k <= kLoopFrames; ++k) {
@@ -68,18 +68,21 @@ BuiltinScene make_movinglight() {
       "Geometry, materials and views: those of `cornell` (same code), without the ceiling "
       "light quad.",
       "The point light `moving_light` has the ceiling light's total power: I = A L / 4 per "
-      "channel (pi A L is emitted by the one-sided area light of area A = " + num(area, 5) +
-          " m^2 and radiance L = " + vec(cornell::kLightRadiance) +
+      "channel (pi A L is emitted by the one-sided area light of area A = " +
+          num(area, 5) + " m^2 and radiance L = " + vec(cornell::kLightRadiance) +
           ", 4 pi I by a point light), so I = " + vec(radiant, 6) + " W/sr.",
       "Path (animation " + std::to_string(animation) + ", `light_path`): over frames 0-" +
           std::to_string(kLoopFrames) + " one circle of radius " + num(kCircleRadius) +
-          " m around " + vec(kCircleCentre) + " m (" +
-          num(cornell::kLightMin.y - kCircleCentre.y) +
+          " m around " + vec(kCircleCentre) + " m (" + num(cornell::kLightMin.y - kCircleCentre.y) +
           " m under the ceiling), a LINEAR key every frame: frame 0 at " + vec(on_circle(0)) +
-          ", frame 15 at " + vec(on_circle(15)) + ". A STEP key of the parent node `light_rig` "
-          "at t = " + num(kJumpTime, 6) + " s (half-way between frames 29 and 30) moves the "
-          "light to " + vec(kJumpTarget) + " m, where it stays for frames 30-" +
-          std::to_string(kFrames - 1) + ".",
+          ", frame 15 at " + vec(on_circle(15)) +
+          ". A STEP key of the parent node `light_rig` "
+          "at t = " +
+          num(kJumpTime, 6) +
+          " s (half-way between frames 29 and 30) moves the "
+          "light to " +
+          vec(kJumpTarget) + " m, where it stays for frames 30-" + std::to_string(kFrames - 1) +
+          ".",
       "Sequence: " + std::to_string(kFrames) + " frames at " + num(kFps) +
           " fps. The step change for lag is at frame t0 = " + std::to_string(kLoopFrames) + ".",
   };

@@ -93,8 +93,8 @@ BuiltinScene make_sunroom() {
 
   const double aspect = 16.0 / 9.0;
   // From the back corner: the sunlit patch, the copper box and the window.
-  g.add_camera_node({"interior", {4.6, 1.8, 4.7}, {2.2, 0.6, 1.8}, {0.0, 1.0, 0.0}, 60.0},
-                    aspect, 0.01);
+  g.add_camera_node({"interior", {4.6, 1.8, 4.7}, {2.2, 0.6, 1.8}, {0.0, 1.0, 0.0}, 60.0}, aspect,
+                    0.01);
   g.add_view({"window", {2.5, 1.6, 4.7}, {2.5, 1.3, 0.0}, {0.0, 1.0, 0.0}, 60.0});
   // From the window wall toward the back wall and ceiling: almost only indirect light.
   g.add_view({"back", {2.5, 1.5, 0.4}, {2.5, 2.0, 5.0}, {0.0, 1.0, 0.0}, 60.0});
@@ -106,16 +106,21 @@ BuiltinScene make_sunroom() {
           " m (z) inside; walls, floor slab and roof " + num(kThickness) +
           " m thick, modelled as a closed solid (inner faces, outer faces and the window's "
           "reveal), so the sun reaches the interior only through the window.",
-      "Window: x " + num(kWindowLo.x) + "-" + num(kWindowHi.x) + " m, y " + num(kWindowLo.y) +
-          "-" + num(kWindowHi.y) + " m in the z = 0 wall.",
-      "Sun: directional, irradiance " + num(kSunIrradiance) + " W/m^2 (white) on a surface "
-          "facing it, travelling along " + vec(sun) + "; the floor patch it lights receives " +
-          num(floor_irradiance, 2) + " W/m^2, so the floor (albedo 0.55, 0.38, 0.22) there has "
-          "radiance up to " + num(floor_irradiance * 0.55 / std::numbers::pi, 2) +
+      "Window: x " + num(kWindowLo.x) + "-" + num(kWindowHi.x) + " m, y " + num(kWindowLo.y) + "-" +
+          num(kWindowHi.y) + " m in the z = 0 wall.",
+      "Sun: directional, irradiance " + num(kSunIrradiance) +
+          " W/m^2 (white) on a surface "
+          "facing it, travelling along " +
+          vec(sun) + "; the floor patch it lights receives " + num(floor_irradiance, 2) +
+          " W/m^2, so the floor (albedo 0.55, 0.38, 0.22) there has "
+          "radiance up to " +
+          num(floor_irradiance * 0.55 / std::numbers::pi, 2) +
           " in red, against the unlit walls' indirect light.",
       "Glossy object: `copper_box`, metallic 1, roughness " + num(kCopperRoughness) +
-          ", base colour " + vec(kCopper, 3) + " (copper's linear F0 as tabulated in Hoffman, "
-          "\"Physics and Math of Shading\", SIGGRAPH 2015), turned " + num(kBoxTurnDeg) +
+          ", base colour " + vec(kCopper, 3) +
+          " (copper's linear F0 as tabulated in Hoffman, "
+          "\"Physics and Math of Shading\", SIGGRAPH 2015), turned " +
+          num(kBoxTurnDeg) +
           " degrees about +y. Every other material is Lambert (KHR_materials_specular factor 0).",
   };
   return s;
