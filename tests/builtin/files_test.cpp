@@ -2,6 +2,7 @@
 // self-contained glTF 2.0: checked here against the specification without the scene loader.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
