@@ -1,0 +1,85 @@
+#pragma once
+// The gate config: a JSON file listing cases (scene, view, technique, parameters, frames,
+// layer, resolution, golden reference settings) and bounds on their metrics. docs/gate.md
+// describes the format. JSON rather than TOML: it is the format of every other giq file
+// (metrics.json, timings.json, the golden manifest), it needs no extra dependency, and a
+// config can be generated or checked by the same tools that read giq's outputs.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace giq::gate {
+
+// How a golden reference is rendered: stop at `spp` samples per pixel or at a mean relative
+// standard error `rel_error` (exactly one of the two), with a fixed seed so that re-rendering
+// gives the same file.
+struct GoldenSpec {
+  std::optional<uint32_t> spp;
+  std::optional<double> rel_error;
+  uint64_t seed = 1;
+};
+
+enum class Better { Lower, Higher };
+
+// One bound: the metric must stay at or below `fail` (at or above for higher-is-better
+// metrics such as ssim and psnr); beyond `warn` it is reported as WARN. A bound with a
+// `device` applies only where the device name contains it (case-insensitive); elsewhere it is
+// reported as SKIP. gpu_ms bounds must name a device: a time means nothing on another one.
+struct Bound {
+  std::string metric;
+  std::optional<double> fail;
+  std::optional<double> warn;
+  Better better = Better::Lower;
+  std::string device;
+};
+
+// Timing run for gpu_ms bounds: median over `frames` measured frames after `warmup`.
+struct TimingSpec {
+  int warmup = 10;
+  int frames = 20;
+};
+
+struct Case {
+  std::string name;
+  std::filesystem::path scene;  // resolved against the config file's folder
+  std::string view;
+  std::string technique;
+  std::vector<std::pair<std::string, double>> parameters;  // sorted by name
+  int first_frame = 0, last_frame = 0;
+  std::string layer = "beauty";
+  int width = 128, height = 128;
+  GoldenSpec golden;
+  TimingSpec timing;
+  std::vector<Bound> bounds;
+
+  bool sequence() const { return last_frame > first_frame; }
+  bool needs_timing() const;
+};
+
+struct Config {
+  std::filesystem::path file;
+  std::filesystem::path golden_dir;  // default: <config folder>/refs
+  std::vector<Case> cases;
+};
+
+// Reads and validates a config. Throws InputError(file, field, message) naming the JSON path
+// of the first problem (e.g. "cases[2].bounds.flip_mean.warn") and what was expected.
+Config read_config(const std::filesystem::path& file);
+Config parse_config(const std::string& text, const std::filesystem::path& file);
+
+// The better direction of a metric when the config does not say: ssim and psnr grow with
+// quality, every other metric giq writes is an error.
+Better default_direction(const std::string& metric);
+
+// Cases whose name matches a glob pattern ('*' any run, '?' one character); "" selects all.
+std::vector<const Case*> select_cases(const Config& config, const std::string& pattern);
+bool glob_match(const std::string& pattern, const std::string& text);
+
+// "name=value" for each parameter, values printed with up to 10 significant digits.
+std::vector<std::string> parameter_arguments(const Case& c);
+
+}  // namespace giq::gate

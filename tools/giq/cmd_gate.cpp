@@ -1,0 +1,183 @@
+// `giq gate`: renders each case of the gate config with its technique, scores it against its
+// golden reference and checks the bounds; prints a table, writes gate-report.xml (JUnit),
+// gate-summary.md and gate.json, and exits 0 (pass or warn), 1 (any failure) or 2 (bad input).
+// `giq golden update`: renders the golden references the config needs (missing or stale
+// ones, or all with --force) and records them in the manifest. See docs/gate.md.
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+
+#include "command.h"
+#include "gate_runner.h"
+#include "giq/base/atomic_file.h"
+#include "giq/base/error.h"
+#include "giq/base/version.h"
+#include "giq/gate/config.h"
+#include "giq/gate/junit.h"
+#include "giq/gate/summary.h"
+#include "subprocess.h"
+
+namespace giq::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct GateArgs {
+  std::string config = "golden/gate.json";
+  std::string only;
+  int jobs = 1;
+  std::string out = "gate-out";
+  std::string device;
+  std::string giq;
+  bool rerender = false;
+  bool force = false;
+};
+
+Toolchain toolchain(const GateArgs& a) {
+  Toolchain t;
+  t.giq = a.giq.empty() ? self_executable() : fs::absolute(a.giq);
+  if (!fs::exists(t.giq)) throw InputError(a.giq, "--giq", "no such program; expected the path of a giq binary");
+  t.device = a.device;
+  t.rerender = a.rerender;
+  return t;
+}
+
+std::vector<const gate::Case*> load_cases(const GateArgs& a, gate::Config& config) {
+  if (a.jobs < 1) throw InputError("", "--jobs", std::to_string(a.jobs) + "; expected at least 1");
+  config = gate::read_config(a.config);
+  gate::check_golden_conflicts(config);
+  auto cases = gate::select_cases(config, a.only);
+  if (cases.empty()) throw InputError(a.config, "--only", "'" + a.only + "' matches no case name");
+  return cases;
+}
+
+json outcome_json(const gate::Outcome& o) {
+  return {{"case", o.case_name}, {"metric", o.metric}, {"status", gate::to_string(o.status)},
+          {"value", o.value && std::isfinite(*o.value) ? json(*o.value) : json(nullptr)},
+          {"bound", o.bound},    {"message", o.message}, {"fails_gate", o.fails_gate}};
+}
+
+int run_gate(const GateArgs& a) {
+  gate::Config config;
+  const auto cases = load_cases(a, config);
+  const Toolchain tools = toolchain(a);
+  const gate::Manifest manifest = gate::read_manifest(config.golden_dir / "manifest.json");
+  const fs::path out = a.out;
+  fs::create_directories(out);
+  const bool tty = ::isatty(STDERR_FILENO) != 0;
+
+  std::vector<CaseRun> runs(cases.size());
+  std::mutex progress;
+  size_t done = 0;
+  parallel_for(cases.size(), a.jobs, [&](size_t i) {
+    runs[i] = run_case(tools, *cases[i], config, manifest, out);
+    std::lock_guard<std::mutex> g(progress);
+    ++done;
+    if (tty) std::fprintf(stderr, "\rgiq gate: %zu/%zu cases  (%s %.1f s)   ", done, cases.size(), cases[i]->name.c_str(), runs[i].seconds);
+  });
+  if (tty) std::fprintf(stderr, "\n");
+
+  std::vector<gate::Outcome> outcomes;
+  std::vector<std::pair<std::string, double>> seconds;
+  json case_list = json::array();
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const auto o = gate::evaluate(*cases[i], runs[i].evidence);
+    outcomes.insert(outcomes.end(), o.begin(), o.end());
+    seconds.emplace_back(cases[i]->name, runs[i].seconds);
+    json cj = {{"name", cases[i]->name},
+               {"scene", cases[i]->scene.string()},
+               {"view", cases[i]->view},
+               {"technique", cases[i]->technique},
+               {"frames", {cases[i]->first_frame, cases[i]->last_frame}},
+               {"layer", cases[i]->layer},
+               {"dir", fs::relative(runs[i].dir, out).generic_string()},
+               {"seconds", runs[i].seconds},
+               {"problem", runs[i].evidence.problem}};
+    json params = json::object();
+    for (const auto& [k, v] : cases[i]->parameters) params[k] = v;
+    cj["parameters"] = params;
+    case_list.push_back(cj);
+  }
+  json outcome_list = json::array();
+  for (const auto& o : outcomes) outcome_list.push_back(outcome_json(o));
+  const int code = gate::exit_code(outcomes);
+  write_file_atomically(out / "gate-report.xml", gate::junit_xml(outcomes, seconds));
+  write_file_atomically(out / "gate-summary.md", gate::markdown_summary(outcomes));
+  write_file_atomically(out / "gate.json", json{{"version", 1},
+                                                {"giq_version", giq::version()},
+                                                {"config", a.config},
+                                                {"passed", code == 0},
+                                                {"cases", case_list},
+                                                {"outcomes", outcome_list}}
+                                                   .dump(2) + "\n");
+  std::cout << gate::format_table(outcomes) << '\n'
+            << "giq gate: " << (code == 0 ? "passed" : "FAILED") << ", " << gate::count_line(outcomes) << "; "
+            << (out / "gate-report.xml").string() << ", " << (out / "gate-summary.md").string() << '\n';
+  return code;
+}
+
+int run_golden_update(const GateArgs& a) {
+  gate::Config config;
+  const auto cases = load_cases(a, config);
+  const Toolchain tools = toolchain(a);
+  fs::create_directories(config.golden_dir);
+  gate::Manifest manifest = gate::read_manifest(config.golden_dir / "manifest.json");
+  // One golden per key, even when several cases share it.
+  std::vector<const gate::Case*> unique;
+  std::set<std::string> keys;
+  for (const gate::Case* c : cases)
+    if (keys.insert(gate::golden_key(*c)).second) unique.push_back(c);
+  std::vector<GoldenRun> runs(unique.size());
+  std::mutex lock;
+  parallel_for(unique.size(), a.jobs,
+               [&](size_t i) { runs[i] = update_golden(tools, *unique[i], config, a.force, manifest, lock); });
+  int failed = 0, rendered = 0;
+  for (const GoldenRun& r : runs) {
+    std::cout << "  " << r.key << ": " << r.action << (r.message.empty() ? "" : "  " + r.message) << '\n';
+    failed += r.action == "failed";
+    rendered += r.action == "rendered";
+  }
+  std::cout << "giq golden update: " << rendered << " rendered, " << (runs.size() - size_t(rendered + failed))
+            << " fresh, " << failed << " failed; manifest " << (config.golden_dir / "manifest.json").string() << '\n';
+  return failed ? 1 : 0;
+}
+
+void common_options(CLI::App* cmd, GateArgs& a) {
+  cmd->add_option("--config", a.config, "Gate config (JSON, docs/gate.md)")->capture_default_str();
+  cmd->add_option("--only", a.only, "Only the cases whose name matches this glob ('*', '?')");
+  cmd->add_option("--jobs", a.jobs, "Cases run in parallel")->capture_default_str();
+  cmd->add_option("--giq", a.giq, "giq binary whose reference/realtime/score subcommands are run (default: this one)");
+}
+
+}  // namespace
+
+void add_gate_command(CLI::App& app, int& exit_code) {
+  auto a = std::make_shared<GateArgs>();
+  CLI::App* cmd = app.add_subcommand("gate", "Render, score and check every case of a gate config (exit 1 on failure)");
+  common_options(cmd, *a);
+  cmd->add_option("--out", a->out, "Folder for gate-report.xml, gate-summary.md, gate.json and each case's outputs")
+      ->capture_default_str();
+  cmd->add_option("--device", a->device, "Vulkan device for giq realtime (index or part of its name)");
+  cmd->add_flag("--rerender", a->rerender, "Render and score again even where outputs of an identical run exist");
+  cmd->callback([a, &exit_code] { exit_code = run_gate(*a); });
+}
+
+void add_golden_command(CLI::App& app, int& exit_code) {
+  auto a = std::make_shared<GateArgs>();
+  CLI::App* golden = app.add_subcommand("golden", "Golden references of the gate");
+  golden->require_subcommand(1);
+  CLI::App* update = golden->add_subcommand("update", "Render the missing or stale golden references of a gate config");
+  common_options(update, *a);
+  update->add_flag("--force", a->force, "Render every golden again, fresh or not");
+  update->callback([a, &exit_code] { exit_code = run_golden_update(*a); });
+}
+
+}  // namespace giq::cli

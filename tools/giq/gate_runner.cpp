@@ -1,0 +1,197 @@
+#include "gate_runner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "giq/base/atomic_file.h"
+#include "giq/base/error.h"
+#include "giq/base/version.h"
+#include "giq/image/io.h"
+#include "giq/scenes/scene.h"
+#include "subprocess.h"
+
+namespace giq::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string frames_arg(int a, int b) { return std::to_string(a) + ":" + std::to_string(b); }
+
+json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  if (!in) throw InputError(p.string(), "", "missing");
+  try {
+    return json::parse(in);
+  } catch (const json::exception& e) {
+    throw InputError(p.string(), "", std::string("not valid JSON: ") + e.what());
+  }
+}
+
+// Whether `dir` holds the outputs of exactly this command (same arguments, same giq binary,
+// same golden files), so the gate renders only what is missing.
+bool up_to_date(const fs::path& dir, const json& stamp) {
+  try {
+    return fs::exists(dir / "stamp.json") && read_json(dir / "stamp.json") == stamp;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
+// Runs one step; a non-zero exit becomes a problem naming the step and the log.
+std::string step(const std::vector<std::string>& argv, const fs::path& dir, const fs::path& log, const std::string& what,
+                 const json& stamp, bool rerender) {
+  if (!rerender && up_to_date(dir, stamp)) return "";
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  fs::create_directories(dir);
+  const ProcessResult r = run_process(argv, log);
+  if (r.exit_code != 0)
+    return what + " failed (exit " + std::to_string(r.exit_code) + "; log " + log.string() + "): " + r.log_tail;
+  write_file_atomically(dir / "stamp.json", stamp.dump(2) + "\n");
+  return "";
+}
+
+std::vector<std::string> realtime_args(const Toolchain& t, const gate::Case& c) {
+  std::vector<std::string> a = {t.giq.string(), "realtime", "--scene", c.scene.string(), "--view", c.view,
+                                "--technique", c.technique, "--width", std::to_string(c.width), "--height",
+                                std::to_string(c.height)};
+  for (const std::string& p : gate::parameter_arguments(c)) a.insert(a.end(), {"--param", p});
+  if (!t.device.empty()) a.insert(a.end(), {"--device", t.device});
+  return a;
+}
+
+}  // namespace
+
+std::string scene_hash(const fs::path& scene) { return scenes::load(scene).content_hash; }
+
+CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& config, const gate::Manifest& manifest,
+                 const fs::path& out_dir) {
+  CaseRun run;
+  run.dir = out_dir / "cases" / c.name;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    fs::create_directories(run.dir);
+    const fs::path log = run.dir / "log.txt";
+    std::ofstream(log, std::ios::trunc) << "giq gate: case " << c.name << '\n';
+    const std::string hash = scene_hash(c.scene);
+    const gate::Freshness fresh = gate::check_golden(manifest, config.golden_dir, c, hash);
+    if (fresh.state != gate::Freshness::State::Fresh) throw InputError(c.scene.string(), "golden", fresh.reason);
+    const fs::path golden = config.golden_dir / gate::golden_key(c);
+    json golden_files = json::object();
+    for (const auto& [name, h] : manifest.entries.at(gate::golden_key(c)).files) golden_files[name] = h;
+    const std::string binary_hash = gate::file_hash(t.giq);
+
+    // Technique images: frames A..B are the measured frames after A warm-up frames.
+    std::vector<std::string> rt = realtime_args(t, c);
+    const fs::path tech = run.dir / "technique";
+    rt.insert(rt.end(), {"--warmup", std::to_string(c.first_frame), "--frames",
+                         std::to_string(c.last_frame - c.first_frame + 1), "--out", tech.string()});
+    std::string problem = step(rt, tech, log, "giq realtime", {{"argv", rt}, {"giq", binary_hash}}, t.rerender);
+    if (!problem.empty()) throw InputError("", "realtime", problem);
+    fs::path timings = tech / "timings.json";
+    if (c.needs_timing()) {
+      std::vector<std::string> tm = realtime_args(t, c);
+      const fs::path timing = run.dir / "timing";
+      tm.insert(tm.end(), {"--no-images", "--warmup", std::to_string(c.timing.warmup), "--frames",
+                           std::to_string(c.timing.frames), "--out", timing.string()});
+      problem = step(tm, timing, log, "giq realtime (timing)", {{"argv", tm}, {"giq", binary_hash}}, t.rerender);
+      if (!problem.empty()) throw InputError("", "realtime", problem);
+      timings = timing / "timings.json";
+    }
+    for (int f = c.first_frame; f <= c.last_frame; ++f)
+      if (!fs::exists(tech / gate::golden_frame_name(f)))
+        throw InputError((tech / gate::golden_frame_name(f)).string(), "", "giq realtime did not write this frame");
+
+    const fs::path score = run.dir / "score";
+    std::vector<std::string> sc = {t.giq.string(), "score"};
+    if (c.sequence())
+      sc.insert(sc.end(), {"--ref", (golden / "frame_%04d.exr").string(), "--test", (tech / "frame_%04d.exr").string(),
+                           "--frames", frames_arg(c.first_frame, c.last_frame)});
+    else
+      sc.insert(sc.end(), {"--ref", (golden / gate::golden_frame_name(c.first_frame)).string(), "--test",
+                           (tech / gate::golden_frame_name(c.first_frame)).string()});
+    sc.insert(sc.end(), {"--layer", c.layer, "--scene", c.scene.string(), "--timings", (tech / "timings.json").string(),
+                         "--out", score.string()});
+    problem = step(sc, score, log, "giq score",
+                   {{"argv", sc}, {"giq", binary_hash}, {"golden", golden_files}, {"technique", read_json(tech / "stamp.json")}},
+                   t.rerender);
+    if (!problem.empty()) throw InputError("", "score", problem);
+    run.evidence.metrics = read_json(score / "metrics.json");
+    run.evidence.timings = read_json(timings);
+  } catch (const std::exception& e) {
+    run.evidence.problem = e.what();
+  }
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return run;
+}
+
+GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Config& config, bool force,
+                        gate::Manifest& manifest, std::mutex& lock) {
+  GoldenRun g;
+  g.key = gate::golden_key(c);
+  try {
+    const std::string hash = scene_hash(c.scene);
+    {
+      std::lock_guard<std::mutex> guard(lock);
+      const gate::Freshness f = gate::check_golden(manifest, config.golden_dir, c, hash);
+      if (f.state == gate::Freshness::State::Fresh && !force) {
+        g.action = "fresh";
+        return g;
+      }
+    }
+    const fs::path dir = config.golden_dir / g.key;
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+    fs::create_directories(dir);
+    std::vector<std::string> a = {t.giq.string(), "reference", "--scene", c.scene.string(), "--view", c.view, "--frames",
+                                  frames_arg(c.first_frame, c.last_frame), "--width", std::to_string(c.width), "--height",
+                                  std::to_string(c.height), "--seed", std::to_string(c.golden.seed)};
+    if (c.golden.spp) a.insert(a.end(), {"--spp", std::to_string(*c.golden.spp)});
+    else a.insert(a.end(), {"--rel-error", std::to_string(*c.golden.rel_error)});
+    a.insert(a.end(), {"--out", (dir / "frame_####.exr").string()});
+    const fs::path log = config.golden_dir / (g.key + ".log");
+    std::ofstream(log, std::ios::trunc) << "giq golden update: " << g.key << '\n';
+    const ProcessResult r = run_process(a, log);
+    if (r.exit_code != 0)
+      throw InputError(c.scene.string(), "golden", "giq reference failed (exit " + std::to_string(r.exit_code) + "; log " +
+                                                      log.string() + "): " + r.log_tail);
+    fs::remove(log, ec);
+    gate::GoldenEntry e;
+    e.scene = c.scene.lexically_relative(config.file.parent_path()).generic_string();
+    e.scene_hash = hash;
+    e.settings = gate::golden_settings(c);
+    e.render_seconds = r.seconds;
+    e.giq_version = giq::version();
+    for (int f = c.first_frame; f <= c.last_frame; ++f) {
+      const fs::path p = dir / gate::golden_frame_name(f);
+      if (!fs::exists(p)) throw InputError(p.string(), "", "giq reference did not write this frame");
+      e.files[p.filename().string()] = gate::file_hash(p);
+      // The achieved spp (minimum over pixels and frames) and the renderer's version come from
+      // the EXR header that giq reference writes.
+      const image::Image img = image::read_image(p);
+      if (auto it = img.metadata.find("giq.version"); it != img.metadata.end()) e.giq_version = it->second;
+      if (auto it = img.metadata.find("giq.spp"); it != img.metadata.end()) {
+        const uint32_t spp = uint32_t(std::stoul(it->second));
+        e.spp = e.spp ? std::min(*e.spp, spp) : spp;
+      }
+    }
+    std::lock_guard<std::mutex> guard(lock);
+    manifest.entries[g.key] = e;
+    gate::write_manifest(config.golden_dir / "manifest.json", manifest);
+    g.action = "rendered";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, " in %.1f s", r.seconds);
+    g.message = dir.string() + buf;
+  } catch (const std::exception& e) {
+    g.action = "failed";
+    g.message = e.what();
+  }
+  return g;
+}
+
+}  // namespace giq::cli

@@ -1,0 +1,57 @@
+#pragma once
+// The pipeline behind `giq gate` and `giq golden update`: for each case it runs the same giq
+// binary's subcommands as child processes (see subprocess.h):
+//
+//   giq reference --scene S --view V --frames A:B --spp N | --rel-error E --seed K
+//                 --width W --height H --out <golden>/<key>/frame_####.exr
+//   giq realtime  --scene S --view V --technique T [--param k=v ...] --warmup A --frames B-A+1
+//                 --width W --height H [--device D] --out <case>/technique
+//   giq realtime  ... --no-images --warmup Wt --frames Nt --out <case>/timing   (gpu_ms bounds)
+//   giq score     --ref <golden>/<key>/frame_%04d.exr --test <case>/technique/frame_%04d.exr
+//                 [--frames A:B] --layer L --scene S --timings <timings.json> --out <case>/score
+//
+// and evaluates the case's bounds on the resulting metrics.json and timings.json.
+
+#include <filesystem>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "giq/gate/config.h"
+#include "giq/gate/evaluation.h"
+#include "giq/gate/golden_manifest.h"
+
+namespace giq::cli {
+
+struct Toolchain {
+  std::filesystem::path giq;  // the binary whose subcommands render and score
+  std::string device;         // passed to giq realtime --device when not empty
+  bool rerender = false;      // ignore outputs of an earlier identical run
+};
+
+struct CaseRun {
+  gate::Evidence evidence;
+  double seconds = 0.0;
+  std::filesystem::path dir;  // <out>/cases/<name>
+};
+
+// Never throws: every failure becomes evidence.problem, so one case cannot stop the others.
+CaseRun run_case(const Toolchain& tools, const gate::Case& c, const gate::Config& config,
+                 const gate::Manifest& manifest, const std::filesystem::path& out_dir);
+
+struct GoldenRun {
+  std::string key;
+  std::string action;  // "fresh", "rendered", "failed"
+  std::string message;
+};
+
+// Renders the golden of `c` when it is missing or stale (always with `force`) and records it
+// in `manifest` (guarded by `lock`; the manifest file is rewritten after each golden so an
+// interrupted update keeps what it finished).
+GoldenRun update_golden(const Toolchain& tools, const gate::Case& c, const gate::Config& config, bool force,
+                        gate::Manifest& manifest, std::mutex& lock);
+
+// scenes::Scene::content_hash of the case's scene (throws InputError for a bad scene).
+std::string scene_hash(const std::filesystem::path& scene);
+
+}  // namespace giq::cli
