@@ -15,7 +15,8 @@ namespace giq::gate {
 namespace {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
+// ordered_json keeps the file's order, so cases and bounds are reported in the order written.
+using json = nlohmann::ordered_json;
 
 const std::set<std::string> kCaseKeys = {"name",   "scene",      "view",   "technique", "parameters", "frames",
                                          "layer",  "resolution", "golden", "timing",    "bounds"};

@@ -1,0 +1,148 @@
+// Test double for the giq subcommands that `giq gate` and `giq golden update` orchestrate:
+// `reference`, `realtime` and `score` with the same flags, writing small files of the same
+// shape (EXR frames, timings.json, metrics.json) instead of rendering. It lets the tests drive
+// the orchestration (arguments, reuse, crashes, missing files, exit codes) without a GPU, a
+// path tracer or real metrics. Used by tests only.
+//
+// Environment:
+//   FAKE_GIQ_LOG        file to which every invocation appends its argument list (one line)
+//   FAKE_GIQ_BEHAVIOUR  JSON file {"<case>": {"realtime": "ok"|"crash"|"no-frames",
+//                                             "score": "ok"|"crash", "metrics": {...}}}
+//                       where metrics.json is {"metrics": <metrics>} (a sequence case's
+//                       "metrics" may hold "sequence"/"last_frame" itself: give "raw": {...})
+//   FAKE_GIQ_DEVICE     device name in timings.json (default "llvmpipe (LLVM 15.0.6, 256 bits)")
+//   FAKE_GIQ_GPU_MS     frame_gpu_ms.median in timings.json (default 2.5)
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "giq/image/image.h"
+#include "giq/image/io.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::map<std::string, std::vector<std::string>> parse(int argc, char** argv) {
+  std::map<std::string, std::vector<std::string>> o;
+  for (int i = 2; i < argc; ++i) {
+    std::string k = argv[i];
+    if (k.rfind("--", 0) != 0) continue;
+    if (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0) o[k].push_back(argv[++i]);
+    else o[k].push_back("");
+  }
+  return o;
+}
+
+std::string one(const std::map<std::string, std::vector<std::string>>& o, const std::string& k, const std::string& d = "") {
+  const auto it = o.find(k);
+  return it == o.end() || it->second.empty() ? d : it->second.back();
+}
+
+// The case name: the folder after "cases" in an output path.
+std::string case_of(const fs::path& out) {
+  std::string prev, name;
+  for (const auto& part : out) {
+    if (prev == "cases") name = part.string();
+    prev = part.string();
+  }
+  return name;
+}
+
+json behaviour(const std::string& name) {
+  const char* f = std::getenv("FAKE_GIQ_BEHAVIOUR");
+  if (!f) return json::object();
+  std::ifstream in(f);
+  const json all = json::parse(in);
+  return all.contains(name) ? all[name] : json::object();
+}
+
+void write_frame(const fs::path& p, int w, int h, const std::map<std::string, std::string>& meta) {
+  giq::image::Image img(w, h);
+  for (const char* c : {"R", "G", "B"}) img.add_channel(c, 0.5f);
+  img.metadata = meta;
+  giq::image::write_exr(img, p);
+}
+
+std::string frame_file(int f) {
+  char b[32];
+  std::snprintf(b, sizeof b, "frame_%04d.exr", f);
+  return b;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) return 2;
+  if (const char* log = std::getenv("FAKE_GIQ_LOG")) {
+    std::ofstream l(log, std::ios::app);
+    for (int i = 1; i < argc; ++i) l << (i > 1 ? " " : "") << argv[i];
+    l << '\n';
+  }
+  const std::string cmd = argv[1];
+  const auto o = parse(argc, argv);
+  const int w = std::atoi(one(o, "--width", "8").c_str()), h = std::atoi(one(o, "--height", "8").c_str());
+  if (cmd == "reference") {
+    int a = 0, b = 0;
+    std::sscanf(one(o, "--frames", "0:0").c_str(), "%d:%d", &a, &b);
+    const std::string pattern = one(o, "--out");
+    const size_t hash = pattern.find("####");
+    for (int f = a; f <= b; ++f) {
+      char num[16];
+      std::snprintf(num, sizeof num, "%04d", f);
+      write_frame(pattern.substr(0, hash) + num + pattern.substr(hash + 4), w, h,
+                  {{"giq.spp", one(o, "--spp", "77")}, {"giq.version", "fake-reference"}});
+    }
+    return 0;
+  }
+  if (cmd == "realtime") {
+    const fs::path out = one(o, "--out");
+    const json b = behaviour(case_of(out));
+    const std::string mode = b.value("realtime", "ok");
+    if (mode == "crash") std::abort();
+    fs::create_directories(out);
+    const int warmup = std::atoi(one(o, "--warmup", "0").c_str()), frames = std::atoi(one(o, "--frames", "1").c_str());
+    if (!o.count("--no-images") && mode != "no-frames")
+      for (int f = warmup; f < warmup + frames; ++f) write_frame(out / frame_file(f), w, h, {});
+    const char* dev = std::getenv("FAKE_GIQ_DEVICE");
+    const char* ms = std::getenv("FAKE_GIQ_GPU_MS");
+    const json t = {{"device", {{"name", dev ? dev : "llvmpipe (LLVM 15.0.6, 256 bits)"}}},
+                    {"frames", {{"warmup", warmup}, {"measured", frames}}},
+                    {"frame_gpu_ms", {{"count", frames}, {"median", ms ? std::atof(ms) : 2.5}}}};
+    std::ofstream(out / "timings.json") << t.dump(2);
+    return 0;
+  }
+  if (cmd == "score") {
+    const fs::path out = one(o, "--out");
+    const json b = behaviour(case_of(out));
+    if (b.value("score", "ok") == "crash") std::abort();
+    for (const char* k : {"--ref", "--test"}) {
+      std::string p = one(o, k);
+      if (p.find('%') != std::string::npos) {
+        int a = 0, e = 0;
+        std::sscanf(one(o, "--frames").c_str(), "%d:%d", &a, &e);
+        char buf[4096];
+        std::snprintf(buf, sizeof buf, p.c_str(), a);
+        p = buf;
+      }
+      if (!fs::exists(p)) {
+        std::fprintf(stderr, "giq: error: %s: cannot open\n", p.c_str());
+        return 2;
+      }
+    }
+    fs::create_directories(out);
+    json m = b.contains("raw") ? b["raw"] : json{{"metrics", b.value("metrics", json{{"relmse", {{"value", 0.01}}}})}};
+    m["inputs"] = {{"reference", one(o, "--ref")}, {"test", one(o, "--test")}, {"layer", one(o, "--layer", "beauty")}};
+    std::ofstream(out / "metrics.json") << m.dump(2);
+    return 0;
+  }
+  std::fprintf(stderr, "fake giq: unknown command %s\n", cmd.c_str());
+  return 2;
+}

@@ -1,0 +1,206 @@
+// `giq gate` and `giq golden update` end to end, with fake_giq standing in for the renderers
+// and the scorer (--giq): bad configs exit 2 with one line, goldens are rendered once per
+// scene/view/frames and recorded, a stale or missing golden is never used, a value over its
+// bound fails with the right case and metric, crashes and missing frames fail their case only,
+// identical reruns are reused, and the JUnit report parses.
+
+#include <expat.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+};
+
+class GateCli : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("giq_gate_cli_" + std::to_string(::getpid()) + "_" +
+                                        testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    ::setenv("FAKE_GIQ_LOG", (dir_ / "calls.log").c_str(), 1);
+    ::setenv("FAKE_GIQ_BEHAVIOUR", (dir_ / "behaviour.json").c_str(), 1);
+    ::unsetenv("FAKE_GIQ_DEVICE");
+    behave(json::object());
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+
+  void behave(const json& b) { std::ofstream(dir_ / "behaviour.json") << b.dump(); }
+
+  void config(const json& cases) {
+    json c = {{"version", 1},
+              {"defaults", {{"scene", std::string(GIQ_SCENES_DIR) + "/cornell.gltf"}, {"resolution", {16, 8}},
+                            {"golden", {{"spp", 32}, {"seed", 2}}}}},
+              {"cases", cases}};
+    std::ofstream(dir_ / "gate.json") << c.dump(2);
+  }
+
+  Result giq(const std::string& args) {
+    const std::string cmd = std::string("cd ") + dir_.string() + " && " + GIQ_BINARY + " " + args + " >out.txt 2>err.txt";
+    const int status = std::system(cmd.c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(dir_ / "out.txt");
+    r.err = slurp(dir_ / "err.txt");
+    return r;
+  }
+  Result gate(const std::string& extra = "") {
+    return giq(std::string("gate --config gate.json --out out --giq ") + FAKE_GIQ + " " + extra);
+  }
+  Result update(const std::string& extra = "") {
+    return giq(std::string("golden update --config gate.json --giq ") + FAKE_GIQ + " " + extra);
+  }
+
+  // status of (case, metric) in gate.json
+  std::string status(const std::string& c, const std::string& m) {
+    const json g = json::parse(slurp(dir_ / "out" / "gate.json"));
+    for (const auto& o : g["outcomes"])
+      if (o["case"] == c && o["metric"] == m) return o["status"].get<std::string>() + " " + o["message"].get<std::string>();
+    return "absent";
+  }
+
+  int calls(const std::string& needle) {
+    std::ifstream in(dir_ / "calls.log");
+    int n = 0;
+    for (std::string line; std::getline(in, line);) n += line.find(needle) != std::string::npos;
+    return n;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(GateCli, BadConfigExitsTwoWithOneLine) {
+  std::ofstream(dir_ / "gate.json") << R"({"version": 1, "cases": [{"name": "a", "scene": "s", "technique": "t",
+      "bounds": {"flip_mean": {"fail": 0.1, "warn": 0.3}}}]})";
+  for (const Result& r : {gate(), update()}) {
+    EXPECT_EQ(r.code, 2);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("cases[0].bounds.flip_mean.warn"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(giq("gate --config absent.json").code, 2);
+  config(json::array({{{"name", "a"}, {"technique", "t"}, {"bounds", {{"relmse", 1}}}}}));
+  const Result r = gate("--only 'zzz*'");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("matches no case"), std::string::npos) << r.err;
+}
+
+TEST_F(GateCli, ProvesTheGateCanFail) {
+  config(json::array({
+      {{"name", "good"}, {"technique", "direct"}, {"parameters", {{"pcf_radius", 2}}},
+       {"bounds", {{"relmse", {{"fail", 0.05}, {"warn", 0.02}}}, {"gpu_ms", {{"fail", 1}, {"device", "H100"}}}}}},
+      {{"name", "bright"}, {"technique", "direct"}, {"bounds", {{"flip_mean", 0.1}, {"relmse", 0.05}}}},
+      {{"name", "noframes"}, {"technique", "pt"}, {"bounds", {{"relmse", 0.05}}}},
+      {{"name", "crash"}, {"technique", "pt"}, {"bounds", {{"relmse", 0.05}}}},
+      {{"name", "noisy"}, {"technique", "pt"}, {"bounds", {{"relmse", 0.005}}}},
+  }));
+  behave({{"bright", {{"metrics", {{"flip", {{"mean", {{"value", 0.3}}}}}, {"relmse", {{"value", 0.01}}}}}}},
+          {"noframes", {{"realtime", "no-frames"}}},
+          {"crash", {{"score", "crash"}}},
+          {"noisy", {{"metrics", {{"relmse", {{"value", 0.01}, {"unresolved", true}}}}}}}});
+
+  // No golden yet: every case fails and says what to run; nothing is scored.
+  Result r = gate();
+  EXPECT_EQ(r.code, 1) << r.out << r.err;
+  EXPECT_NE(status("good", "relmse").find("giq golden update"), std::string::npos) << status("good", "relmse");
+  EXPECT_EQ(calls("score"), 0);
+
+  r = update("--jobs 2");
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_EQ(calls("reference"), 1);  // one golden serves every case of the same scene, view, frames
+  const json manifest = json::parse(slurp(dir_ / "refs" / "manifest.json"));
+  const json& e = manifest["goldens"]["cornell_0_f0-0"];
+  EXPECT_EQ(e["spp"], 32);
+  EXPECT_EQ(e["giq_version"], "fake-reference");
+  EXPECT_EQ(e["settings"]["resolution"], json::array({16, 8}));
+  EXPECT_EQ(e["files"].size(), 1u);
+  EXPECT_EQ(e["scene_hash"].get<std::string>().size(), 16u);
+  EXPECT_EQ(update().code, 0);
+  EXPECT_EQ(calls("reference"), 1);  // fresh: not rendered again
+
+  r = gate("--jobs 3");
+  EXPECT_EQ(r.code, 1) << r.out << r.err;
+  EXPECT_EQ(status("good", "relmse").rfind("PASS", 0), 0u);
+  EXPECT_EQ(status("good", "gpu_ms").rfind("SKIP", 0), 0u) << status("good", "gpu_ms");  // llvmpipe, not H100
+  EXPECT_EQ(status("bright", "flip_mean").rfind("FAIL flip_mean = 0.3", 0), 0u) << status("bright", "flip_mean");
+  EXPECT_EQ(status("bright", "relmse").rfind("PASS", 0), 0u);
+  EXPECT_NE(status("noframes", "relmse").find("did not write"), std::string::npos) << status("noframes", "relmse");
+  EXPECT_NE(status("crash", "relmse").find("giq score failed (exit 134"), std::string::npos) << status("crash", "relmse");
+  EXPECT_EQ(status("noisy", "relmse").rfind("UNRESOLVED", 0), 0u);
+  EXPECT_NE(r.out.find("FAILED"), std::string::npos);
+
+  // The orchestration's arguments: parameters, frames after warm-up, the timing run.
+  EXPECT_EQ(calls("realtime --scene"), 5 + 1);
+  EXPECT_EQ(calls("--param pcf_radius=2"), 2);
+  EXPECT_EQ(calls("--no-images --warmup 10 --frames 20"), 1);
+  EXPECT_EQ(calls("--warmup 0 --frames 1 --out"), 5);
+  EXPECT_EQ(calls("--layer beauty --scene"), 4);  // every case whose frames exist is scored
+
+  // JUnit: well-formed, one testcase per case and metric, failures where the table says.
+  const std::string xml = slurp(dir_ / "out" / "gate-report.xml");
+  XML_Parser p = XML_ParserCreate("UTF-8");
+  EXPECT_EQ(XML_Parse(p, xml.data(), int(xml.size()), 1), XML_STATUS_OK) << xml;
+  XML_ParserFree(p);
+  EXPECT_NE(xml.find("<testsuites name=\"giq gate\" tests=\"7\" failures=\"4\" errors=\"0\" skipped=\"1\""),
+            std::string::npos)
+      << xml;
+  EXPECT_NE(xml.find("<testcase classname=\"giq.gate.bright\" name=\"flip_mean\""), std::string::npos);
+  EXPECT_NE(slurp(dir_ / "out" / "gate-summary.md").find("| bright | flip_mean | 0.3 |"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "cases" / "bright" / "score" / "metrics.json"));  // kept beside the report
+
+  // Only the passing case: exit 0, and its identical outputs are reused, not rendered again.
+  const int before = calls("realtime --scene");
+  r = gate("--only good");
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_EQ(calls("realtime --scene"), before);
+  r = gate("--only good --rerender");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(calls("realtime --scene"), before + 2);
+
+  // A golden edited after the update is stale and never used.
+  std::ofstream(dir_ / "refs" / "cornell_0_f0-0" / "frame_0000.exr", std::ios::app) << "x";
+  r = gate("--only good");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(status("good", "relmse").find("modified"), std::string::npos) << status("good", "relmse");
+}
+
+TEST_F(GateCli, SequenceCaseScoresEveryFrame) {
+  config(json::array({{{"name", "seq"}, {"technique", "pt"}, {"frames", "2:4"}, {"view", "0"},
+                       {"bounds", {{"flicker", 0.01}}}}}));
+  behave({{"seq", {{"raw", {{"sequence", {{"flicker", {{"value", 0.02}}}}}}}}}});
+  ASSERT_EQ(update().code, 0);
+  for (int f = 2; f <= 4; ++f) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.exr", f);
+    EXPECT_TRUE(fs::exists(dir_ / "refs" / "cornell_0_f2-4" / name)) << name;
+  }
+  const Result r = gate();
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(calls("--warmup 2 --frames 3"), 1);
+  EXPECT_EQ(calls("--frames 2:4 --layer beauty"), 1);
+  EXPECT_EQ(status("seq", "flicker").rfind("FAIL flicker = 0.02", 0), 0u) << status("seq", "flicker");
+}
+
+}  // namespace
