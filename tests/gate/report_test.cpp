@@ -1,0 +1,152 @@
+// `giq report` end to end: a folder of score outputs (one image comparison, one sequence) and a
+// gate.json, with hostile names from files; the page escapes them, embeds every image, and
+// headless Chromium renders it with the images visible where they are placed.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "giq/image/image.h"
+#include "giq/image/io.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void solid_exr(const fs::path& p, float r, float g, float b, const std::string& technique = "") {
+  giq::image::Image img(24, 24);
+  img.add_channel("R", r), img.add_channel("G", g), img.add_channel("B", b);
+  if (!technique.empty()) img.metadata["giq.technique"] = technique;
+  giq::image::write_exr(img, p);
+}
+
+const char* kHostileScene = "<script>alert(1)</script>.gltf";
+const char* kHostileTechnique = "<img src=x onerror=alert(2)>";
+
+class Report : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("giq_report_test_" + std::to_string(::getpid()) + "_" +
+                                        testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    const fs::path a = dir_ / "cases" / "cornell-direct" / "score";
+    fs::create_directories(a);
+    // Reference pure red, technique pure blue, error map pure yellow: easy to find on screen.
+    solid_exr(a / "ref.exr", 1, 0, 0);
+    solid_exr(a / "tech.exr", 0, 0, 1, kHostileTechnique);
+    const unsigned char yellow[3] = {255, 255, 0};
+    std::vector<unsigned char> px;
+    for (int i = 0; i < 24 * 24; ++i) px.insert(px.end(), yellow, yellow + 3);
+    giq::image::write_png_rgb8(a / "abs_error.png", 24, 24, 3, px.data());
+    json m = {{"inputs", {{"reference", "ref.exr"}, {"test", "tech.exr"}, {"layer", "beauty"}, {"scene", kHostileScene}}},
+              {"metrics", {{"relmse", {{"value", 0.25}}}, {"flip", {{"mean", {{"value", 0.1}}}}}}},
+              {"maps", {{"abs_error", {{"png", "abs_error.png"}, {"colormap", "magma"}, {"range", {0, 2}},
+                                        {"unit", "radiance"}, {"definition", "|T - R|"}, {"range_rule", "p99"}}}}}};
+    std::ofstream(a / "metrics.json") << m.dump();
+
+    const fs::path s = dir_ / "seq";
+    fs::create_directories(s);
+    for (int f = 0; f < 3; ++f) {
+      char name[32];
+      std::snprintf(name, sizeof name, "r_%04d.exr", f);
+      solid_exr(s / name, 0.5f, 0.5f, 0.5f);
+      std::snprintf(name, sizeof name, "t_%04d.exr", f);
+      solid_exr(s / name, f * 0.3f, f * 0.3f, f * 0.3f, "pt");
+    }
+    json q = {{"inputs", {{"reference", "r_%04d.exr"}, {"test", "t_%04d.exr"}, {"frames", {0, 2}}, {"layer", "beauty"},
+                          {"scene", "movinglight.gltf"}}},
+              {"sequence", {{"flicker", {{"value", 0.3}}}}},
+              {"last_frame", {{"metrics", {{"relmse", {{"value", 0.01}, {"unresolved", true}}}}}}}};
+    std::ofstream(s / "metrics.json") << q.dump();
+    json g = {{"passed", false}, {"config", "gate.json"},
+              {"outcomes", {{{"case", "<b>bold</b>"}, {"metric", "relmse"}, {"status", "FAIL"}, {"value", 0.25},
+                             {"bound", "<= 0.1"}, {"message", "too big & wrong"}}}}};
+    std::ofstream(dir_ / "gate.json") << g.dump();
+  }
+  // GIQ_KEEP_TEST_OUTPUT=1 keeps the page and the screenshot for a look.
+  void TearDown() override {
+    if (!HasFailure() && !std::getenv("GIQ_KEEP_TEST_OUTPUT")) fs::remove_all(dir_);
+  }
+
+  int giq(const std::string& args) {
+    const std::string cmd = std::string(GIQ_BINARY) + " " + args + " >" + (dir_ / "out.txt").string() + " 2>&1";
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(Report, EscapesTextFromFilesAndEmbedsImages) {
+  ASSERT_EQ(giq("report " + dir_.string()), 0) << slurp(dir_ / "out.txt");
+  const std::string html = slurp(dir_ / "report.html");
+  EXPECT_EQ(html.find("<script>alert"), std::string::npos);
+  EXPECT_NE(html.find("&lt;script&gt;alert(1)&lt;/script&gt;.gltf"), std::string::npos);
+  EXPECT_EQ(html.find("<img src=x"), std::string::npos);
+  EXPECT_NE(html.find("&lt;img src=x onerror=alert(2)&gt;"), std::string::npos);
+  EXPECT_EQ(html.find("<b>bold</b>"), std::string::npos);
+  EXPECT_NE(html.find("too big &amp; wrong"), std::string::npos);
+  // Self-contained: nothing fetched from elsewhere.
+  EXPECT_EQ(html.find("http://"), std::string::npos);
+  EXPECT_EQ(html.find("https://"), std::string::npos);
+  EXPECT_EQ(html.find("src=\"file:"), std::string::npos);
+  // Two panes + a map for the image comparison, 2 panes and 3 + 3 flip-book frames for the sequence.
+  size_t pngs = 0;
+  for (size_t p = 0; (p = html.find("src=\"data:image/png;base64,", p)) != std::string::npos; ++p) ++pngs;
+  EXPECT_EQ(pngs, 3u + 2u + 6u);
+  EXPECT_NE(html.find("class=\"flipbook\""), std::string::npos);
+  EXPECT_NE(html.find("unresolved"), std::string::npos);
+  EXPECT_EQ(giq("report " + (dir_ / "absent").string()), 2);
+}
+
+TEST_F(Report, ChromiumShowsTheImages) {
+  const char* candidates[] = {"/usr/bin/chromium", "/usr/bin/chromium-browser"};
+  std::string chromium;
+  for (const char* c : candidates)
+    if (fs::exists(c)) chromium = c;
+  if (chromium.empty()) GTEST_SKIP() << "chromium is not installed (tools/bootstrap installs it)";
+  ASSERT_EQ(giq("report " + dir_.string()), 0) << slurp(dir_ / "out.txt");
+  const fs::path shot = dir_ / "shot.png", profile = dir_ / "profile";
+  const std::string cmd = chromium +
+                          " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
+                          " --disable-background-networking --disable-component-update --disable-sync"
+                          " --hide-scrollbars --user-data-dir=" + profile.string() + " --screenshot=" + shot.string() +
+                          " --window-size=1400,1400 file://" + (dir_ / "report.html").string() + " >" +
+                          (dir_ / "chromium.log").string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir_ / "chromium.log");
+  ASSERT_TRUE(fs::exists(shot)) << slurp(dir_ / "chromium.log");
+  const giq::image::Image img = giq::image::read_image(shot);
+  ASSERT_EQ(img.width(), 1400);
+  // Each 24 px image is shown in a 320 x 320 pane (object-fit: contain): 102400 pixels of its
+  // colour when the pane is on screen. Half of that tolerates a pane partly below the fold.
+  size_t red = 0, blue = 0, yellow = 0, other = 0;
+  const float *r = img.channel("R"), *g = img.channel("G"), *b = img.channel("B");
+  for (size_t i = 0; i < size_t(img.width()) * size_t(img.height()); ++i) {
+    const bool R = r[i] > 0.95f, G = g[i] > 0.95f, B = b[i] > 0.95f;
+    const bool r0 = r[i] < 0.05f, g0 = g[i] < 0.05f, b0 = b[i] < 0.05f;
+    if (R && g0 && b0) ++red;
+    else if (r0 && g0 && B) ++blue;
+    else if (R && G && b0) ++yellow;
+    else ++other;
+  }
+  EXPECT_GT(red, 51200u);
+  EXPECT_GT(blue, 51200u);
+  EXPECT_GT(yellow, 51200u);
+  EXPECT_GT(other, 0u);  // not one flat colour: the page itself rendered too
+}
+
+}  // namespace

@@ -1,0 +1,58 @@
+#pragma once
+// What `giq report DIR` finds under DIR: every metrics.json written by `giq score` (a
+// comparison: reference, technique, error maps, sequence frames, metrics), gate.json written by
+// `giq gate`, sweep.json and SVG plots written by `giq sweep`. Images are turned into PNG data
+// URIs here, so the page needs nothing beside itself.
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace giq::cli {
+
+struct ColourScale {
+  std::string colormap;  // "magma" or "blue-white-red", as giq score's maps record it
+  double lo = 0.0, hi = 1.0;
+  std::string unit, rule;
+};
+
+struct Picture {
+  std::string title;
+  std::string data_uri;
+  std::optional<ColourScale> scale;
+};
+
+struct Comparison {
+  std::string scene;      // the scene file, from metrics.json or the reference's header
+  std::string technique;  // from the technique's EXR header (giq.technique), else its folder
+  std::string label;      // gate case name or the score folder
+  std::string layer;
+  std::string source;     // metrics.json, relative to DIR
+  std::vector<Picture> panes;  // reference, technique (same exposure)
+  std::vector<Picture> maps;   // error maps with their colour scales
+  std::vector<std::string> reference_frames, technique_frames;  // flip-book (sequences)
+  int first_frame = 0;
+  std::vector<std::pair<std::string, std::string>> metrics;  // name, value (with notes)
+};
+
+struct Sweep {
+  std::string source;
+  nlohmann::json data;
+};
+
+struct ReportInputs {
+  std::filesystem::path dir;
+  std::vector<Comparison> comparisons;
+  std::optional<nlohmann::json> gate;
+  std::vector<Sweep> sweeps;
+  std::vector<Picture> plots;  // *.svg written by giq sweep
+  std::vector<std::string> warnings;  // files that could not be read, shown on the page
+};
+
+// Scans DIR recursively (files over `max_frames` sequence frames are sampled evenly). Throws
+// InputError when DIR does not exist or holds nothing giq wrote.
+ReportInputs scan_report_inputs(const std::filesystem::path& dir, int max_frames);
+
+}  // namespace giq::cli
