@@ -12,7 +12,14 @@
 //                       "metrics" may hold "sequence"/"last_frame" itself: give "raw": {...})
 //   FAKE_GIQ_DEVICE     device name in timings.json (default "llvmpipe (LLVM 15.0.6, 256 bits)")
 //   FAKE_GIQ_GPU_MS     frame_gpu_ms.median in timings.json (default 2.5)
+//
+// For sweeps it lists two techniques (`realtime --list`, in giq realtime's format). A frame
+// rendered with parameters costs 1 + (sum of the values) ms, twice that for "pt", and the
+// fake score of such a frame has flip_mean = 1 / (1 + sum), so every setting lies on a known
+// curve. A reference records its spp; its fake rmse is 0.5 / sqrt(spp) and its render time
+// 0.01 s per spp, so convergence slopes are exactly -1/2.
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -97,9 +104,18 @@ int main(int argc, char** argv) {
     for (int f = a; f <= b; ++f) {
       char num[16];
       std::snprintf(num, sizeof num, "%04d", f);
-      write_frame(pattern.substr(0, hash) + num + pattern.substr(hash + 4), w, h,
-                  {{"giq.spp", one(o, "--spp", "77")}, {"giq.version", "fake-reference"}});
+      write_frame(hash == std::string::npos ? pattern : pattern.substr(0, hash) + num + pattern.substr(hash + 4), w, h,
+                  {{"giq.spp", one(o, "--spp", "77")},
+                   {"giq.version", "fake-reference"},
+                   {"giq.renderTime", std::to_string(0.01 * std::atof(one(o, "--spp", "77").c_str()))}});
     }
+    return 0;
+  }
+  if (cmd == "realtime" && o.count("--list")) {
+    std::printf("direct\n    shadow maps\n");
+    std::printf("    --param pcf_radius=1   [0, 4] integer  PCF kernel radius\n");
+    std::printf("    --param normal_offset=1.5   [0, 8]  texels\n");
+    std::printf("pt\n    path tracer\n    --param samples_per_frame=1   [1, 64] integer  samples\n");
     return 0;
   }
   if (cmd == "realtime") {
@@ -109,13 +125,20 @@ int main(int argc, char** argv) {
     if (mode == "crash") std::abort();
     fs::create_directories(out);
     const int warmup = std::atoi(one(o, "--warmup", "0").c_str()), frames = std::atoi(one(o, "--frames", "1").c_str());
+    double sum = 0.0;
+    if (o.count("--param"))
+      for (const std::string& p : o.at("--param")) sum += std::atof(p.substr(p.find('=') + 1).c_str());
+    const std::string technique = one(o, "--technique");
     if (!o.count("--no-images") && mode != "no-frames")
-      for (int f = warmup; f < warmup + frames; ++f) write_frame(out / frame_file(f), w, h, {});
+      for (int f = warmup; f < warmup + frames; ++f)
+        write_frame(out / frame_file(f), w, h, {{"giq.technique", technique}, {"fake.sum", std::to_string(sum)}});
     const char* dev = std::getenv("FAKE_GIQ_DEVICE");
-    const char* ms = std::getenv("FAKE_GIQ_GPU_MS");
+    const char* env_ms = std::getenv("FAKE_GIQ_GPU_MS");
+    const double gpu = (technique == "pt" ? 2.0 : 1.0) * (1.0 + sum);
+    const char* ms = env_ms ? env_ms : (o.count("--param") ? nullptr : "2.5");
     const json t = {{"device", {{"name", dev ? dev : "llvmpipe (LLVM 15.0.6, 256 bits)"}}},
                     {"frames", {{"warmup", warmup}, {"measured", frames}}},
-                    {"frame_gpu_ms", {{"count", frames}, {"median", ms ? std::atof(ms) : 2.5}}}};
+                    {"frame_gpu_ms", {{"count", frames}, {"median", ms ? std::atof(ms) : gpu}}}};
     std::ofstream(out / "timings.json") << t.dump(2);
     return 0;
   }
@@ -138,7 +161,14 @@ int main(int argc, char** argv) {
       }
     }
     fs::create_directories(out);
-    json m = b.contains("raw") ? b["raw"] : json{{"metrics", b.value("metrics", json{{"relmse", {{"value", 0.01}}}})}};
+    json dflt = {{"relmse", {{"value", 0.01}}}};
+    giq::image::Image test;
+    if (one(o, "--test").find('%') == std::string::npos) test = giq::image::read_image(one(o, "--test"));
+    if (test.metadata.count("fake.sum"))
+      dflt["flip"] = {{"mean", {{"value", 1.0 / (1.0 + std::atof(test.metadata.at("fake.sum").c_str()))}}}};
+    if (test.metadata.count("giq.spp"))
+      dflt["rmse"] = {{"value", 0.5 / std::sqrt(std::atof(test.metadata.at("giq.spp").c_str()))}};
+    json m = b.contains("raw") ? b["raw"] : json{{"metrics", b.value("metrics", dflt)}};
     m["inputs"] = {{"reference", one(o, "--ref")}, {"test", one(o, "--test")}, {"layer", one(o, "--layer", "beauty")}};
     std::ofstream(out / "metrics.json") << m.dump(2);
     return 0;

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   giq::cli::add_gate_command(app, exit_code);
   giq::cli::add_golden_command(app, exit_code);
   giq::cli::add_report_command(app, exit_code);
+  giq::cli::add_sweep_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

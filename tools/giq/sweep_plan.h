@@ -1,0 +1,40 @@
+#pragma once
+// What `giq sweep` runs: the techniques' declared parameters (read from `giq realtime --list`,
+// so a new technique or parameter needs no change here) and the settings to try, from --grid
+// axes or, with --auto, from each parameter's declared range.
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace giq::cli {
+
+struct ParameterInfo {
+  std::string name;
+  double default_value = 0.0, min_value = 0.0, max_value = 0.0;
+  bool integer = false;
+};
+
+struct TechniqueParameters {
+  std::string name;
+  std::vector<ParameterInfo> parameters;
+};
+
+// Parses the listing of `giq realtime --list`: a technique's name at the start of a line, then
+// indented lines, of which "--param NAME=DEFAULT [MIN, MAX] [integer] description" declare its
+// parameters. Throws InputError when a --param line does not have that shape.
+std::vector<TechniqueParameters> parse_technique_list(const std::string& listing);
+
+using Setting = std::vector<std::pair<std::string, double>>;  // sorted by name
+
+// Grid axes "param=a,b,c" or "technique.param=a,b,c"; with `auto_steps` > 0 every declared
+// parameter without a grid axis gets that many values across its range (geometric when the
+// range is positive and spans a factor of 10 or more, else evenly spaced; integers rounded).
+// The cartesian product of the axes, plus the all-defaults setting. Throws InputError for an
+// axis naming no declared parameter, a value outside its range, or more than `max_settings`.
+std::vector<Setting> plan_settings(const TechniqueParameters& technique, const std::vector<std::string>& grid,
+                                   int auto_steps, int max_settings);
+
+bool is_default(const TechniqueParameters& technique, const Setting& s);
+
+}  // namespace giq::cli
