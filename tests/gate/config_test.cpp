@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "giq/base/error.h"
 #include "giq/gate/config.h"
 
@@ -129,6 +131,20 @@ TEST(GateConfig, Glob) {
   EXPECT_EQ(giq::gate::select_cases(c, "moving-*").size(), 1u);
   EXPECT_EQ(giq::gate::select_cases(c, "").size(), 2u);
   EXPECT_TRUE(giq::gate::select_cases(c, "nothing").empty());
+}
+
+}  // namespace
+
+namespace {
+
+// The documented example (docs/gate.md) stays valid.
+TEST(GateConfig, DocumentedExampleParses) {
+  const auto c = giq::gate::read_config(std::string(GIQ_TEST_DATA) + "/gate/example.json");
+  ASSERT_EQ(c.cases.size(), 2u);
+  EXPECT_TRUE(std::filesystem::exists(c.cases[0].scene)) << c.cases[0].scene;
+  EXPECT_TRUE(std::filesystem::exists(c.cases[1].scene)) << c.cases[1].scene;
+  EXPECT_EQ(c.cases[1].last_frame, 29);
+  EXPECT_EQ(c.cases[0].bounds.size(), 4u);
 }
 
 }  // namespace
