@@ -77,10 +77,22 @@ void load_nodes(const Context& ctx, SceneSource& src) {
       src.nodes[size_t(c)].parent = int(i);
     }
   }
+  // With at most one parent per node, a cycle is a parent chain that comes back on itself.
+  // Each chain is walked once (linear time even for deep hierarchies): 0 = unvisited,
+  // 1 = on the chain being walked, 2 = known to reach a root.
+  std::vector<char> state(src.nodes.size(), 0);
+  std::vector<int> chain;
   for (size_t i = 0; i < src.nodes.size(); ++i) {
+    chain.clear();
     int k = int(i);
-    for (size_t steps = 0; k >= 0; ++steps, k = src.nodes[size_t(k)].parent)
-      if (steps > src.nodes.size()) ctx.fail(index_path("nodes", i) + ".children", "node " + std::to_string(i) + " is its own ancestor; the node hierarchy must not have cycles");
+    while (k >= 0 && state[size_t(k)] == 0) {
+      state[size_t(k)] = 1;
+      chain.push_back(k);
+      k = src.nodes[size_t(k)].parent;
+    }
+    if (k >= 0 && state[size_t(k)] == 1)
+      ctx.fail(index_path("nodes", size_t(k)) + ".children", "node " + std::to_string(k) + " is its own ancestor; the node hierarchy must not have cycles");
+    for (int c : chain) state[size_t(c)] = 2;
   }
   // The displayed scene: `scene`, else the first one, else every root node.
   int scene = m.defaultScene >= 0 ? m.defaultScene : (m.scenes.empty() ? -1 : 0);
