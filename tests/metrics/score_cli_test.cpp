@@ -12,6 +12,7 @@
 #include <string>
 
 #include "giq/image/io.h"
+#include "giq/scenes/scene.h"
 #include "synthetic.h"
 
 using namespace giq;
@@ -214,4 +215,45 @@ TEST(ScoreCli, SequenceBiasFlickerAndLag) {
   EXPECT_NEAR(js["sequence"]["flicker"]["value"].get<double>(), 0.1, 1e-6);
   EXPECT_GT(js["sequence"]["temporal_flip"]["value"].get<double>(), 0.0);
   EXPECT_TRUE(js["sequence"]["lag"]["value_frames"].is_null());
+}
+
+TEST(ScoreCli, DeclaredLeakRegionsFromTheScene) {
+  // The built-in leak scene declares room B's surfaces as leak regions; their object ids are
+  // what the reference's objectId channel holds there.
+  const scenes::Scene scene = scenes::load(fs::path(GIQ_SCENES_DIR) / "leak.gltf");
+  ASSERT_FALSE(scene.leak_object_ids.empty());
+  const float leak_id = float(scene.leak_object_ids.front());
+  const fs::path d = fresh_dir("declared");
+  // Left half: a leak-region surface, dark in the truth (0.001); right half: lit room (1.0),
+  // object id 1000 (no such object). The technique adds 0.05 on the leak surface.
+  auto ref = test::rgb_image(W, H, [](int x, int, int) { return x < W / 2 ? 0.001f : 1.0f; });
+  float* id = ref.add_channel("objectId");
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) id[ref.index(x, y)] = x < W / 2 ? leak_id : 1000.0f;
+  auto tech = test::rgb_image(W, H, [](int x, int, int) { return x < W / 2 ? 0.051f : 1.0f; });
+  image::write_exr(ref, d / "ref.exr");
+  image::write_exr(tech, d / "tech.exr");
+  const CliRun r = giq_run("score --ref " + (d / "ref.exr").string() + " --test " + (d / "tech.exr").string() +
+                               " --scene " + (fs::path(GIQ_SCENES_DIR) / "leak.gltf").string() + " --out " +
+                               (d / "out").string() + " --json",
+                           d);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json leak = json::parse(r.out)["metrics"]["leak"];
+  const double n = W / 2 * H, sum_y = n * double(0.001f) + n * 1.0;
+  // excess = 0.051 - 0.001 = 0.05 per region pixel (float luminance maths: 1e-6 relative).
+  EXPECT_EQ(leak["declared"]["pixels"], int(n));
+  EXPECT_NEAR(leak["declared"]["leak"]["value"].get<double>(), n * 0.05 / sum_y, 1e-6);
+  EXPECT_EQ(leak["declared"]["leak_pixels"]["value"], 1.0);
+  // The dark half is also the automatic region (0.001 <= 0.05 x 0.5005).
+  EXPECT_NEAR(leak["automatic"]["leak"]["value"].get<double>(), n * 0.05 / sum_y, 1e-6);
+
+  // Declared regions need the reference's objectId channel.
+  ref.remove_channel("objectId");
+  image::write_exr(ref, d / "ref_noid.exr");
+  const CliRun bad = giq_run("score --ref " + (d / "ref_noid.exr").string() + " --test " +
+                                 (d / "tech.exr").string() + " --scene " +
+                                 (fs::path(GIQ_SCENES_DIR) / "leak.gltf").string() + " --out " + (d / "o2").string(),
+                             d);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("objectId"), std::string::npos) << bad.err;
 }
