@@ -12,6 +12,7 @@
 #include <string>
 
 #include "giq/image/io.h"
+#include "giq/image/srgb.h"
 #include "giq/scenes/scene.h"
 #include "synthetic.h"
 
@@ -256,4 +257,21 @@ TEST(ScoreCli, DeclaredLeakRegionsFromTheScene) {
                              d);
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("objectId"), std::string::npos) << bad.err;
+}
+
+TEST(ScoreCli, PngPairIsScoredAsLdr) {
+  const fs::path d = fresh_dir("ldr");
+  // 8-bit codes 188 and 128 (linear 0.5029 and 0.2159 after decoding) everywhere.
+  image::write_png(test::rgb_image(W, H, [](int, int, int) { return 0.5f; }), d / "ref.png");
+  image::write_png(test::rgb_image(W, H, [](int, int, int) { return 0.2159f; }), d / "tech.png");
+  const CliRun r = giq_run("score --ref " + (d / "ref.png").string() + " --test " + (d / "tech.png").string() +
+                               " --out " + (d / "out").string() + " --json",
+                           d);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["inputs"]["dynamic_range"], "ldr");
+  const double diff = image::srgb_decode(188.0f / 255.0f) - image::srgb_decode(128.0f / 255.0f);
+  EXPECT_NEAR(j["metrics"]["mse"]["value"].get<double>(), diff * diff, 1e-6);
+  EXPECT_EQ(j["strip"]["exposure"], 0.0);
+  EXPECT_GT(j["metrics"]["flip"]["mean"]["value"].get<double>(), 0.0);
 }

@@ -153,7 +153,7 @@ json score_image(const image::Image& ref, const std::string& ref_file, const ima
       emit(fm, unit_range);
     }
     out["maps"] = maps;
-    const StripInfo si = write_strip(req.out_dir / "strip.png", r, t, *abs_map, abs_range);
+    const StripInfo si = write_strip(req.out_dir / "strip.png", r, t, *abs_map, abs_range, hdr);
     out["strip"] = {{"png", "strip.png"},
                     {"panels", {"reference", "technique", "abs_error"}},
                     {"exposure", si.exposure},

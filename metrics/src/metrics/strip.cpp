@@ -43,7 +43,7 @@ bool box(int w, int h, int pw, int ph, int px, int py, double out[3], const Fn& 
 }  // namespace
 
 StripInfo write_strip(const std::filesystem::path& path, const RgbLayer& ref, const RgbLayer& test, const Map& error,
-                      const MapRange& range, int max_panel) {
+                      const MapRange& range, bool hdr, int max_panel) {
   const int w = ref.width, h = ref.height;
   const double scale = std::min(1.0, double(max_panel) / double(std::max(w, h)));
   StripInfo info;
@@ -54,7 +54,7 @@ StripInfo write_strip(const std::filesystem::path& path, const RgbLayer& ref, co
       if (ref.finite(i)) acc.sum += ref.luminance(i), ++acc.n;
   });
   const double mean = lum.n ? lum.sum / double(lum.n) : 0.0;
-  info.exposure = mean > 0.0 ? float(std::log2(0.18 / mean)) : 0.0f;
+  info.exposure = (hdr && mean > 0.0) ? float(std::log2(0.18 / mean)) : 0.0f;
   const float gain = std::exp2(info.exposure);
 
   const int pw = info.panel_width, ph = info.panel_height, sw = 3 * pw;
