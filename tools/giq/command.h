@@ -8,5 +8,6 @@
 namespace giq::cli {
 
 void add_scene_command(CLI::App& app, int& exit_code);
+void add_score_command(CLI::App& app, int& exit_code);
 
 }  // namespace giq::cli
