@@ -1,8 +1,8 @@
 // Times giq's FLIP on an EXR pair and reports its pooled values as JSON:
-//   flip_bench [--ldr] [--repeat N] [--map OUT.exr] [--against MAP.exr] REF.exr TEST.exr
-// --repeat: evaluations after one warm-up, each timed (wall clock, evaluation only; file reading
-// is timed separately); --map writes the error map; --against compares the map with another
-// one (e.g. NVIDIA's) and reports the largest per-pixel difference and the mean difference.
+//   flip_bench [--ldr] [--warmup] [--repeat N] [--map OUT.exr] [--against MAP.exr] REF.exr TEST.exr
+// --repeat: timed evaluations (wall clock, evaluation only; file reading is timed separately),
+// after one untimed one with --warmup; --map writes the error map; --against compares the map
+// with another one (e.g. NVIDIA's) and reports the largest per-pixel and the mean difference.
 
 #include <algorithm>
 #include <chrono>
@@ -23,20 +23,22 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool hdr = true;
+  bool hdr = true, warmup = false;
   int repeat = 1;
   std::string map_path, against_path;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--ldr") hdr = false;
+    else if (a == "--warmup") warmup = true;
     else if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
     else if (a == "--map" && i + 1 < argc) map_path = argv[++i];
     else if (a == "--against" && i + 1 < argc) against_path = argv[++i];
     else files.push_back(a);
   }
   if (files.size() != 2) {
-    std::fprintf(stderr, "usage: flip_bench [--ldr] [--repeat N] [--map OUT.exr] [--against MAP.exr] REF.exr TEST.exr\n");
+    std::fprintf(stderr,
+                 "usage: flip_bench [--ldr] [--warmup] [--repeat N] [--map OUT.exr] [--against MAP.exr] REF.exr TEST.exr\n");
     return 2;
   }
   try {
@@ -49,7 +51,8 @@ int main(int argc, char** argv) {
     pair.reference = {ref.r.data(), ref.g.data(), ref.b.data()};
     pair.test = {test.r.data(), test.g.data(), test.b.data()};
 
-    giq::metrics::FlipResult result = giq::metrics::flip::evaluate(pair, hdr, {});  // warm-up
+    giq::metrics::FlipResult result;
+    if (warmup) result = giq::metrics::flip::evaluate(pair, hdr, {});
     std::vector<double> times;
     for (int i = 0; i < repeat; ++i) {
       const auto t0 = Clock::now();
