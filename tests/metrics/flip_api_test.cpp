@@ -3,11 +3,15 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "flip/evaluator.h"
 #include "flip_pairs.h"
 #include "giq/base/error.h"
+#include "giq/image/io.h"
 #include "giq/metrics/flip.h"
 
 namespace giq::metrics {
@@ -49,6 +53,26 @@ TEST(FlipApi, LayersReachTheSameComputation) {
     EXPECT_EQ(hdr.height, 30);
     EXPECT_GT(hdr.exposures, 1);
     EXPECT_EQ(ldr.exposures, 0);
+  }
+}
+
+// The stored pairs again, this time as giq reads files: EXR -> image::read_image -> hdr_flip /
+// ldr_flip, against NVIDIA's maps (tolerances as in flip_test.cpp).
+TEST(FlipApi, AgreesWithNvidiaThroughImageFiles) {
+  const std::string data = std::string(GIQ_TEST_DATA) + "/flip/";
+  std::ifstream in(data + "reference.json");
+  ASSERT_TRUE(in.good());
+  const nlohmann::json ref = nlohmann::json::parse(in);
+  for (const auto& nv : ref["pairs"]) {
+    const std::string name = nv["name"];
+    const image::Image a = image::read_image(data + "pairs/" + name + ".ref.exr");
+    const image::Image b = image::read_image(data + "pairs/" + name + ".test.exr");
+    const FlipResult r = nv["mode"] == "hdr" ? hdr_flip(a, b, "") : ldr_flip(a, b, "");
+    EXPECT_NEAR(r.mean, nv["mean"].get<double>(), 1e-3) << name;
+    const image::Image map = image::read_image(data + nv["map"].get<std::string>());
+    ASSERT_EQ(map.pixel_count(), r.map.size()) << name;
+    const float* expected = map.channel("Y");
+    for (size_t i = 0; i < r.map.size(); ++i) ASSERT_NEAR(r.map[i], expected[i], 1e-2) << name << " pixel " << i;
   }
 }
 
