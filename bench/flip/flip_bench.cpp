@@ -1,4 +1,5 @@
-// Times giq's FLIP on an EXR pair and reports its pooled values as JSON:
+// Times giq's FLIP on an image pair, read and evaluated as `giq score` does (image::read_image,
+// hdr_flip / ldr_flip), and reports its pooled values as JSON:
 //   flip_bench [--ldr] [--warmup] [--repeat N] [--map OUT.exr] [--against MAP.exr] REF.exr TEST.exr
 // --repeat: timed evaluations (wall clock, evaluation only; file reading is timed separately),
 // after one untimed one with --warmup; --map writes the error map; --against compares the map
@@ -12,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "flip/evaluator.h"
-#include "../../tests/metrics/flip_exr.h"
+#include "giq/image/io.h"
+#include "giq/metrics/flip.h"
 
 namespace {
 
@@ -43,20 +44,17 @@ int main(int argc, char** argv) {
   }
   try {
     const auto t_read = Clock::now();
-    const giq::flip_pairs::Rgb ref = giq::flip_pairs::read_rgb(files[0]);
-    const giq::flip_pairs::Rgb test = giq::flip_pairs::read_rgb(files[1]);
+    const giq::image::Image ref = giq::image::read_image(files[0]);
+    const giq::image::Image test = giq::image::read_image(files[1]);
     const double read_s = seconds_since(t_read);
-    giq::metrics::flip::ImagePair pair;
-    pair.width = ref.width, pair.height = ref.height;
-    pair.reference = {ref.r.data(), ref.g.data(), ref.b.data()};
-    pair.test = {test.r.data(), test.g.data(), test.b.data()};
+    auto evaluate = [&] { return hdr ? giq::metrics::hdr_flip(ref, test, "") : giq::metrics::ldr_flip(ref, test, ""); };
 
     giq::metrics::FlipResult result;
-    if (warmup) result = giq::metrics::flip::evaluate(pair, hdr, {});
+    if (warmup) result = evaluate();
     std::vector<double> times;
     for (int i = 0; i < repeat; ++i) {
       const auto t0 = Clock::now();
-      result = giq::metrics::flip::evaluate(pair, hdr, {});
+      result = evaluate();
       times.push_back(seconds_since(t0));
     }
     std::sort(times.begin(), times.end());
@@ -68,20 +66,24 @@ int main(int argc, char** argv) {
     std::printf(", \"read_seconds\": %.4f, \"median_seconds\": %.4f, \"min_seconds\": %.4f", read_s,
                 times[times.size() / 2], times.front());
     if (!against_path.empty()) {
-      int w = 0, h = 0;
-      const auto other = giq::flip_pairs::read_exr(against_path, {"Y"}, w, h);
-      if (w != result.width || h != result.height) throw std::runtime_error("--against map has another size");
+      const giq::image::Image other = giq::image::read_image(against_path);
+      if (other.width() != result.width || other.height() != result.height)
+        throw std::runtime_error("--against map has another size");
+      const float* values = other.channel("Y");
       double max_diff = 0.0, sum_other = 0.0;
       for (size_t i = 0; i < result.map.size(); ++i) {
-        max_diff = std::max(max_diff, std::fabs(double(result.map[i]) - double(other[0][i])));
-        sum_other += other[0][i];
+        max_diff = std::max(max_diff, std::fabs(double(result.map[i]) - double(values[i])));
+        sum_other += values[i];
       }
       std::printf(", \"max_pixel_difference\": %.3g, \"mean_difference\": %.3g", max_diff,
                   std::fabs(result.mean - sum_other / double(result.map.size())));
     }
     std::printf("}\n");
-    if (!map_path.empty())
-      giq::flip_pairs::write_exr(map_path, result.width, result.height, {"Y"}, {result.map.data()});
+    if (!map_path.empty()) {
+      giq::image::Image map(result.width, result.height);
+      std::copy(result.map.begin(), result.map.end(), map.add_channel("Y"));
+      giq::image::write_exr(map, map_path);
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "flip_bench: %s\n", e.what());
     return 2;
