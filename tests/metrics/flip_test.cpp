@@ -293,6 +293,12 @@ TEST(FlipPooling, WeightedPercentilesAreWeightedByError) {
   const PooledErrors z = pool_errors(zeros, 2);
   EXPECT_EQ(z.weighted_median, 0.0);
   EXPECT_EQ(z.max, 0.0);
+  // Values FLIP never produces stay defined: NaN and -1 count as 0, 2 as 1.
+  const float odd[] = {std::numeric_limits<float>::quiet_NaN(), 2.0f, -1.0f, 0.5f};
+  const PooledErrors o = pool_errors(odd, 4);
+  EXPECT_NEAR(o.mean, 1.5 / 4.0, 1e-7);
+  EXPECT_EQ(o.max, 1.0);
+  EXPECT_EQ(o.weighted_median, 1.0);  // running sums 0.5, 1.5: first > 0.75
 }
 
 TEST(Flip, RejectsInvalidPixelsPerDegree) {

@@ -18,6 +18,10 @@ constexpr size_t kBucketCount = (0x3F800000u >> kBucketShift) + 1;
 
 uint32_t bucket_of(float v) { return std::bit_cast<uint32_t>(v) >> kBucketShift; }
 
+// FLIP values lie in [0, 1]; anything else (which FLIP does not produce) is clamped, NaN to 0,
+// so that a bucket index is always in range.
+float unit(float v) { return v >= 0.0f ? std::min(v, 1.0f) : 0.0f; }
+
 }  // namespace
 
 PooledErrors pool_errors(const float* map, size_t count) {
@@ -27,7 +31,7 @@ PooledErrors pool_errors(const float* map, size_t count) {
   double total = 0.0;
   float max_value = 0.0f;
   for (size_t i = 0; i < count; ++i) {
-    const float v = std::clamp(map[i], 0.0f, 1.0f);
+    const float v = unit(map[i]);
     bucket_sum[bucket_of(v)] += v;
     total += v;
     max_value = std::max(max_value, v);
@@ -46,7 +50,7 @@ PooledErrors pool_errors(const float* map, size_t count) {
     while (bucket + 1 < kBucketCount && before + bucket_sum[bucket] <= threshold) before += bucket_sum[bucket++];
     members.clear();
     for (size_t i = 0; i < count; ++i) {
-      const float v = std::clamp(map[i], 0.0f, 1.0f);
+      const float v = unit(map[i]);
       if (bucket_of(v) == bucket) members.push_back(v);
     }
     std::sort(members.begin(), members.end());

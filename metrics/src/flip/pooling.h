@@ -16,7 +16,7 @@ struct PooledErrors {
 
 // Weighted percentile p: the smallest error e_i (errors sorted ascending) whose running sum
 // e_1 + ... + e_i exceeds p times the sum of all errors; 0 when every error is 0. Values must
-// lie in [0, 1] (every FLIP value does).
+// lie in [0, 1] (every FLIP value does; others are clamped, NaN counts as 0).
 PooledErrors pool_errors(const float* map, size_t count);
 
 }  // namespace giq::metrics::flip
