@@ -56,17 +56,18 @@ TEST(FlipApi, LayersReachTheSameComputation) {
   }
 }
 
-// The stored pairs again, this time as giq reads files: EXR -> image::read_image -> hdr_flip /
-// ldr_flip, against NVIDIA's maps (tolerances as in flip_test.cpp).
+// The stored pairs again, this time as giq reads files: EXR or 8-bit PNG (decoded from sRGB) ->
+// image::read_image -> hdr_flip / ldr_flip, against NVIDIA's maps (tolerances as in
+// flip_test.cpp).
 TEST(FlipApi, AgreesWithNvidiaThroughImageFiles) {
   const std::string data = std::string(GIQ_TEST_DATA) + "/flip/";
   std::ifstream in(data + "reference.json");
   ASSERT_TRUE(in.good());
   const nlohmann::json ref = nlohmann::json::parse(in);
   for (const auto& nv : ref["pairs"]) {
-    const std::string name = nv["name"];
-    const image::Image a = image::read_image(data + "pairs/" + name + ".ref.exr");
-    const image::Image b = image::read_image(data + "pairs/" + name + ".test.exr");
+    const std::string name = nv["name"], ext = nv["format"];
+    const image::Image a = image::read_image(data + "pairs/" + name + ".ref." + ext);
+    const image::Image b = image::read_image(data + "pairs/" + name + ".test." + ext);
     const FlipResult r = nv["mode"] == "hdr" ? hdr_flip(a, b, "") : ldr_flip(a, b, "");
     EXPECT_NEAR(r.mean, nv["mean"].get<double>(), 1e-3) << name;
     const image::Image map = image::read_image(data + nv["map"].get<std::string>());

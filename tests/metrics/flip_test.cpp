@@ -67,6 +67,7 @@ TEST(Flip, AgreesWithNvidiaOnStoredPairs) {
   const nlohmann::json ref = reference_values();
   ASSERT_GE(ref["pairs"].size(), 20u);
   for (const auto& nv : ref["pairs"]) {
+    if (nv["format"] != "exr") continue;  // 8-bit pairs need the sRGB decoder: flip_api_test.cpp
     const std::string name = nv["name"];
     const bool hdr = nv["mode"] == "hdr";
     const auto a = flip_pairs::read_rgb(kData + "pairs/" + name + ".ref.exr");

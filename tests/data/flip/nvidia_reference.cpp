@@ -6,7 +6,7 @@
 //
 //   nvidia_reference ldr|hdr REF.exr TEST.exr [MAP.exr]
 //
-// LDR pairs are stored as linear float EXR, so both implementations see identical input values.
+// EXR input is linear; PNG input is decoded from sRGB to linear, as NVIDIA's tool does for LDR.
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -30,6 +30,11 @@ int main(int argc, char** argv) {
   if (!ImageHelpers::load(reference, argv[2]) || !ImageHelpers::load(test, argv[3])) {
     std::fprintf(stderr, "cannot read %s or %s\n", argv[2], argv[3]);
     return 2;
+  }
+  const std::string ref_path = argv[2];
+  if (ref_path.size() > 4 && ref_path.compare(ref_path.size() - 4, 4, ".png") == 0) {
+    reference.sRGBToLinearRGB();
+    test.sRGBToLinearRGB();
   }
   const int w = reference.getWidth(), h = reference.getHeight();
   FLIP::Parameters parameters;
