@@ -8,6 +8,7 @@
 namespace giq::cli {
 
 void add_scene_command(CLI::App& app, int& exit_code);
+void add_score_command(CLI::App& app, int& exit_code);
 void add_gate_command(CLI::App& app, int& exit_code);
 void add_golden_command(CLI::App& app, int& exit_code);
 void add_report_command(CLI::App& app, int& exit_code);

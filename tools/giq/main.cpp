@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
 
   int exit_code = 0;
   giq::cli::add_scene_command(app, exit_code);
+  giq::cli::add_score_command(app, exit_code);
   giq::cli::add_gate_command(app, exit_code);
   giq::cli::add_golden_command(app, exit_code);
   giq::cli::add_report_command(app, exit_code);
