@@ -12,12 +12,19 @@
 //                       "metrics" may hold "sequence"/"last_frame" itself: give "raw": {...})
 //   FAKE_GIQ_DEVICE     device name in timings.json (default "llvmpipe (LLVM 15.0.6, 256 bits)")
 //   FAKE_GIQ_GPU_MS     frame_gpu_ms.median in timings.json (default 2.5)
+//   FAKE_GIQ_REAL       a real giq binary: `score` of a case without fake metrics runs its
+//                       `giq score` on the fake images (checks the gate reads real metrics.json)
+//
+// Images are 0.5 grey with a small variance layer (references); "realtime": "brighten" makes
+// the technique's top-left quarter four times brighter.
 //
 // For sweeps it lists two techniques (`realtime --list`, in giq realtime's format). A frame
 // rendered with parameters costs 1 + (sum of the values) ms, twice that for "pt", and the
 // fake score of such a frame has flip_mean = 1 / (1 + sum), so every setting lies on a known
 // curve. A reference records its spp; its fake rmse is 0.5 / sqrt(spp) and its render time
 // 0.01 s per spp, so convergence slopes are exactly -1/2.
+
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -71,9 +78,17 @@ json behaviour(const std::string& name) {
   return all.contains(name) ? all[name] : json::object();
 }
 
-void write_frame(const fs::path& p, int w, int h, const std::map<std::string, std::string>& meta) {
+void write_frame(const fs::path& p, int w, int h, const std::map<std::string, std::string>& meta, bool variance = false,
+                 bool brighten = false) {
   giq::image::Image img(w, h);
-  for (const char* c : {"R", "G", "B"}) img.add_channel(c, 0.5f);
+  for (const char* c : {"R", "G", "B"}) {
+    float* v = img.add_channel(c, 0.5f);
+    if (brighten)
+      for (int y = 0; y < h / 2; ++y)
+        for (int x = 0; x < w / 2; ++x) v[size_t(y) * size_t(w) + size_t(x)] = 2.0f;
+  }
+  if (variance)
+    for (const char* c : {"variance.R", "variance.G", "variance.B"}) img.add_channel(c, 1e-6f);
   img.metadata = meta;
   giq::image::write_exr(img, p);
 }
@@ -107,7 +122,8 @@ int main(int argc, char** argv) {
       write_frame(hash == std::string::npos ? pattern : pattern.substr(0, hash) + num + pattern.substr(hash + 4), w, h,
                   {{"giq.spp", one(o, "--spp", "77")},
                    {"giq.version", "fake-reference"},
-                   {"giq.renderTime", std::to_string(0.01 * std::atof(one(o, "--spp", "77").c_str()))}});
+                   {"giq.renderTime", std::to_string(0.01 * std::atof(one(o, "--spp", "77").c_str()))}},
+                  true);
     }
     return 0;
   }
@@ -131,7 +147,8 @@ int main(int argc, char** argv) {
     const std::string technique = one(o, "--technique");
     if (!o.count("--no-images") && mode != "no-frames")
       for (int f = warmup; f < warmup + frames; ++f)
-        write_frame(out / frame_file(f), w, h, {{"giq.technique", technique}, {"fake.sum", std::to_string(sum)}});
+        write_frame(out / frame_file(f), w, h, {{"giq.technique", technique}, {"fake.sum", std::to_string(sum)}}, false,
+                    mode == "brighten");
     const char* dev = std::getenv("FAKE_GIQ_DEVICE");
     const char* env_ms = std::getenv("FAKE_GIQ_GPU_MS");
     const double gpu = (technique == "pt" ? 2.0 : 1.0) * (1.0 + sum);
@@ -146,6 +163,14 @@ int main(int argc, char** argv) {
     const fs::path out = one(o, "--out");
     const json b = behaviour(case_of(out));
     if (b.value("score", "ok") == "crash") std::abort();
+    if (const char* real = std::getenv("FAKE_GIQ_REAL"); real && !b.contains("metrics") && !b.contains("raw")) {
+      std::vector<char*> args = {const_cast<char*>(real)};
+      for (int i = 1; i < argc; ++i) args.push_back(argv[i]);
+      args.push_back(nullptr);
+      ::execv(real, args.data());
+      std::perror("fake giq: execv");
+      return 3;
+    }
     for (const char* k : {"--ref", "--test"}) {
       std::string p = one(o, k);
       if (p.find('%') != std::string::npos) {

@@ -186,6 +186,27 @@ TEST_F(GateCli, ProvesTheGateCanFail) {
   EXPECT_NE(status("good", "relmse").find("modified"), std::string::npos) << status("good", "relmse");
 }
 
+// The real giq score on fake images: identical images give errors that the reference's
+// variance cannot resolve (UNRESOLVED, within bound), a brightened quarter fails flip_mean and
+// relmse with the right case and metric.
+TEST_F(GateCli, RealScoreOfABrightenedRegionFails) {
+  ::setenv("FAKE_GIQ_REAL", GIQ_BINARY, 1);
+  config(json::array({{{"name", "same"}, {"technique", "direct"}, {"bounds", {{"flip_mean", 0.05}, {"relmse", 0.01}}}},
+                      {{"name", "bright"}, {"technique", "direct"}, {"bounds", {{"flip_mean", 0.05}, {"relmse", 0.01}}}}}));
+  behave({{"bright", {{"realtime", "brighten"}}}});
+  ASSERT_EQ(update().code, 0);
+  const Result r = gate();
+  ::unsetenv("FAKE_GIQ_REAL");
+  EXPECT_EQ(r.code, 1) << r.out << r.err;
+  EXPECT_EQ(status("same", "flip_mean").rfind("PASS", 0), 0u) << status("same", "flip_mean");
+  EXPECT_EQ(status("same", "relmse").rfind("UNRESOLVED", 0), 0u) << status("same", "relmse");
+  EXPECT_EQ(status("bright", "flip_mean").rfind("FAIL", 0), 0u) << status("bright", "flip_mean");
+  EXPECT_EQ(status("bright", "relmse").rfind("FAIL", 0), 0u) << status("bright", "relmse");
+  const json g = json::parse(slurp(dir_ / "out" / "gate.json"));
+  EXPECT_FALSE(g["passed"].get<bool>());
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "cases" / "bright" / "score" / "metrics.json"));
+}
+
 TEST_F(GateCli, SequenceCaseScoresEveryFrame) {
   config(json::array({{{"name", "seq"}, {"technique", "pt"}, {"frames", "2:4"}, {"view", "0"},
                        {"bounds", {{"flicker", 0.01}}}}}));
