@@ -218,7 +218,7 @@ int run_sweep(const SweepArgs& a) {
   if (a.scene.empty()) throw InputError("", "--scene", "a scene is required");
   if (a.jobs < 1 || a.frames < 1 || a.warmup < 0) throw InputError("", "--jobs/--frames/--warmup", "must be positive");
   const fs::path giq = a.giq.empty() ? self_executable() : fs::absolute(a.giq);
-  const fs::path out = a.out;
+  const fs::path out = fs::absolute(a.out);  // recorded in metrics.json: valid from anywhere
   fs::create_directories(out);
   return a.convergence ? run_convergence(a, giq, out) : run_techniques(a, giq, out);
 }

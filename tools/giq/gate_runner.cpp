@@ -72,7 +72,8 @@ std::string scene_hash(const fs::path& scene) { return scenes::load(scene).conte
 CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& config, const gate::Manifest& manifest,
                  const fs::path& out_dir) {
   CaseRun run;
-  run.dir = out_dir / "cases" / c.name;
+  // Absolute paths, so metrics.json and the logs stay valid wherever they are read from.
+  run.dir = fs::absolute(out_dir / "cases" / c.name);
   const auto start = std::chrono::steady_clock::now();
   try {
     fs::create_directories(run.dir);
@@ -81,7 +82,7 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
     const std::string hash = scene_hash(c.scene);
     const gate::Freshness fresh = gate::check_golden(manifest, config.golden_dir, c, hash);
     if (fresh.state != gate::Freshness::State::Fresh) throw InputError(c.scene.string(), "golden", fresh.reason);
-    const fs::path golden = config.golden_dir / gate::golden_key(c);
+    const fs::path golden = fs::absolute(config.golden_dir / gate::golden_key(c));
     json golden_files = json::object();
     for (const auto& [name, h] : manifest.entries.at(gate::golden_key(c)).files) golden_files[name] = h;
     const std::string binary_hash = gate::file_hash(t.giq);

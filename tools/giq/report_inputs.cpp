@@ -167,10 +167,22 @@ ReportInputs scan_report_inputs(const fs::path& dir, int max_frames) {
   for (const auto& e : fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied))
     if (e.is_regular_file()) files.push_back(e.path());
   std::sort(files.begin(), files.end());
+  // The scores of a sweep's settings are summarised by its table and plot, not shown one by one.
+  std::vector<fs::path> sweep_dirs;
+  for (const fs::path& f : files)
+    if (f.filename() == "sweep.json" || f.filename() == "convergence.json") sweep_dirs.push_back(f.parent_path());
+  auto in_sweep = [&](const fs::path& f) {
+    return std::any_of(sweep_dirs.begin(), sweep_dirs.end(), [&](const fs::path& d) {
+      const std::string rel = fs::relative(f, d).generic_string();
+      return !rel.empty() && rel.rfind("..", 0) != 0;
+    });
+  };
   for (const fs::path& f : files) {
     const std::string name = f.filename().string();
     try {
-      if (name == "metrics.json") {
+      if (name == "metrics.json" && in_sweep(f)) {
+        continue;
+      } else if (name == "metrics.json") {
         r.comparisons.push_back(comparison(f, dir, max_frames));
       } else if (name == "gate.json") {
         r.gate = json::parse(slurp(f));

@@ -41,7 +41,8 @@ struct Axis {
       lo -= pad, hi += pad;
     }
     if (log) {
-      lo = std::floor(lo), hi = std::ceil(hi);
+      // Whole decades, with a margin so a point on a decade is not drawn on the frame.
+      lo = std::floor(lo - 0.05), hi = std::ceil(hi + 0.05);
       if (hi == lo) hi += 1.0;
     } else {
       const double pad = (hi - lo) * 0.06;
