@@ -7,6 +7,20 @@
 namespace giq::reference {
 namespace {
 
+// Splits the beauty b into direct d and indirect r with d + r == b exactly in float
+// arithmetic (0 <= d <= b on entry). r starts as the rounded difference and moves by one ulp
+// while the rounded sum misses. When d has finer ulps than b, every candidate sum can land
+// exactly halfway between floats and round (to even) away from b; moving d by one of its
+// ulps (a relative change of 6e-8) shifts the sums off the tie.
+void split_beauty(float b, float& d, float& r) {
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    r = b - d;
+    for (int i = 0; i < 4 && d + r != b; ++i) r = std::nextafter(r, d + r < b ? INFINITY : -INFINITY);
+    if (d + r == b && r >= 0.0f) return;
+    d = std::nextafter(d, 0.0f);
+  }
+}
+
 double luminance(const double c[3]) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
 
 }  // namespace
@@ -63,8 +77,11 @@ image::Image Film::to_image() const {
     for (int c = 0; c < 3; ++c) {
       rgb[c][i] = float(p.mean[c]);
       // The direct sum can exceed n * mean by rounding alone; clamp so indirect >= 0.
-      direct[c][i] = std::min(float(p.direct_sum[c] / n), rgb[c][i]);
-      indirect[c][i] = rgb[c][i] - direct[c][i];
+      const float b = rgb[c][i];
+      float d = std::min(float(p.direct_sum[c] / n), b), r = 0.0f;
+      split_beauty(b, d, r);
+      direct[c][i] = d;
+      indirect[c][i] = r;
       albedo[c][i] = a.albedo[c];
       normal[c][i] = a.normal[c];
       var[c][i] = float(p.variance_of_mean(c));

@@ -71,8 +71,8 @@ struct Film {
   double relative_standard_error() const;
 
   // The reference EXR image: R,G,B, direct.*, indirect.*, albedo.*, N.*, Z, objectId,
-  // variance.*, spp. indirect = beauty - direct in float, so direct + indirect = beauty to
-  // the rounding of one float addition.
+  // variance.*, spp. indirect is chosen so that direct + indirect == beauty exactly in float
+  // arithmetic, for every pixel and channel.
   image::Image to_image() const;
 };
 

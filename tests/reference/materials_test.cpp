@@ -1,0 +1,110 @@
+// Material behaviour the glTF specification fixes: alpha-mask cut-outs are transparent to
+// every ray, a one-sided surface's back is black (reflects and emits nothing) while a
+// double-sided one shades both sides, and shading normals never bring light from below the
+// geometric surface.
+
+#include <gtest/gtest.h>
+
+#include "giq/reference/renderer.h"
+#include "scene_builder.h"
+
+namespace giq::reference {
+namespace {
+
+constexpr int kSize = 16;
+
+Film render(const scenes::Scene& s, const scenes::Camera& cam, uint32_t spp = 8) {
+  RenderSettings rs;
+  rs.width = rs.height = kSize;
+  Renderer r(s, cam, rs);
+  Film f = r.make_film();
+  r.render(f, spp);
+  EXPECT_EQ(f.nonfinite_samples(), 0u);
+  return f;
+}
+
+double total(const Film& f) {
+  double t = 0.0;
+  for (const PixelAccumulator& p : f.pixels) t += p.mean[0] + p.mean[1] + p.mean[2];
+  return t;
+}
+
+scenes::Light sun(glm::vec3 direction) {
+  scenes::Light l;
+  l.type = scenes::LightType::Directional;
+  l.direction = glm::normalize(direction);
+  l.intensity = 2.0f;
+  return l;
+}
+
+const scenes::Camera kCam = scenes::Camera::look_at({0.3f, 3.0f, 0.5f}, {0, 0, 0}, {0, 0, -1}, 0.9f);
+
+// A lit floor with a square card floating over it (between the floor, the camera and the sun).
+scenes::Scene floor_and_card(float card_alpha, bool with_card) {
+  scenes::Scene s;
+  const int floor = test::add_material(s, test::diffuse(glm::vec3(0.6f)));
+  test::add_quad(s, floor, {-4, 0, 4}, {4, 0, 4}, {4, 0, -4}, {-4, 0, -4}, 1);
+  scenes::Material card = test::diffuse({0.9f, 0.1f, 0.1f}, glm::vec3(0.0f), true);
+  card.base_color.a = card_alpha;
+  card.alpha_mode = scenes::AlphaMode::Mask;
+  card.alpha_cutoff = 0.5f;
+  const int c = test::add_material(s, card);
+  if (with_card) test::add_quad(s, c, {-0.6f, 1, 0.6f}, {0.6f, 1, 0.6f}, {0.6f, 1, -0.6f}, {-0.6f, 1, -0.6f}, 2);
+  s.lights.push_back(sun({0.2f, -1.0f, -0.1f}));
+  s.derive();
+  return s;
+}
+
+TEST(Materials, AlphaMaskCutOutIsTransparentToEveryRay) {
+  const Film without = render(floor_and_card(1.0f, false), kCam);
+  const scenes::Scene cut = floor_and_card(0.3f, true);
+  ASSERT_TRUE(cut.features.alpha_mask);
+  const Film with_cut = render(cut, kCam);
+  // Same random numbers, same paths: a card that is cut out everywhere changes nothing.
+  for (size_t i = 0; i < without.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(with_cut.pixels[i].mean[c], without.pixels[i].mean[c]) << "pixel " << i;
+  // Above the cutoff the card is there: it is seen (object id 2) and casts a shadow.
+  const Film opaque = render(floor_and_card(0.7f, true), kCam);
+  EXPECT_NE(total(opaque), total(without));
+}
+
+TEST(Materials, BackOfOneSidedSurfaceIsBlackDoubleSidedIsShaded) {
+  for (bool double_sided : {false, true}) {
+    scenes::Scene s;
+    const int m = test::add_material(s, test::diffuse(glm::vec3(0.5f), glm::vec3(0.25f), double_sided));
+    // Faces down (-y); camera and sun above it see and light its back.
+    test::add_quad(s, m, {-4, 0, -4}, {4, 0, -4}, {4, 0, 4}, {-4, 0, 4}, 1);
+    s.lights.push_back(sun({0.0f, -1.0f, 0.0f}));
+    s.derive();
+    const Film f = render(s, kCam, 64);
+    if (!double_sided) {
+      EXPECT_EQ(total(f), 0.0);
+    } else {
+      // Emission 0.25 plus (rho / pi) E on every pixel. The emissive quad is also an area
+      // light that next-event estimation may pick (uselessly, for points on itself), so the
+      // image is noisy: compare its mean within 4 standard errors.
+      const double expected = 0.25 + 0.5 / 3.14159265358979 * 2.0;
+      double mean = 0.0, var = 0.0;
+      const double n = double(f.pixels.size());
+      for (const PixelAccumulator& p : f.pixels) mean += p.mean[0] / n, var += p.variance_of_mean(0) / (n * n);
+      EXPECT_GT(var, 0.0);
+      EXPECT_NEAR(mean, expected, 4.0 * std::sqrt(var) + 1e-6);
+    }
+  }
+}
+
+TEST(Materials, ShadingNormalsDoNotLeakLightFromBelow) {
+  // A floor whose vertex normals lean 80 degrees towards a sun that shines from below it:
+  // the geometric surface faces away from the sun, so its top must stay black.
+  scenes::Scene s;
+  const int m = test::add_material(s, test::diffuse(glm::vec3(0.8f)));
+  test::add_quad(s, m, {-4, 0, 4}, {4, 0, 4}, {4, 0, -4}, {-4, 0, -4}, 1);
+  const glm::vec3 lean = glm::normalize(glm::vec3(std::sin(1.4f), std::cos(1.4f), 0.0f));
+  s.meshes[0].normals.assign(4, lean);
+  s.lights.push_back(sun({-1.0f, 0.3f, 0.0f}));  // travels up and to -x: below the floor
+  s.derive();
+  EXPECT_EQ(total(render(s, kCam)), 0.0);
+}
+
+}  // namespace
+}  // namespace giq::reference
