@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+#include <vector>
+
 #include "giq/reference/renderer.h"
 #include "scene_builder.h"
 
@@ -104,6 +107,55 @@ TEST(Materials, ShadingNormalsDoNotLeakLightFromBelow) {
   s.lights.push_back(sun({-1.0f, 0.3f, 0.0f}));  // travels up and to -x: below the floor
   s.derive();
   EXPECT_EQ(total(render(s, kCam)), 0.0);
+}
+
+}  // namespace
+}  // namespace giq::reference
+
+namespace giq::reference {
+namespace {
+
+TEST(Materials, FirstHitLayersAndTextures) {
+  // A plane textured with a 2 x 1 red/green texture (nearest filtering), seen straight down
+  // from height 4: albedo follows the texels, N is +y, Z is 4, objectId is the mesh's.
+  scenes::Scene s;
+  scenes::Texture t;
+  t.name = "red-green";
+  t.width = 2;
+  t.height = 1;
+  t.texels = std::make_shared<const std::vector<glm::vec4>>(std::vector<glm::vec4>{{1, 0, 0, 1}, {0, 1, 0, 1}});
+  t.wrap_s = t.wrap_t = scenes::Wrap::ClampToEdge;
+  t.filter = scenes::Filter::Nearest;
+  s.textures.push_back(t);
+  scenes::Material m = test::diffuse(glm::vec3(0.5f));
+  m.base_color_texture = 0;
+  const int mi = test::add_material(s, m);
+  test::add_quad(s, mi, {-4, 0, 4}, {4, 0, 4}, {4, 0, -4}, {-4, 0, -4}, 42);
+  s.lights.push_back(sun({0.0f, -1.0f, 0.0f}));
+  s.derive();
+  ASSERT_TRUE(s.features.textures);
+  RenderSettings rs;
+  rs.width = rs.height = kSize;
+  const scenes::Camera cam = scenes::Camera::look_at({0, 4, 0}, {0, 0, 0}, {0, 0, -1}, 0.9f);
+  Renderer r(s, cam, rs);
+  EXPECT_NE(r.feature_mask() & 2u, 0u);  // the textured variant runs (FeatureBit kTextures)
+  Film f = r.make_film();
+  r.render_aux(f);
+  r.render(f, 4);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const size_t i = size_t(y) * kSize + size_t(x);
+      const PixelAux& a = f.aux[i];
+      const bool left = x < kSize / 2;
+      ASSERT_EQ(a.albedo[0], left ? 0.5f : 0.0f) << x << "," << y;
+      ASSERT_EQ(a.albedo[1], left ? 0.0f : 0.5f) << x << "," << y;
+      ASSERT_NEAR(a.normal[1], 1.0f, 1e-6f);
+      ASSERT_NEAR(a.depth, 4.0f, 4e-6f);
+      ASSERT_EQ(a.object_id, 42u);
+      // Lit straight on with E = 2: radiance (0.5 / pi) * 2 in the texel's channel. Pixels on
+      // the seam mix both texels through the jitter, so test the others.
+      if (x != kSize / 2 - 1 && x != kSize / 2) ASSERT_NEAR(f.pixels[i].mean[left ? 0 : 1], 1.0 / 3.14159265358979, 1e-5);
+    }
 }
 
 }  // namespace
