@@ -37,10 +37,12 @@ class PathIntegrator {
     glm::vec3 o = c_.eye;
     glm::vec3 beta(1.0f), direct(0.0f), indirect(0.0f);
     float prev_pdf = 0.0f;  // BSDF pdf of the direction that led to the current hit
+    uint32_t rays = 0;
     for (int depth = 0;; ++depth) {
       // Emission found at hit `depth` is direct for the camera's hit and the first bounce's.
       glm::vec3& emitted_to = depth <= 1 ? direct : indirect;
       const Hit hit = c_.bvh.intersect(o, d);
+      ++rays;
       if (!hit.valid()) {
         if constexpr (has(F, kEnvironment)) {
           const float w = depth == 0 ? 1.0f : bsdf_hit_weight(prev_pdf, c_.lights.environment_pmf() * kUniformSpherePdf);
@@ -76,7 +78,7 @@ class PathIntegrator {
         const bool use = ls.delta || rs.estimator != Estimator::BsdfOnly;
         if (use && ls.pdf > 0.0f && glm::dot(ls.wi, sf.ng) > 0.0f && ls.radiance != glm::vec3(0.0f)) {
           const BsdfEval e = bsdf_evaluate<kSpec>(sf.bsdf, wo_l, frame.to_local(ls.wi));
-          if (e.f != glm::vec3(0.0f) && !shadowed(origin, ls)) {
+          if (e.f != glm::vec3(0.0f) && (++rays, !shadowed(origin, ls))) {
             const float w = ls.delta || rs.estimator == Estimator::LightOnly ? 1.0f : power_heuristic(ls.pdf, e.pdf);
             const float cos_s = glm::dot(ls.wi, sf.ns);
             (depth == 0 ? direct : indirect) += beta * e.f * ls.radiance * (w * cos_s / ls.pdf);
@@ -105,6 +107,7 @@ class PathIntegrator {
       d = wi;
     }
     Renderer::Sample out;
+    out.rays = rays;
     const glm::vec3 beauty = direct + indirect;
     for (int k = 0; k < 3; ++k) out.beauty[k] = beauty[k], out.direct[k] = direct[k];
     return out;

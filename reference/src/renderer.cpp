@@ -21,20 +21,23 @@ constexpr int kTile = 16;
 // The work of one tile, instantiated per feature mask: render() picks the instantiation once
 // and every pixel of every pass runs the specialised code.
 struct Kernels {
-  void (*render_tile)(const RenderContext&, Film&, int x0, int y0, uint32_t target_spp);
+  RenderStats (*render_tile)(const RenderContext&, Film&, int x0, int y0, uint32_t target_spp);
   PixelAux (*aux)(const RenderContext&, int x, int y);
   Renderer::Sample (*trace)(const RenderContext&, int x, int y, uint32_t sample);
 };
 
 template <unsigned F>
-void render_tile(const RenderContext& ctx, Film& film, int x0, int y0, uint32_t target_spp) {
+RenderStats render_tile(const RenderContext& ctx, Film& film, int x0, int y0, uint32_t target_spp) {
   const PathIntegrator<F> integrator(ctx);
+  RenderStats stats;
   const int x1 = std::min(x0 + kTile, film.width), y1 = std::min(y0 + kTile, film.height);
   for (int y = y0; y < y1; ++y) {
     for (int x = x0; x < x1; ++x) {
       PixelAccumulator& acc = film.pixels[size_t(y) * size_t(film.width) + size_t(x)];
       while (acc.samples < target_spp) {
         Renderer::Sample s = integrator.trace(x, y, acc.samples);
+        stats.rays += s.rays;
+        ++stats.samples;
         bool finite = true;
         for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(s.beauty[k]) && std::isfinite(s.direct[k]);
         if (!finite) {
@@ -47,6 +50,7 @@ void render_tile(const RenderContext& ctx, Film& film, int x0, int y0, uint32_t 
       }
     }
   }
+  return stats;
 }
 
 template <unsigned F>
@@ -88,7 +92,7 @@ struct Renderer::Impl {
   Impl(const scenes::Scene& scene, const scenes::Camera& camera, const RenderSettings& settings)
       : ctx(scene, camera, settings, bounds_centre(scene), bounds_extent(scene),
             std::max(1e-30f, 0.5f * glm::length(scene.bounds.extent()))),
-        mask(reference::feature_mask(scene.features)),
+        mask(settings.all_features ? (1u << kFeatureCount) - 1 : reference::feature_mask(scene.features)),
         kernels(kKernels[mask]) {}
   RenderContext ctx;
   unsigned mask;
@@ -126,10 +130,11 @@ void Renderer::render_aux(Film& film) const {
   });
 }
 
-bool Renderer::render(Film& film, uint32_t target_spp, const std::atomic<bool>* cancel) const {
+bool Renderer::render(Film& film, uint32_t target_spp, const std::atomic<bool>* cancel, RenderStats* stats) const {
   const RenderContext& ctx = impl_->ctx;
   const int tiles_x = (film.width + kTile - 1) / kTile, tiles_y = (film.height + kTile - 1) / kTile;
   std::atomic<bool> skipped{false};
+  std::atomic<uint64_t> rays{0}, samples{0};
   impl_->run([&] {
     // Pixels are independent and each accumulates its samples in index order, so the
     // schedule cannot change a bit of the result.
@@ -141,11 +146,14 @@ bool Renderer::render(Film& film, uint32_t target_spp, const std::atomic<bool>* 
               skipped = true;
               continue;
             }
-            impl_->kernels.render_tile(ctx, film, (t % tiles_x) * kTile, (t / tiles_x) * kTile, target_spp);
+            const RenderStats s = impl_->kernels.render_tile(ctx, film, (t % tiles_x) * kTile, (t / tiles_x) * kTile, target_spp);
+            rays.fetch_add(s.rays, std::memory_order_relaxed);
+            samples.fetch_add(s.samples, std::memory_order_relaxed);
           }
         },
         tbb::simple_partitioner());
   });
+  if (stats != nullptr) stats->rays += rays, stats->samples += samples;
   return !skipped;
 }
 

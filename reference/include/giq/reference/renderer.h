@@ -33,6 +33,14 @@ struct RenderSettings {
   int max_bounces = 64;
   Estimator estimator = Estimator::Mis;
   int threads = 0;  // 0 = all hardware threads; never changes the image
+  // Run the integrator variant with every feature compiled in instead of the scene's own
+  // (for benchmarks: the cost of not specialising). Never changes the image.
+  bool all_features = false;
+};
+
+struct RenderStats {
+  uint64_t rays = 0;     // camera, bounce and shadow rays traced
+  uint64_t samples = 0;  // camera paths
 };
 
 class Renderer {
@@ -53,17 +61,19 @@ class Renderer {
   // Adds samples until every pixel has `target_spp`. Work is split in tiles; when `cancel`
   // becomes true, tiles not yet started are skipped (their pixels keep fewer samples; the
   // film stays valid and can be completed later). Returns false when cancelled.
-  bool render(Film& film, uint32_t target_spp, const std::atomic<bool>* cancel = nullptr) const;
+  bool render(Film& film, uint32_t target_spp, const std::atomic<bool>* cancel = nullptr, RenderStats* stats = nullptr) const;
 
   // The sample value of one pixel for one sample index, as render() accumulates it
   // (for tests of determinism and of single pixels).
   struct Sample {
     float beauty[3];
     float direct[3];
+    uint32_t rays;  // traced for this sample
   };
   Sample trace(int x, int y, uint32_t sample_index) const;
 
-  // The instantiation the integrator runs for this scene, as FeatureBit flags.
+  // The instantiation the integrator runs, as feature bits (1 specular, 2 textures,
+  // 4 punctual lights, 8 emissive triangles, 16 environment).
   unsigned feature_mask() const;
 
  private:
