@@ -154,6 +154,23 @@ TEST(ReferenceCli, FilesAreByteIdenticalAcrossThreadsAndAfterKillAndResume) {
   ASSERT_EQ(giq(args), 0);
   EXPECT_EQ(slurp(a), slurp(c)) << (killed == 0 ? "(the render finished before the kill)" : "");
   EXPECT_FALSE(fs::exists(c.string() + ".checkpoint"));
+
+  // SIGINT: the command saves a checkpoint and exits with 130; --resume completes it.
+  fs::remove(c);
+  args.pop_back();
+  const pid_t pid2 = start(args);
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  ::kill(pid2, SIGINT);
+  const int interrupted = finish(pid2);
+  if (interrupted == 130) {
+    EXPECT_TRUE(fs::exists(c.string() + ".checkpoint"));
+    EXPECT_FALSE(fs::exists(c));
+  } else {
+    EXPECT_EQ(interrupted, 0) << "neither interrupted nor finished";
+  }
+  args.push_back("--resume");
+  ASSERT_EQ(giq(args), 0);
+  EXPECT_EQ(slurp(a), slurp(c));
 }
 
 TEST(ReferenceCli, BadInputExitsWithTwo) {

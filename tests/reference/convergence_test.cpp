@@ -57,3 +57,35 @@ TEST(Convergence, MseFallsAsOneOverSpp) {
 
 }  // namespace
 }  // namespace giq::reference
+
+namespace giq::reference {
+namespace {
+
+TEST(Convergence, DefaultBounceLimitCutsLessEnergyThanTheNoise) {
+  // The same paths (same random numbers) with the default limit and with practically none:
+  // they differ only by the energy of paths longer than the default, which must be far below
+  // the image's own standard error.
+  const scenes::Scene s = test::cornell();
+  RenderSettings rs;
+  rs.width = rs.height = 16;
+  Renderer limited(s, s.views[0].camera, rs);
+  ASSERT_EQ(rs.max_bounces, 64);
+  rs.max_bounces = 100000;
+  Renderer unlimited(s, s.views[0].camera, rs);
+  Film a = limited.make_film(), b = unlimited.make_film();
+  limited.render(a, 64);
+  unlimited.render(b, 64);
+  double mean_a = 0.0, mean_b = 0.0, var = 0.0;
+  const double n = double(a.pixels.size() * 3);
+  for (size_t i = 0; i < a.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      mean_a += a.pixels[i].mean[c] / n;
+      mean_b += b.pixels[i].mean[c] / n;
+      var += a.pixels[i].variance_of_mean(c) / (n * n);
+    }
+  EXPECT_GE(mean_b, mean_a);
+  EXPECT_LT(mean_b - mean_a, 0.01 * std::sqrt(var));
+}
+
+}  // namespace
+}  // namespace giq::reference
