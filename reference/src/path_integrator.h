@@ -122,8 +122,10 @@ class PathIntegrator {
     if (!hit.valid()) return a;
     const Surface sf = make_surface<F>(c_, hit, d);
     const glm::vec3 albedo = sf.black ? glm::vec3(0.0f) : sf.bsdf.base;
-    for (int k = 0; k < 3; ++k) a.albedo[k] = albedo[k], a.normal[k] = sf.ns[k];
-    a.depth = hit.t * glm::dot(d, c_.camera.forward);
+    // Non-finite material or vertex data must not reach the file either: written as 0.
+    const auto finite = [](float v) { return std::isfinite(v) ? v : 0.0f; };
+    for (int k = 0; k < 3; ++k) a.albedo[k] = finite(albedo[k]), a.normal[k] = finite(sf.ns[k]);
+    a.depth = finite(hit.t * glm::dot(d, c_.camera.forward));
     a.object_id = c_.scene.meshes[hit.mesh].object_id;
     return a;
   }

@@ -160,3 +160,29 @@ TEST(Materials, FirstHitLayersAndTextures) {
 
 }  // namespace
 }  // namespace giq::reference
+
+namespace giq::reference {
+namespace {
+
+TEST(Materials, NonFiniteSamplesAreDiscardedAndCounted) {
+  // A material with a NaN base colour makes every sample that reflects off it NaN: those are
+  // counted and replaced by zero, and nothing non-finite reaches the image.
+  scenes::Scene s = floor_and_card(1.0f, false);
+  s.materials[0].base_color = glm::vec4(std::nanf(""), 0.5f, 0.5f, 1.0f);
+  s.derive();
+  RenderSettings rs;
+  rs.width = rs.height = kSize;
+  Renderer r(s, kCam, rs);
+  Film f = r.make_film();
+  r.render_aux(f);
+  r.render(f, 4);
+  EXPECT_EQ(f.nonfinite_samples(), uint64_t(kSize) * kSize * 4);
+  const image::Image img = f.to_image();
+  for (const std::string& c : img.channel_names()) {
+    const float* p = img.channel(c);
+    for (size_t i = 0; i < img.pixel_count(); ++i) ASSERT_TRUE(std::isfinite(p[i])) << c;
+  }
+}
+
+}  // namespace
+}  // namespace giq::reference
