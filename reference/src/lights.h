@@ -116,8 +116,10 @@ LightSample LightSampler::sample(glm::vec3 p, float u_pick, float u_alias, glm::
       s.normal = n;
       s.area = true;
       s.radiance = emitted_radiance<F>(scene_, mat, interpolate_uv(mesh, tri, b.x, b.y));
-      // Area measure to solid angle: dA = d^2 / cos(theta_l) dw (pbrt-v4, eq. 4.9).
+      // Area measure to solid angle: dA = d^2 / cos(theta_l) dw (pbrt-v4, eq. 4.9). At grazing
+      // angles the density can overflow; such a sample carries no light, so it is dropped.
       s.pdf = pick.pmf * d2 / (area * cos_l);
+      if (!std::isfinite(s.pdf)) s.pdf = 0.0f;
       return s;
     }
   }

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include <cmath>
+#include <limits>
 
 #include "feature_mask.h"
 #include "giq/reference/bsdf.h"
@@ -57,7 +58,8 @@ class PathIntegrator {
           float w = 1.0f;
           if (depth > 0) {
             // The light-sampling pdf of this point, in solid angle from the previous vertex.
-            const float pdf_light = c_.lights.triangle_pmf(hit.mesh, hit.triangle) * hit.t * hit.t / (sf.area * sf.cos_ray);
+            float pdf_light = c_.lights.triangle_pmf(hit.mesh, hit.triangle) * hit.t * hit.t / (sf.area * sf.cos_ray);
+            if (!std::isfinite(pdf_light)) pdf_light = std::numeric_limits<float>::max();
             w = bsdf_hit_weight(prev_pdf, pdf_light);
           }
           emitted_to += beta * w * sf.emission;

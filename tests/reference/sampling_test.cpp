@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "giq/reference/alias_table.h"
@@ -85,6 +86,12 @@ TEST(Sampling, PowerHeuristicWeightsSumToOne) {
   for (float a : {0.01f, 0.5f, 3.0f, 1e4f})
     for (float b : {0.0f, 0.2f, 7.0f}) EXPECT_NEAR(power_heuristic(a, b) + power_heuristic(b, a), 1.0f, 1e-6f);
   EXPECT_EQ(power_heuristic(0.0f, 0.0f), 0.0f);
+  const float inf = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(power_heuristic(1e30f, 1.0f), 1.0f);  // squares overflow: the limit, not NaN
+  EXPECT_EQ(power_heuristic(1.0f, 1e30f), 0.0f);
+  EXPECT_EQ(power_heuristic(inf, 2.0f), 1.0f);
+  EXPECT_EQ(power_heuristic(2.0f, inf), 0.0f);
+  EXPECT_NEAR(power_heuristic(3.0f, 1.0f), 0.9f, 1e-6f);
 }
 
 TEST(Sampling, FrameIsOrthonormal) {

@@ -97,11 +97,15 @@ inline glm::vec2 square_to_triangle_barycentrics(glm::vec2 u) {
   return {s * (1.0f - u.y), s * u.y};
 }
 
-// Veach's power heuristic with beta = 2 (Veach 1997, thesis, eq. 9.13), written so that an
-// infinite pdf (never produced here) or two zero pdfs cannot produce NaN.
+// Veach's power heuristic with beta = 2 (Veach 1997, thesis, eq. 9.13), in the ratio form
+// 1 / (1 + (b/a)^2) so that huge or infinite pdfs, whose squares overflow, and zero pdfs
+// give the limit weights instead of NaN.
 inline float power_heuristic(float pdf_a, float pdf_b) {
-  const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
-  return a > 0.0f ? a / (a + b) : 0.0f;
+  if (!(pdf_a > 0.0f)) return 0.0f;
+  if (!(pdf_b > 0.0f)) return 1.0f;
+  if (std::isinf(pdf_a)) return std::isinf(pdf_b) ? 0.5f : 1.0f;
+  const float r = pdf_b / pdf_a;
+  return 1.0f / (1.0f + r * r);
 }
 
 // Orthonormal basis around a unit normal without branches on the normal's direction
