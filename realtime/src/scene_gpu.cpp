@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "giq/base/error.h"
 #include "giq/realtime/context.h"
 #include "shaders/scene_shared.h"
 
@@ -26,7 +27,22 @@ FlatGeometry flatten(const scenes::Scene& scene) {
   return g;
 }
 
-SceneGpu::SceneGpu(Context& ctx, const scenes::Scene& scene) : geometry_(flatten(scene)) {
+namespace {
+// Features the real-time module does not render are refused at load time: a silently
+// different image would be compared with the reference as if it were right.
+void require_supported(const scenes::Scene& scene) {
+  const std::pair<bool, const char*> unsupported[] = {{scene.features.textures, "textures"},
+                                                      {scene.features.normal_maps, "normal_maps"},
+                                                      {scene.features.alpha_mask, "alpha_mask"}};
+  for (const auto& [present, name] : unsupported)
+    if (present)
+      throw InputError(scene.path.string(), "features",
+                       std::string("the scene uses ") + name +
+                           ", which giq realtime does not render; expected a scene without " + name);
+}
+}  // namespace
+
+SceneGpu::SceneGpu(Context& ctx, const scenes::Scene& scene) : geometry_((require_supported(scene), flatten(scene))) {
   using namespace gpu;
   triangle_count_ = uint32_t(geometry_.triangles.size());
   bvh_ = build_bvh(geometry_.positions, geometry_.triangles);
