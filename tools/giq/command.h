@@ -8,5 +8,8 @@
 namespace giq::cli {
 
 void add_scene_command(CLI::App& app, int& exit_code);
+#ifdef GIQ_WITH_VULKAN
+void add_realtime_command(CLI::App& app, int& exit_code);
+#endif
 
 }  // namespace giq::cli

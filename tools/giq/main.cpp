@@ -18,6 +18,9 @@ int main(int argc, char** argv) {
 
   int exit_code = 0;
   giq::cli::add_scene_command(app, exit_code);
+#ifdef GIQ_WITH_VULKAN
+  giq::cli::add_realtime_command(app, exit_code);
+#endif
 
   try {
     app.parse(argc, argv);
