@@ -56,23 +56,33 @@ float smith_g1(float nv, float a2) { return 2.0 * nv / (nv + sqrt(a2 + (1.0 - a2
 vec3 dielectric_f0(Surface s) { return min(0.04 * s.specular_color, vec3(1.0)) * s.specular; }
 #endif
 
-// f(wo, wi) without the cosine; zero below the shading horizon.
-vec3 brdf_eval(Surface s, vec3 wo, vec3 wi) {
+// f(wo, wi) without the cosine, split into its diffuse and specular parts (both zero below
+// the shading horizon); brdf_eval is their sum.
+void brdf_parts(Surface s, vec3 wo, vec3 wi, out vec3 diffuse, out vec3 specular) {
+  diffuse = vec3(0.0);
+  specular = vec3(0.0);
   float nl = dot(s.n, wi), nv = dot(s.n, wo);
-  if (nl <= 0.0 || nv <= 0.0) return vec3(0.0);
-  vec3 diffuse = s.base_color / PI;
+  if (nl <= 0.0 || nv <= 0.0) return;
+  vec3 lambert = s.base_color / PI;
 #ifdef GIQ_SPECULAR
   vec3 h = normalize(wo + wi);
   float vh = max(dot(wo, h), 0.0), nh = max(dot(s.n, h), 0.0);
   float a2 = s.alpha * s.alpha;
   float spec = ggx_d(nh, a2) * smith_v(nl, nv, a2);
   vec3 fd = schlick(dielectric_f0(s), vec3(s.specular), vh);
-  vec3 dielectric = mix(diffuse, vec3(spec), fd);
-  vec3 metal = spec * schlick(s.base_color, vec3(1.0), vh);
-  return mix(dielectric, metal, s.metallic);
+  vec3 fm = schlick(s.base_color, vec3(1.0), vh);
+  // mix(mix(lambert, spec, fd), spec * fm, metallic), regrouped by lobe.
+  diffuse = (1.0 - s.metallic) * (1.0 - fd) * lambert;
+  specular = ((1.0 - s.metallic) * fd + s.metallic * fm) * spec;
 #else
-  return diffuse * (1.0 - s.metallic);
+  diffuse = (1.0 - s.metallic) * lambert;
 #endif
+}
+
+vec3 brdf_eval(Surface s, vec3 wo, vec3 wi) {
+  vec3 d, sp;
+  brdf_parts(s, wo, wi, d, sp);
+  return d + sp;
 }
 
 #ifdef GIQ_SPECULAR
