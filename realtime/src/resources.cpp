@@ -209,12 +209,15 @@ std::vector<float> Image::read_floats(uint32_t layer) {
   const uint32_t bytes_per_texel = texel_bytes(desc_.format);
   const uint64_t bytes = uint64_t(desc_.width) * desc_.height * bytes_per_texel;
   Buffer rb(*ctx_, bytes, 0, MemoryUsage::Readback);
+  const VkImageLayout previous = layout_;
   ctx_->submit_and_wait([&](VkCommandBuffer cmd) {
     transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     VkBufferImageCopy c{};
     c.imageSubresource = {aspect(), 0, layer, 1};
     c.imageExtent = {desc_.width, desc_.height, 1};
     vkCmdCopyImageToBuffer(cmd, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, rb.handle(), 1, &c);
+    // Leave the image as the technique left it: reading it back is not a pass of its own.
+    if (previous != VK_IMAGE_LAYOUT_UNDEFINED) transition(cmd, previous);
     full_barrier(cmd);
   });
   std::vector<float> out(bytes / sizeof(float));

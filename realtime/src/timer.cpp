@@ -104,8 +104,15 @@ nlohmann::json timings_json(const std::vector<FrameTiming>& frames, const nlohma
   int warmup = 0;
   for (const auto& f : frames) {
     nlohmann::json pf = {{"frame", f.frame}, {"warmup", f.warmup}, {"gpu_ms", f.gpu_ms}, {"cpu_ms", f.cpu_ms}};
+    // A pass recorded several times in a frame counts as its sum; first-recorded order kept.
+    std::vector<std::pair<std::string, double>> summed;
+    for (const auto& [name, ms] : f.passes) {
+      auto it = std::find_if(summed.begin(), summed.end(), [&](const auto& p) { return p.first == name; });
+      if (it == summed.end()) summed.emplace_back(name, ms);
+      else it->second += ms;
+    }
     nlohmann::json passes = nlohmann::json::object();
-    for (const auto& [name, ms] : f.passes) passes[name] = passes.value(name, 0.0) + ms;
+    for (const auto& [name, ms] : summed) passes[name] = ms;
     pf["passes"] = passes;
     per_frame.push_back(pf);
     if (f.warmup) {
@@ -114,10 +121,9 @@ nlohmann::json timings_json(const std::vector<FrameTiming>& frames, const nlohma
     }
     gpu.push_back(f.gpu_ms);
     cpu.push_back(f.cpu_ms);
-    // A pass recorded several times in a frame (one shadow map per light) counts as its sum.
-    for (auto& [name, ms] : passes.items()) {
+    for (const auto& [name, ms] : summed) {
       if (!per_pass.count(name)) order.push_back(name);
-      per_pass[name].push_back(ms.get<double>());
+      per_pass[name].push_back(ms);
     }
   }
   j["frames"] = {{"warmup", warmup}, {"measured", gpu.size()}};
