@@ -76,7 +76,7 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
     RenderedFrame out;
     out.frame = f;
     out.timing = t;
-    out.image = read_outputs(*technique, options.width, options.height);
+    if (options.read_back) out.image = read_outputs(*technique, options.width, options.height);
     nlohmann::json pj = params.all();
     out.image.metadata = {{"giq.version", version()},
                           {"giq.renderer", "realtime"},

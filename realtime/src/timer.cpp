@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "giq/realtime/context.h"
+#include "giq/realtime/resources.h"
 #include "giq/realtime/vk.h"
 
 namespace giq::realtime {
@@ -29,13 +30,19 @@ void GpuTimer::reset(VkCommandBuffer cmd) {
 void GpuTimer::begin(VkCommandBuffer cmd, const std::string& pass) {
   if (open_) throw std::logic_error("GpuTimer: pass '" + pass + "' begins inside '" + passes_.back() + "'");
   if (passes_.size() >= capacity_) throw std::logic_error("GpuTimer: more passes than the query pool holds");
+  // Barriers on both sides pin the timestamp between the previous pass and this one. The
+  // second is needed by lavapipe, which otherwise takes a timestamp that opens a command
+  // buffer only when the following work has run (a compute-only frame then reads ~0 ms).
+  full_barrier(cmd);
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, uint32_t(2 * passes_.size()));
+  full_barrier(cmd);
   passes_.push_back(pass);
   open_ = true;
 }
 
 void GpuTimer::end(VkCommandBuffer cmd) {
   if (!open_) throw std::logic_error("GpuTimer: end without begin");
+  full_barrier(cmd);
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, uint32_t(2 * passes_.size() - 1));
   open_ = false;
 }

@@ -14,29 +14,6 @@
 namespace giq::realtime {
 namespace {
 
-// A UV sphere of `rings` x `segments` quads; many thin triangles meeting at shared edges and
-// at the poles, which is where ray tracers disagree on ties.
-void add_sphere(scenes::Scene& s, glm::vec3 c, float r, int rings, int segments, int material) {
-  scenes::Mesh m;
-  m.name = "sphere";
-  m.object_id = uint32_t(s.meshes.size() + 1);
-  m.material = material;
-  for (int i = 0; i <= rings; ++i)
-    for (int j = 0; j <= segments; ++j) {
-      const float th = float(M_PI) * float(i) / float(rings), ph = 2.0f * float(M_PI) * float(j) / float(segments);
-      const glm::vec3 n(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
-      m.positions.push_back(c + r * n);
-      m.normals.push_back(n);
-    }
-  for (int i = 0; i < rings; ++i)
-    for (int j = 0; j < segments; ++j) {
-      const uint32_t a = uint32_t(i * (segments + 1) + j), b = a + 1, d = a + uint32_t(segments + 1), e = d + 1;
-      if (i > 0) m.triangles.push_back({a, b, d});
-      if (i + 1 < rings) m.triangles.push_back({b, e, d});
-    }
-  s.meshes.push_back(std::move(m));
-}
-
 struct EmbreeScene {
   RTCDevice device = rtcNewDevice(nullptr);
   RTCScene scene = rtcNewScene(device);
@@ -81,8 +58,8 @@ class BvhTest : public test::VulkanTest {};
 scenes::Scene test_scene() {
   scenes::Scene s = test::cornell_box();
   const int m = test::add_material(s, glm::vec3(0.5f));
-  add_sphere(s, {0.4f, 0.3f, -0.4f}, 0.35f, 24, 48, m);
-  add_sphere(s, {-0.5f, -0.6f, 0.5f}, 0.2f, 12, 16, m);
+  test::add_sphere(s, {0.4f, 0.3f, -0.4f}, 0.35f, 24, 48, m);
+  test::add_sphere(s, {-0.5f, -0.6f, 0.5f}, 0.2f, 12, 16, m);
   s.derive();
   return s;
 }

@@ -92,6 +92,7 @@ int run(const RealtimeArgs& a) {
   o.height = a.height;
   o.frames = a.frames;
   o.warmup = a.warmup;
+  o.read_back = !a.no_images;
   const fs::path out(a.out);
   std::error_code ec;
   fs::create_directories(out, ec);

@@ -28,6 +28,9 @@ struct RenderOptions {
   uint32_t height = 256;
   int frames = 1;  // measured frames
   int warmup = 0;  // frames rendered before them
+  // Read the outputs back and call on_frame with the image; off for benchmarks that only need
+  // timings (on_frame then gets an empty image).
+  bool read_back = true;
 };
 
 struct RenderedFrame {

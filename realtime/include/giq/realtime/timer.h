@@ -1,9 +1,10 @@
 #pragma once
 // GPU timestamps per pass and the statistics written to timings.json.
 //
-// Each pass is bracketed by two timestamps written at ALL_COMMANDS: the first waits for every
-// earlier command, so a pass's time is its own, never overlapped with its neighbours. A frame's
-// GPU time is from the first pass's start to the last pass's end.
+// Each pass is bracketed by two timestamps, each behind a full barrier: a pass's time is its
+// own work, never overlapped with its neighbours'. A frame's GPU time runs from the first
+// pass's start to the last pass's end. (Serialising passes costs a GPU that could overlap
+// them a little time; that is the honest price of per-pass numbers.)
 
 #include <vulkan/vulkan.h>
 
