@@ -9,14 +9,21 @@
 namespace giq::realtime {
 
 GBufferPass::GBufferPass(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene,
-                         const scenes::FeatureSet& features, uint32_t width, uint32_t height)
-    : scene_(scene), width_(width), height_(height) {
+                         const scenes::FeatureSet& features, uint32_t width, uint32_t height, bool ray_traced)
+    : scene_(scene), width_(width), height_(height), ray_traced_(ray_traced) {
   const VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
   position_ = Image(ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, color});
   normal_ = Image(ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, color});
   ids_ = Image(ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_UINT, color});
   depth_ = Image(ctx, {width, height, 1, VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
   const auto defines = feature_defines(features);
+  if (ray_traced_) {
+    auto bindings = SceneGpu::binding_types();
+    bindings.insert(bindings.end(), 3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+    pipeline_ = Pipeline::compute(ctx, compiler.compile("passes/gbuffer_rays.comp", defines), bindings,
+                                  sizeof(gpu::GBufferPush));
+    return;
+  }
   GraphicsDesc g;
   g.vertex_spirv = compiler.compile("passes/gbuffer.vert", defines);
   g.fragment_spirv = compiler.compile("passes/gbuffer.frag", defines);
@@ -26,7 +33,22 @@ GBufferPass::GBufferPass(Context& ctx, ShaderCompiler& compiler, const SceneGpu&
 }
 
 void GBufferPass::record(VkCommandBuffer cmd, const scenes::Camera& camera, GpuTimer& timer) {
+  // A camera without a near plane (znear 0) would map every depth to 1; 1 mm keeps the
+  // rasteriser working at every scene scale the tests use.
+  const float znear = camera.znear > 0.0f ? camera.znear : 1e-3f;
+  const gpu::GBufferPush pc{gpu::make_gpu_camera(camera), glm::vec4(float(width_), float(height_), znear, 0.0f)};
   timer.begin(cmd, "gbuffer");
+  if (ray_traced_) {
+    for (Image* i : {&position_, &normal_, &ids_}) i->transition(cmd, VK_IMAGE_LAYOUT_GENERAL);
+    pipeline_.bind(cmd);
+    auto d = scene_.descriptors();
+    for (Image* i : {&position_, &normal_, &ids_}) d.push_back(Descriptor::storage_image(*i));
+    pipeline_.push_descriptors(cmd, d);
+    pipeline_.push_constants(cmd, pc);
+    pipeline_.dispatch_2d(cmd, width_, height_);
+    timer.end(cmd);
+    return;
+  }
   for (Image* i : {&position_, &normal_, &ids_}) i->transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
   depth_.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
   VkRenderingAttachmentInfo colors[3];
@@ -58,10 +80,6 @@ void GBufferPass::record(VkCommandBuffer cmd, const scenes::Camera& camera, GpuT
   vkCmdSetScissor(cmd, 0, 1, &sc);
   pipeline_.bind(cmd);
   pipeline_.push_descriptors(cmd, scene_.descriptors());
-  // A camera without a near plane (znear 0) would map every depth to 1; 1 mm keeps the
-  // rasteriser working at every scene scale the tests use.
-  const float znear = camera.znear > 0.0f ? camera.znear : 1e-3f;
-  gpu::GBufferPush pc{gpu::make_gpu_camera(camera), glm::vec4(float(width_), float(height_), znear, 0.0f)};
   pipeline_.push_constants(cmd, pc);
   if (scene_.triangle_count() > 0) {
     vkCmdBindIndexBuffer(cmd, scene_.index_buffer().handle(), 0, VK_INDEX_TYPE_UINT32);

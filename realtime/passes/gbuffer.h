@@ -25,8 +25,11 @@ class ShaderCompiler;
 
 class GBufferPass {
  public:
+  // ray_traced: cast the pixel-centre camera rays through the BVH in a compute shader
+  // instead of rasterising (gbuffer_rays.comp); same contents, for GPUs whose graphics units
+  // are few (the H100's).
   GBufferPass(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene, const scenes::FeatureSet& features,
-              uint32_t width, uint32_t height);
+              uint32_t width, uint32_t height, bool ray_traced = false);
   void record(VkCommandBuffer cmd, const scenes::Camera& camera, GpuTimer& timer);
 
   Image& position() { return position_; }
@@ -36,6 +39,7 @@ class GBufferPass {
  private:
   const SceneGpu& scene_;
   uint32_t width_, height_;
+  bool ray_traced_;
   Image position_, normal_, ids_, depth_;
   Pipeline pipeline_;
 };

@@ -121,6 +121,7 @@ void ShadowMaps::record(VkCommandBuffer cmd, const scenes::Camera& camera, float
   pipeline_.bind(cmd);
   pipeline_.push_descriptors(cmd, scene_.descriptors());
   for (uint32_t l = 0; l < layer_count(); ++l) {
+    if (cache_static_ && rendered_ && params_[l].x == GIQ_SHADOW_CUBE_FACE) continue;
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = depth_.layer_view(l);
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -146,6 +147,7 @@ void ShadowMaps::record(VkCommandBuffer cmd, const scenes::Camera& camera, float
     vkCmdEndRendering(cmd);
   }
   depth_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  rendered_ = true;
   timer.end(cmd);
 }
 

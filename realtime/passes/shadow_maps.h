@@ -35,6 +35,10 @@ class ShadowMaps {
   // The fraction between logarithmic (1) and uniform (0) cascade splits (Zhang et al. 2006,
   // "Parallel-Split Shadow Maps", practical split scheme).
   void set_split_lambda(float lambda) { split_lambda_ = lambda; }
+  // Render cube maps on the first record() only. The geometry and the punctual lights of a
+  // technique instance never change (an animated scene recreates the technique each frame),
+  // so their cube maps stay valid; cascades follow the camera and are always re-rendered.
+  void set_cache_static(bool cache) { cache_static_ = cache; }
 
   // Renders every layer; cascades follow the camera. Pass name "shadow_maps".
   void record(VkCommandBuffer cmd, const scenes::Camera& camera, float aspect, GpuTimer& timer);
@@ -59,6 +63,8 @@ class ShadowMaps {
   scenes::Bounds bounds_;
   uint32_t size_;
   float split_lambda_ = 0.5f;
+  bool cache_static_ = true;
+  bool rendered_ = false;
   std::vector<Source> sources_;
   std::vector<glm::mat4> layers_;
   std::vector<glm::vec4> params_;

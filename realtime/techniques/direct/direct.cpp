@@ -1,6 +1,7 @@
 // `direct`: the shared G-buffer and shadow-map passes, then one compute pass of direct
 // lighting (direct_lighting.comp). Outputs: beauty = direct; indirect is black by definition.
-// Parameters: shadow_map_size, pcf_radius, normal_offset, cascade_split_lambda.
+// Parameters: shadow_map_size, pcf_radius, normal_offset, cascade_split_lambda,
+// cache_static_shadows, gbuffer_ray_traced.
 #include "techniques/direct/direct.h"
 
 #include <glm/geometric.hpp>
@@ -22,11 +23,13 @@ class Direct : public Technique {
  public:
   explicit Direct(const TechniqueCreateInfo& ci)
       : scene_(ci.scene), scene_gpu_(ci.scene_gpu), width_(ci.width), height_(ci.height),
-        gbuffer_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.features, ci.width, ci.height),
+        gbuffer_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.features, ci.width, ci.height,
+                 ci.parameters.get_int("gbuffer_ray_traced") != 0),
         shadows_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.bounds, uint32_t(ci.parameters.get_int("shadow_map_size"))) {
     pcf_radius_ = float(ci.parameters.get_int("pcf_radius"));
     normal_offset_ = float(ci.parameters.get("normal_offset"));
     shadows_.set_split_lambda(float(ci.parameters.get("cascade_split_lambda")));
+    shadows_.set_cache_static(ci.parameters.get_int("cache_static_shadows") != 0);
 
     std::vector<uint32_t> light_layer;
     for (const auto& l : ci.scene.lights)
@@ -148,7 +151,11 @@ TechniqueInfo direct_technique() {
           {{"shadow_map_size", 2048, 64, 8192, true, "texels per side of every shadow-map layer"},
            {"pcf_radius", 1, 0, 4, true, "PCF kernel radius in texels ((2r+1)^2 taps)"},
            {"normal_offset", 1.5, 0, 8, false, "receiver offset along its normal, in shadow-map texels"},
-           {"cascade_split_lambda", 0.5, 0, 1, false, "cascade splits: 0 uniform, 1 logarithmic"}},
+           {"cascade_split_lambda", 0.5, 0, 1, false, "cascade splits: 0 uniform, 1 logarithmic"},
+           {"cache_static_shadows", 1, 0, 1, true,
+            "1: render cube shadow maps on the first frame only (geometry and punctual lights are static within a run)"},
+           {"gbuffer_ray_traced", 0, 0, 1, true,
+            "1: build the G-buffer by casting camera rays through the BVH in compute instead of rasterising (same contents)"}},
           [](const TechniqueCreateInfo& ci) { return std::make_unique<Direct>(ci); }};
 }
 
