@@ -90,7 +90,7 @@ json describe(const sc::Scene& s) {
 
 void print_table(const json& j) {
   auto row = [](const std::string& k, const std::string& v) {
-    std::printf("  %-22s %s\n", k.c_str(), v.c_str());
+    std::printf("  %-28s %s\n", k.c_str(), v.c_str());
   };
   auto v3 = [](const json& a) {
     char b[96];

@@ -1,0 +1,142 @@
+// Multi-layer OpenEXR through the OpenEXR 3 C++ library (no OpenImageIO), so the real-time
+// runner can write references and technique frames with a ~6 MB dependency footprint.
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputPart.h>
+#include <ImfMultiPartInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStandardAttributes.h>
+#include <ImfStringAttribute.h>
+#include <ImfPartType.h>
+
+#include <half.h>
+
+#include <exception>
+#include <vector>
+#include <set>
+
+#include "exr.h"
+#include "giq/image/io.h"
+#include "giq/base/atomic_file.h"
+#include "giq/base/error.h"
+
+namespace giq::image {
+namespace fs = std::filesystem;
+
+namespace {
+
+Imf::Compression to_imf(ExrOptions::Compression c) {
+  switch (c) {
+    case ExrOptions::Compression::None: return Imf::NO_COMPRESSION;
+    case ExrOptions::Compression::Zip: return Imf::ZIP_COMPRESSION;
+    case ExrOptions::Compression::Piz: return Imf::PIZ_COMPRESSION;
+  }
+  return Imf::ZIP_COMPRESSION;
+}
+
+}  // namespace
+
+void write_exr(const Image& image, const fs::path& path, const ExrOptions& options) {
+  if (image.width() <= 0 || image.height() <= 0)
+    throw InputError(path.string(), "", "cannot write an empty image (" + std::to_string(image.width()) + "x" +
+                                            std::to_string(image.height()) + ") as EXR");
+  // Everything the library may reject (channel names, attributes) happens inside the atomic
+  // writer, so a failure leaves neither the final file nor a temporary behind.
+  write_atomically(path, [&](const fs::path& tmp) {
+    try {
+      Imf::Header header(image.width(), image.height());
+      header.compression() = to_imf(options.compression);
+      for (const auto& name : image.channel_names()) {
+        const bool half = options.half_channels.count(name) > 0;
+        header.channels().insert(name, Imf::Channel(half ? Imf::HALF : Imf::FLOAT));
+      }
+      for (const auto& [key, value] : image.metadata) {
+        // A key that names a standard attribute (channels, compression, dataWindow...) would
+        // change the file's structure or be rejected by the library; refuse it clearly.
+        if (header.find(key) != header.end())
+          throw InputError(path.string(), "metadata." + key, "key collides with a standard EXR header attribute");
+        header.insert(key, Imf::StringAttribute(value));
+      }
+
+      // OpenEXR does not convert float to half on output, so half channels get a converted
+      // copy (Imath's half rounds to nearest even; out-of-range values become inf).
+      Imf::FrameBuffer fb;
+      std::vector<std::vector<Imath::half>> halves;
+      for (const auto& name : image.channel_names()) {
+        const float* src = image.channel(name);
+        if (options.half_channels.count(name)) {
+          auto& h = halves.emplace_back(src, src + image.pixel_count());
+          fb.insert(name, Imf::Slice(Imf::HALF, (char*)h.data(), sizeof(Imath::half),
+                                     sizeof(Imath::half) * size_t(image.width())));
+        } else {
+          fb.insert(name, Imf::Slice(Imf::FLOAT, (char*)src, sizeof(float), sizeof(float) * size_t(image.width())));
+        }
+      }
+      Imf::OutputFile out(tmp.c_str(), header);
+      out.setFrameBuffer(fb);
+      out.writePixels(image.height());
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw InputError(path.string(), "", std::string("cannot write EXR: ") + e.what());
+    }
+  });
+}
+
+Image read_exr(const fs::path& path) {
+  try {
+    Imf::MultiPartInputFile file(path.c_str());
+    Image image;
+    Imath::Box2i window;
+    // A multi-part file (one part per layer, as some tools write) is merged into one image;
+    // every part must cover the same pixels.
+    for (int part = 0; part < file.parts(); ++part) {
+      const Imf::Header& h = file.header(part);
+      if (h.hasType() && Imf::isDeepData(h.type()))
+        throw InputError(path.string(), "part " + std::to_string(part), "deep EXR data is not supported");
+      const Imath::Box2i dw = h.dataWindow();
+      const long long w = (long long)dw.max.x - dw.min.x + 1, hgt = (long long)dw.max.y - dw.min.y + 1;
+      if (w <= 0 || hgt <= 0 || w > (1 << 20) || hgt > (1 << 20))
+        throw InputError(path.string(), "dataWindow",
+                         "size " + std::to_string(w) + "x" + std::to_string(hgt) + " out of range (1..1048576)");
+      if (part == 0) {
+        window = dw;
+        image = Image(int(w), int(hgt));
+      } else if (dw != window) {
+        throw InputError(path.string(), "part " + std::to_string(part) + ".dataWindow",
+                         "differs from part 0's; every part must cover the same pixels");
+      }
+      for (auto a = h.begin(); a != h.end(); ++a) {
+        if (auto* s = dynamic_cast<const Imf::StringAttribute*>(&a.attribute())) {
+          if (std::string(a.name()) == "name" || std::string(a.name()) == "type") continue;
+          image.metadata[a.name()] = s->value();
+        }
+      }
+      const std::string part_prefix = (file.parts() > 1 && h.hasName()) ? h.name() + "." : "";
+      Imf::FrameBuffer fb;
+      for (auto c = h.channels().begin(); c != h.channels().end(); ++c) {
+        if (c.channel().xSampling != 1 || c.channel().ySampling != 1)
+          throw InputError(path.string(), c.name(), "sub-sampled channels are not supported");
+        std::string name = c.name();
+        if (image.has_channel(name)) name = part_prefix + name;
+        if (image.has_channel(name))
+          throw InputError(path.string(), name, "channel appears twice in the file");
+        float* plane = image.add_channel(name);
+        // HALF and UINT channels are converted to float by the library.
+        fb.insert(c.name(), Imf::Slice::Make(Imf::FLOAT, plane, dw, sizeof(float), sizeof(float) * size_t(w)));
+      }
+      Imf::InputPart in(file, part);
+      in.setFrameBuffer(fb);
+      in.readPixels(dw.min.y, dw.max.y);
+    }
+    return image;
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(path.string(), "", std::string("cannot read EXR: ") + e.what());
+  }
+}
+
+}  // namespace giq::image

@@ -1,0 +1,42 @@
+#include "giq/scenes/camera.h"
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <stdexcept>
+
+namespace giq::scenes {
+
+Camera Camera::look_at(glm::vec3 eye, glm::vec3 target, glm::vec3 up, float yfov_radians) {
+  // Built in double so that a camera far from its target still gets an orthonormal basis to
+  // float precision.
+  const glm::dvec3 d = glm::dvec3(target) - glm::dvec3(eye);
+  const double len = glm::length(d);
+  if (!(len > 0.0) || !std::isfinite(len))
+    throw std::invalid_argument("camera eye and target must be distinct finite points");
+  const glm::dvec3 f = d / len;
+  const glm::dvec3 r = glm::cross(f, glm::dvec3(up));
+  const double rlen = glm::length(r);
+  // sin(angle between up and forward) below 1e-6 leaves the roll undefined.
+  if (!(rlen > 1e-6 * glm::length(glm::dvec3(up))) || !std::isfinite(rlen))
+    throw std::invalid_argument("camera up vector must not be parallel to the view direction");
+  Camera c;
+  c.position = eye;
+  c.forward = glm::vec3(f);
+  c.right = glm::vec3(r / rlen);
+  c.up = glm::vec3(glm::cross(r / rlen, f));
+  c.yfov = yfov_radians;
+  return c;
+}
+
+glm::vec3 Camera::ray_direction(float px, float py, int width, int height) const {
+  // Pinhole model: the image plane at distance 1 spans tan(yfov/2) above and below the axis;
+  // horizontally it spans aspect times that. (px, py) are continuous pixel coordinates, y down.
+  const double t = std::tan(0.5 * double(yfov));
+  const double aspect = double(width) / double(height);
+  const double x = (2.0 * double(px) / double(width) - 1.0) * t * aspect;
+  const double y = (1.0 - 2.0 * double(py) / double(height)) * t;
+  const glm::dvec3 d = glm::dvec3(forward) + x * glm::dvec3(right) + y * glm::dvec3(up);
+  return glm::vec3(glm::normalize(d));
+}
+
+}  // namespace giq::scenes

@@ -1,0 +1,28 @@
+#include "giq/scenes/features.h"
+
+namespace giq::scenes {
+
+std::vector<std::string> FeatureSet::names() const {
+  // Order is fixed (declaration order) so the list, the shader #defines derived from it and
+  // reports are stable from run to run.
+  const std::pair<bool, const char*> all[] = {
+      {directional_lights, "directional_lights"},
+      {point_lights, "point_lights"},
+      {spot_lights, "spot_lights"},
+      {emissive_meshes, "emissive_meshes"},
+      {environment, "environment"},
+      {specular, "specular"},
+      {textures, "textures"},
+      {normal_maps, "normal_maps"},
+      {alpha_mask, "alpha_mask"},
+      {double_sided, "double_sided"},
+      {one_sided, "one_sided"},
+      {animation, "animation"},
+  };
+  std::vector<std::string> out;
+  for (const auto& [present, name] : all)
+    if (present) out.emplace_back(name);
+  return out;
+}
+
+}  // namespace giq::scenes

@@ -1,0 +1,158 @@
+#include "gltf_extras.h"
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+
+#include "giq/base/error.h"
+
+namespace giq::scenes::gltf {
+namespace {
+
+using nlohmann::json;
+
+struct Reader {
+  const std::string& file;
+
+  [[noreturn]] void fail(const std::string& field, const std::string& message) const { throw InputError(file, field, message); }
+
+  void only_keys(const json& o, const std::string& field, std::initializer_list<const char*> keys) const {
+    if (!o.is_object()) fail(field, "must be a JSON object");
+    for (const auto& [k, v] : o.items()) {
+      if (std::none_of(keys.begin(), keys.end(), [&](const char* s) { return k == s; })) {
+        std::string allowed;
+        for (const char* s : keys) allowed += std::string(allowed.empty() ? "" : ", ") + s;
+        fail(field + "." + k, "unknown key \"" + k + "\"; expected one of: " + allowed);
+      }
+    }
+  }
+
+  double number(const json& v, const std::string& field) const {
+    if (!v.is_number()) fail(field, "is " + v.dump() + "; expected a number");
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) fail(field, "expected a finite number");
+    return x;
+  }
+
+  glm::dvec3 vec3(const json& v, const std::string& field) const {
+    if (!v.is_array() || v.size() != 3) fail(field, "is " + v.dump().substr(0, 80) + "; expected an array of 3 numbers");
+    return {number(v[0], field + "[0]"), number(v[1], field + "[1]"), number(v[2], field + "[2]")};
+  }
+};
+
+void parse_views(const Reader& r, const json& a, Extras& out) {
+  const std::string base = "extras.giq.views";
+  if (!a.is_array()) r.fail(base, "must be an array of view objects");
+  for (size_t i = 0; i < a.size(); ++i) {
+    const std::string w = base + "[" + std::to_string(i) + "]";
+    r.only_keys(a[i], w, {"name", "eye", "target", "up", "yfov_deg"});
+    ExtraView v;
+    v.field = w;
+    if (!a[i].contains("name") || !a[i]["name"].is_string() || a[i]["name"].get<std::string>().empty())
+      r.fail(w + ".name", "missing or not a non-empty string");
+    v.name = a[i]["name"].get<std::string>();
+    if (!a[i].contains("eye")) r.fail(w + ".eye", "missing; expected [x, y, z] in world coordinates");
+    if (!a[i].contains("target")) r.fail(w + ".target", "missing; expected [x, y, z] in world coordinates");
+    v.eye = r.vec3(a[i]["eye"], w + ".eye");
+    v.target = r.vec3(a[i]["target"], w + ".target");
+    if (a[i].contains("up")) v.up = r.vec3(a[i]["up"], w + ".up");
+    if (a[i].contains("yfov_deg")) v.yfov_deg = r.number(a[i]["yfov_deg"], w + ".yfov_deg");
+    if (!(v.yfov_deg > 0.0 && v.yfov_deg < 180.0)) r.fail(w + ".yfov_deg", "is " + std::to_string(v.yfov_deg) + "; expected degrees in (0, 180)");
+    out.views.push_back(std::move(v));
+  }
+}
+
+void parse_sequence(const Reader& r, const json& o, const SceneSource& src, Extras& out, bool& frames_given) {
+  const std::string base = "extras.giq.sequence";
+  r.only_keys(o, base, {"frames", "fps", "animation"});
+  if (o.contains("frames")) {
+    const json& f = o["frames"];
+    if (!f.is_number_integer() || f.get<long long>() < 1 || f.get<long long>() > 1000000)
+      r.fail(base + ".frames", "is " + f.dump() + "; expected an integer from 1 to 1000000");
+    out.sequence.frames = int(f.get<long long>());
+    frames_given = true;
+  }
+  if (o.contains("fps")) {
+    out.sequence.fps = r.number(o["fps"], base + ".fps");
+    if (!(out.sequence.fps > 0.0 && out.sequence.fps <= 10000.0)) r.fail(base + ".fps", "is " + std::to_string(out.sequence.fps) + "; expected a number in (0, 10000]");
+  }
+  if (o.contains("animation")) {
+    const json& a = o["animation"];
+    if (a.is_string()) {
+      const std::string name = a.get<std::string>();
+      auto it = std::find_if(src.animations.begin(), src.animations.end(), [&](const AnimationSource& s) { return s.name == name; });
+      if (it == src.animations.end()) r.fail(base + ".animation", "no animation named \"" + name + "\" (the file has " + std::to_string(src.animations.size()) + ")");
+      out.sequence.animation = int(it - src.animations.begin());
+    } else if (a.is_number_integer()) {
+      const long long k = a.get<long long>();
+      if (k < -1 || k >= (long long)src.animations.size())
+        r.fail(base + ".animation", "is " + std::to_string(k) + "; the file has " + std::to_string(src.animations.size()) + " animations (-1 = none)");
+      out.sequence.animation = int(k);
+    } else {
+      r.fail(base + ".animation", "is " + a.dump() + "; expected an animation name or index");
+    }
+  }
+}
+
+void parse_leak_regions(const Reader& r, const json& a, const SceneSource& src, Extras& out) {
+  const std::string base = "extras.giq.leak_regions";
+  if (!a.is_array()) r.fail(base, "must be an array of node names");
+  std::vector<uint32_t> ids;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const std::string w = base + "[" + std::to_string(i) + "]";
+    if (!a[i].is_string()) r.fail(w, "is " + a[i].dump() + "; expected a node name");
+    const std::string name = a[i].get<std::string>();
+    bool found = false;
+    for (size_t n = 0; n < src.nodes.size(); ++n) {
+      if (src.nodes[n].name != name) continue;
+      found = true;
+      // A region covers the named node and everything below it, so a group node can name a
+      // whole room.
+      std::vector<int> stack{int(n)};
+      while (!stack.empty()) {
+        const int k = stack.back();
+        stack.pop_back();
+        ids.push_back(uint32_t(k) + 1);
+        for (int c : src.nodes[size_t(k)].children) stack.push_back(c);
+      }
+    }
+    if (!found) r.fail(w, "no node named \"" + name + "\"");
+    out.leak_regions.push_back(name);
+  }
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  out.leak_object_ids = std::move(ids);
+}
+
+}  // namespace
+
+Extras parse_extras(const Document& doc, const SceneSource& src) {
+  Extras out;
+  const Reader r{doc.file};
+  bool frames_given = false;
+  const json* giq = nullptr;
+  if (auto e = doc.json.find("extras"); e != doc.json.end() && e->is_object()) {
+    if (auto g = e->find("giq"); g != e->end()) giq = &*g;
+  }
+  if (!src.animations.empty()) out.sequence.animation = 0;  // the first clip plays unless told otherwise
+  if (giq) {
+    r.only_keys(*giq, "extras.giq", {"views", "sequence", "leak_regions", "environment"});
+    if (giq->contains("views")) parse_views(r, (*giq)["views"], out);
+    if (giq->contains("sequence")) parse_sequence(r, (*giq)["sequence"], src, out, frames_given);
+    if (giq->contains("leak_regions")) parse_leak_regions(r, (*giq)["leak_regions"], src, out);
+    if (giq->contains("environment")) {
+      const json& env = (*giq)["environment"];
+      r.only_keys(env, "extras.giq.environment", {"radiance"});
+      if (!env.contains("radiance")) r.fail("extras.giq.environment.radiance", "missing; expected [r, g, b] radiance");
+      const glm::dvec3 rad = r.vec3(env["radiance"], "extras.giq.environment.radiance");
+      if (rad.x < 0 || rad.y < 0 || rad.z < 0) r.fail("extras.giq.environment.radiance", "expected non-negative radiance");
+      out.environment = glm::vec3(rad);
+    }
+  }
+  // Without an explicit frame count the whole clip plays, both ends included.
+  if (!frames_given && out.sequence.animation >= 0)
+    out.sequence.frames = 1 + int(std::lround(std::min(src.animations[size_t(out.sequence.animation)].end * out.sequence.fps, 1e6)));
+  return out;
+}
+
+}  // namespace giq::scenes::gltf

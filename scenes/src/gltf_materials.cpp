@@ -1,0 +1,233 @@
+#include "gltf_materials.h"
+
+#include <stb_image.h>
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <tuple>
+
+namespace giq::scenes::gltf {
+namespace {
+
+// Larger images are refused before decoding so a forged header cannot exhaust memory: 2^26
+// texels are 1 GiB as float RGBA.
+constexpr int kMaxImageSide = 16384;
+constexpr int64_t kMaxImageTexels = int64_t(1) << 26;
+
+std::string decode_failure() {
+  const char* r = stbi_failure_reason();
+  return r ? r : "unknown reason";
+}
+
+// IEC 61966-2-1 sRGB electro-optical transfer function.
+float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+
+class TextureTable {
+ public:
+  TextureTable(const Context& ctx, const Document& doc, std::vector<Texture>& out) : ctx_(ctx), doc_(doc), out_(out) {}
+
+  // Scene texture index for glTF texture `index` used from `field` in the given colour space.
+  int use(int index, const std::string& field, bool srgb) {
+    const auto& m = ctx_.model;
+    if (index < 0 || size_t(index) >= m.textures.size())
+      ctx_.fail(field + ".index", "is " + std::to_string(index) + "; the file has " + std::to_string(m.textures.size()) + " textures");
+    const auto& t = m.textures[size_t(index)];
+    const std::string where = index_path("textures", size_t(index));
+    if (t.source < 0)
+      ctx_.fail(where + ".source", "missing; textures whose image comes only from an extension (e.g. KHR_texture_basisu) are not supported");
+    if (size_t(t.source) >= m.images.size())
+      ctx_.fail(where + ".source", "is " + std::to_string(t.source) + "; the file has " + std::to_string(m.images.size()) + " images");
+    if (t.sampler >= 0 && size_t(t.sampler) >= m.samplers.size())
+      ctx_.fail(where + ".sampler", "is " + std::to_string(t.sampler) + "; the file has " + std::to_string(m.samplers.size()) + " samplers");
+    const auto key = std::make_tuple(t.source, t.sampler, srgb);
+    if (auto it = index_.find(key); it != index_.end()) return it->second;
+
+    Texture tex;
+    const auto& image = m.images[size_t(t.source)];
+    tex.name = !image.name.empty() ? image.name : !image.uri.empty() ? image.uri : "image" + std::to_string(t.source);
+    if (t.sampler >= 0) {
+      const auto& s = m.samplers[size_t(t.sampler)];
+      const std::string sw = index_path("samplers", size_t(t.sampler));
+      tex.wrap_s = wrap(s.wrapS, sw + ".wrapS");
+      tex.wrap_t = wrap(s.wrapT, sw + ".wrapT");
+      if (s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) tex.filter = Filter::Nearest;
+      else if (s.magFilter == -1 || s.magFilter == TINYGLTF_TEXTURE_FILTER_LINEAR) tex.filter = Filter::Linear;
+      else ctx_.fail(sw + ".magFilter", "is " + std::to_string(s.magFilter) + "; expected 9728 (NEAREST) or 9729 (LINEAR)");
+    }
+    decode(t.source, srgb, tex);
+    out_.push_back(std::move(tex));
+    return index_[key] = int(out_.size()) - 1;
+  }
+
+ private:
+  Wrap wrap(int mode, const std::string& field) const {
+    switch (mode) {
+      case TINYGLTF_TEXTURE_WRAP_REPEAT: return Wrap::Repeat;
+      case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::ClampToEdge;
+      case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::MirroredRepeat;
+      default: ctx_.fail(field, "is " + std::to_string(mode) + "; expected 10497 (REPEAT), 33071 (CLAMP_TO_EDGE) or 33648 (MIRRORED_REPEAT)");
+    }
+  }
+
+  // Decodes an image once per colour space. Colour textures are stored sRGB-encoded (glTF 2.0
+  // spec, 3.9.2: "MUST be ... sRGB"); alpha and data textures are linear already.
+  void decode(int image, bool srgb, Texture& tex) {
+    const auto key = std::make_pair(image, srgb);
+    if (auto it = texels_.find(key); it != texels_.end()) {
+      tex.width = it->second.width, tex.height = it->second.height, tex.texels = it->second.texels;
+      return;
+    }
+    const std::string where = index_path("images", size_t(image));
+    const auto& bytes = doc_.encoded_images.at(size_t(image));
+    if (bytes.empty()) ctx_.fail(where, "no image data (missing file, empty data or unreadable buffer view)");
+    if (bytes.size() > size_t(INT32_MAX)) ctx_.fail(where, "image data over 2 GiB");
+    const int n = int(bytes.size());
+    int w = 0, h = 0, comp = 0;
+    if (!stbi_info_from_memory(bytes.data(), n, &w, &h, &comp))
+      ctx_.fail(where, "cannot decode the image (" + decode_failure() + "); expected a PNG or JPEG file");
+    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide || int64_t(w) * h > kMaxImageTexels)
+      ctx_.fail(where, std::to_string(w) + "x" + std::to_string(h) + " image; expected sides of 1 to " + std::to_string(kMaxImageSide) +
+                           " pixels and at most " + std::to_string(kMaxImageTexels) + " pixels in all");
+    auto texels = std::make_shared<std::vector<glm::vec4>>(size_t(w) * size_t(h));
+    auto convert = [&](auto* pixels, float max) {
+      for (size_t i = 0; i < texels->size(); ++i) {
+        glm::vec4 c(pixels[4 * i] / max, pixels[4 * i + 1] / max, pixels[4 * i + 2] / max, pixels[4 * i + 3] / max);
+        if (srgb) c = glm::vec4(srgb_to_linear(c.r), srgb_to_linear(c.g), srgb_to_linear(c.b), c.a);
+        (*texels)[i] = c;
+      }
+    };
+    int dw = 0, dh = 0;
+    if (stbi_is_16_bit_from_memory(bytes.data(), n)) {
+      std::unique_ptr<stbi_us, void (*)(void*)> px(stbi_load_16_from_memory(bytes.data(), n, &dw, &dh, &comp, 4), stbi_image_free);
+      if (!px || dw != w || dh != h) ctx_.fail(where, "cannot decode the image (" + decode_failure() + ")");
+      convert(px.get(), 65535.0f);
+    } else {
+      std::unique_ptr<stbi_uc, void (*)(void*)> px(stbi_load_from_memory(bytes.data(), n, &dw, &dh, &comp, 4), stbi_image_free);
+      if (!px || dw != w || dh != h) ctx_.fail(where, "cannot decode the image (" + decode_failure() + ")");
+      convert(px.get(), 255.0f);
+    }
+    tex.width = w, tex.height = h, tex.texels = texels;
+    texels_[key] = {w, h, texels};
+  }
+
+  struct Decoded {
+    int width, height;
+    std::shared_ptr<const std::vector<glm::vec4>> texels;
+  };
+  const Context& ctx_;
+  const Document& doc_;
+  std::vector<Texture>& out_;
+  std::map<std::tuple<int, int, bool>, int> index_;
+  std::map<std::pair<int, bool>, Decoded> texels_;
+};
+
+// Checks the parts of a textureInfo giq cannot honour (glTF 2.0 spec, 5.22 "Texture Info").
+void check_texture_info(const Context& ctx, int tex_coord, const tinygltf::ExtensionMap& ext, const std::string& field) {
+  if (tex_coord != 0)
+    ctx.fail(field + ".texCoord", "is " + std::to_string(tex_coord) + "; only TEXCOORD_0 is supported");
+  if (ext.count("KHR_texture_transform"))
+    ctx.fail(field + ".extensions.KHR_texture_transform", "texture transforms are not supported");
+}
+
+double number(const Context& ctx, const tinygltf::Value& v, const std::string& field, double lo, double hi) {
+  if (!v.IsNumber()) ctx.fail(field, "must be a number");
+  const double x = v.GetNumberAsDouble();
+  if (!(x >= lo && x <= hi)) ctx.fail(field, "is " + std::to_string(x) + "; expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return x;
+}
+
+glm::vec3 color3(const Context& ctx, const std::vector<double>& v, const std::string& field, double hi) {
+  if (v.size() != 3) ctx.fail(field, "has " + std::to_string(v.size()) + " components; expected 3");
+  for (double x : v)
+    if (!(x >= 0.0 && x <= hi)) ctx.fail(field, "component " + std::to_string(x) + " is outside [0, " + std::to_string(hi) + "]");
+  return glm::vec3(float(v[0]), float(v[1]), float(v[2]));
+}
+
+// A textureInfo given as an extension's JSON value (KHR_materials_specular textures).
+int extension_texture(const Context& ctx, TextureTable& table, const tinygltf::Value& info, const std::string& field, bool srgb) {
+  if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsInt()) ctx.fail(field + ".index", "missing or not an integer");
+  int tex_coord = 0;
+  if (info.Has("texCoord")) {
+    if (!info.Get("texCoord").IsInt()) ctx.fail(field + ".texCoord", "must be an integer");
+    tex_coord = info.Get("texCoord").GetNumberAsInt();
+  }
+  if (tex_coord != 0) ctx.fail(field + ".texCoord", "is " + std::to_string(tex_coord) + "; only TEXCOORD_0 is supported");
+  if (info.Has("extensions") && info.Get("extensions").Has("KHR_texture_transform"))
+    ctx.fail(field + ".extensions.KHR_texture_transform", "texture transforms are not supported");
+  return table.use(info.Get("index").GetNumberAsInt(), field, srgb);
+}
+
+}  // namespace
+
+void load_materials(const Context& ctx, const Document& doc, std::vector<Material>& materials, std::vector<Texture>& textures) {
+  TextureTable table(ctx, doc, textures);
+  const auto& m = ctx.model;
+  for (size_t i = 0; i < m.materials.size(); ++i) {
+    const auto& g = m.materials[i];
+    const std::string where = index_path("materials", i);
+    Material mat;
+    mat.name = g.name.empty() ? "material" + std::to_string(i) : g.name;
+    const auto& pbr = g.pbrMetallicRoughness;
+    const std::string pw = where + ".pbrMetallicRoughness";
+    if (pbr.baseColorFactor.size() != 4) ctx.fail(pw + ".baseColorFactor", "has " + std::to_string(pbr.baseColorFactor.size()) + " components; expected 4");
+    for (int c = 0; c < 4; ++c) {
+      const double x = pbr.baseColorFactor[size_t(c)];
+      if (!(x >= 0.0 && x <= 1.0)) ctx.fail(pw + ".baseColorFactor", "component " + std::to_string(x) + " is outside [0, 1]");
+      mat.base_color[c] = float(x);
+    }
+    mat.metallic = float(number(ctx, tinygltf::Value(pbr.metallicFactor), pw + ".metallicFactor", 0.0, 1.0));
+    mat.roughness = float(number(ctx, tinygltf::Value(pbr.roughnessFactor), pw + ".roughnessFactor", 0.0, 1.0));
+    if (pbr.baseColorTexture.index >= 0) {
+      check_texture_info(ctx, pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions, pw + ".baseColorTexture");
+      mat.base_color_texture = table.use(pbr.baseColorTexture.index, pw + ".baseColorTexture", true);
+    }
+    if (pbr.metallicRoughnessTexture.index >= 0) {
+      check_texture_info(ctx, pbr.metallicRoughnessTexture.texCoord, pbr.metallicRoughnessTexture.extensions, pw + ".metallicRoughnessTexture");
+      mat.metallic_roughness_texture = table.use(pbr.metallicRoughnessTexture.index, pw + ".metallicRoughnessTexture", false);
+    }
+    if (g.normalTexture.index >= 0) {
+      check_texture_info(ctx, g.normalTexture.texCoord, g.normalTexture.extensions, where + ".normalTexture");
+      mat.normal_texture = table.use(g.normalTexture.index, where + ".normalTexture", false);
+      mat.normal_scale = float(number(ctx, tinygltf::Value(g.normalTexture.scale), where + ".normalTexture.scale", -1e6, 1e6));
+    }
+    mat.emissive = color3(ctx, g.emissiveFactor, where + ".emissiveFactor", 1.0);
+    if (g.emissiveTexture.index >= 0) {
+      check_texture_info(ctx, g.emissiveTexture.texCoord, g.emissiveTexture.extensions, where + ".emissiveTexture");
+      mat.emissive_texture = table.use(g.emissiveTexture.index, where + ".emissiveTexture", true);
+    }
+    if (g.alphaMode == "MASK") {
+      mat.alpha_mode = AlphaMode::Mask;
+    } else if (g.alphaMode == "BLEND") {
+      ctx.fail(where + ".alphaMode", "BLEND is not supported (transparency would render differently in every technique); use MASK with an alphaCutoff");
+    } else if (g.alphaMode != "OPAQUE") {
+      ctx.fail(where + ".alphaMode", "is \"" + g.alphaMode + "\"; expected OPAQUE or MASK");
+    }
+    mat.alpha_cutoff = float(number(ctx, tinygltf::Value(g.alphaCutoff), where + ".alphaCutoff", 0.0, 1e6));
+    mat.double_sided = g.doubleSided;
+
+    if (auto it = g.extensions.find("KHR_materials_emissive_strength"); it != g.extensions.end()) {
+      const std::string ew = where + ".extensions.KHR_materials_emissive_strength";
+      if (it->second.Has("emissiveStrength"))
+        mat.emissive *= float(number(ctx, it->second.Get("emissiveStrength"), ew + ".emissiveStrength", 0.0, 1e30));
+    }
+    if (auto it = g.extensions.find("KHR_materials_specular"); it != g.extensions.end()) {
+      const std::string sw = where + ".extensions.KHR_materials_specular";
+      const auto& e = it->second;
+      if (e.Has("specularFactor")) mat.specular = float(number(ctx, e.Get("specularFactor"), sw + ".specularFactor", 0.0, 1.0));
+      if (e.Has("specularColorFactor")) {
+        const auto& c = e.Get("specularColorFactor");
+        if (!c.IsArray() || c.ArrayLen() != 3) ctx.fail(sw + ".specularColorFactor", "expected an array of 3 numbers");
+        for (int k = 0; k < 3; ++k)
+          mat.specular_color[k] = float(number(ctx, c.Get(k), sw + ".specularColorFactor[" + std::to_string(k) + "]", 0.0, 1e6));
+      }
+      if (e.Has("specularTexture")) mat.specular_texture = extension_texture(ctx, table, e.Get("specularTexture"), sw + ".specularTexture", false);
+      if (e.Has("specularColorTexture"))
+        mat.specular_color_texture = extension_texture(ctx, table, e.Get("specularColorTexture"), sw + ".specularColorTexture", true);
+    }
+    materials.push_back(std::move(mat));
+  }
+}
+
+}  // namespace giq::scenes::gltf

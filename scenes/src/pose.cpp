@@ -1,0 +1,208 @@
+// Posing the parsed document at one instant: node transforms applied to geometry, lights and
+// cameras, in the scene's local frame (world minus Scene::origin, subtracted in double).
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "giq/base/error.h"
+#include "scene_source.h"
+
+namespace giq::scenes {
+namespace {
+
+// Instantiated nodes in depth-first pre-order from the scene's roots: the order meshes,
+// lights and camera views appear in, stable for every t.
+std::vector<int> preorder(const SceneSource& src) {
+  std::vector<int> order, stack(src.roots.rbegin(), src.roots.rend());
+  while (!stack.empty()) {
+    const int i = stack.back();
+    stack.pop_back();
+    order.push_back(i);
+    const auto& ch = src.nodes[size_t(i)].children;
+    for (auto it = ch.rbegin(); it != ch.rend(); ++it) stack.push_back(*it);
+  }
+  return order;
+}
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+glm::vec3 any_orthogonal(glm::vec3 n) {
+  const glm::vec3 a = std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  return glm::normalize(glm::cross(n, a));
+}
+
+std::string node_label(const SceneSource& src, int i) {
+  const auto& n = src.nodes[size_t(i)].name;
+  return n.empty() ? "node" + std::to_string(i) : n;
+}
+
+void emit_mesh(const PrimitiveSource& p, const glm::dmat4& M, glm::dvec3 origin, Mesh& m, size_t& dropped) {
+  const glm::dmat3 L(M);
+  const double det = glm::determinant(L);
+  // Normals transform by the inverse transpose; the cofactor matrix equals det * L^-T and
+  // stays defined for singular L. Its sign is fixed below so normals keep facing outwards.
+  const glm::dmat3 cof(glm::cross(L[1], L[2]), glm::cross(L[2], L[0]), glm::cross(L[0], L[1]));
+  const double sign = det < 0.0 ? -1.0 : 1.0;
+  // A mirroring transform reverses the winding; swapping two corners restores the
+  // counter-clockwise front face of glTF 2.0 spec, 3.7.2.1 ("front-facing ... counter-clockwise").
+  const bool flip = det < 0.0;
+
+  std::vector<glm::vec3> pos(p.positions.size());
+  for (size_t i = 0; i < pos.size(); ++i) pos[i] = glm::vec3(glm::dvec3(M * glm::dvec4(glm::dvec3(p.positions[i]), 1.0)) - origin);
+
+  std::vector<glm::uvec3> tris;
+  std::vector<glm::vec3> face;
+  tris.reserve(p.triangles.size());
+  for (glm::uvec3 t : p.triangles) {
+    if (flip) std::swap(t.y, t.z);
+    const glm::vec3 a = pos[t.x], b = pos[t.y], c = pos[t.z];
+    const glm::vec3 n = glm::cross(b - a, c - a);
+    const float len = glm::length(n);
+    if (!(len > 0.0f) || !std::isfinite(len) || !finite(a) || !finite(b) || !finite(c)) {
+      ++dropped;  // zero-area, collapsed or overflowed: no surface to render
+      continue;
+    }
+    tris.push_back(t);
+    face.push_back(n / len);
+  }
+
+  auto tangent = [&](size_t i, glm::vec3 normal) {
+    const glm::vec4 t = p.tangents[i];
+    glm::vec3 xyz = glm::vec3(L * glm::dvec3(t));
+    xyz -= normal * glm::dot(normal, xyz);  // keep it in the tangent plane after non-uniform scale
+    const float len = glm::length(xyz);
+    xyz = len > 0.0f && std::isfinite(len) ? xyz / len : any_orthogonal(normal);
+    // The bitangent is cross(N, T) * w; a mirror flips that cross product's handedness.
+    return glm::vec4(xyz, t.w < 0.0f ? -float(sign) : float(sign));
+  };
+
+  m.positions.clear(), m.normals.clear(), m.tangents.clear(), m.uvs.clear(), m.triangles.clear();
+  if (p.normals.empty()) {
+    // No normals in the file: flat shading (glTF 2.0 spec, 3.7.2.1: "client implementations
+    // MUST calculate flat normals"), which needs each triangle's own vertices.
+    for (size_t k = 0; k < tris.size(); ++k) {
+      const uint32_t base = uint32_t(m.positions.size());
+      for (int c = 0; c < 3; ++c) {
+        const uint32_t v = tris[k][c];
+        m.positions.push_back(pos[v]);
+        m.normals.push_back(face[k]);
+        if (!p.uvs.empty()) m.uvs.push_back(p.uvs[v]);
+        if (!p.tangents.empty()) m.tangents.push_back(tangent(v, face[k]));
+      }
+      m.triangles.emplace_back(base, base + 1, base + 2);
+    }
+    return;
+  }
+  // Indexed: keep only the vertices the remaining triangles use, in their original order.
+  std::vector<uint32_t> remap(pos.size(), UINT32_MAX);
+  for (const auto& t : tris)
+    for (int c = 0; c < 3; ++c) remap[t[c]] = 0;
+  std::vector<glm::vec3> normal(pos.size());
+  std::vector<bool> bad(pos.size(), false);
+  for (size_t i = 0; i < pos.size(); ++i) {
+    if (remap[i] == UINT32_MAX) continue;
+    remap[i] = uint32_t(m.positions.size());
+    m.positions.push_back(pos[i]);
+    const glm::dvec3 n = sign * (cof * glm::dvec3(p.normals[i]));
+    const double len = glm::length(n);
+    bad[i] = !(len > 0.0) || !std::isfinite(len);
+    normal[i] = bad[i] ? glm::vec3(0.0f) : glm::vec3(n / len);
+  }
+  // A zero normal in the file (or one collapsed by the transform) takes the face normal.
+  for (size_t k = 0; k < tris.size(); ++k)
+    for (int c = 0; c < 3; ++c)
+      if (bad[tris[k][c]]) normal[tris[k][c]] = face[k];
+  for (size_t i = 0; i < pos.size(); ++i) {
+    if (remap[i] == UINT32_MAX) continue;
+    m.normals.push_back(normal[i]);
+    if (!p.uvs.empty()) m.uvs.push_back(p.uvs[i]);
+    if (!p.tangents.empty()) m.tangents.push_back(tangent(i, normal[i]));
+  }
+  for (const auto& t : tris) m.triangles.emplace_back(remap[t.x], remap[t.y], remap[t.z]);
+}
+
+}  // namespace
+
+void world_bounds(const SceneSource& src, const std::vector<glm::dmat4>& world, glm::dvec3& lo, glm::dvec3& hi) {
+  lo = glm::dvec3(INFINITY), hi = glm::dvec3(-INFINITY);
+  for (int i : preorder(src)) {
+    const NodeSource& n = src.nodes[size_t(i)];
+    if (n.mesh < 0) continue;
+    for (const auto& p : src.meshes[size_t(n.mesh)])
+      for (const auto& v : p.positions) {
+        const glm::dvec3 w = glm::dvec3(world[size_t(i)] * glm::dvec4(glm::dvec3(v), 1.0));
+        lo = glm::min(lo, w), hi = glm::max(hi, w);
+      }
+  }
+}
+
+void pose(const SceneSource& src, const std::vector<glm::dmat4>& world, Scene& out) {
+  out.meshes.clear();
+  out.lights.clear();
+  out.views.clear();
+  out.stats.degenerate_triangles_dropped = 0;
+  for (int i : preorder(src)) {
+    const NodeSource& n = src.nodes[size_t(i)];
+    const glm::dmat4& M = world[size_t(i)];
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r)
+        if (!std::isfinite(M[c][r]))
+          throw InputError(src.file, "nodes[" + std::to_string(i) + "]", "the node's world transform overflows; expected transforms of finite scale");
+    const glm::dmat3 L(M);
+    const glm::dvec3 at = glm::dvec3(M[3]) - out.origin;
+    if (n.mesh >= 0) {
+      const auto& prims = src.meshes[size_t(n.mesh)];
+      for (size_t k = 0; k < prims.size(); ++k) {
+        Mesh m;
+        m.name = node_label(src, i);
+        m.node = i;
+        m.mesh = n.mesh;
+        m.primitive = int(k);
+        m.object_id = uint32_t(i) + 1;
+        m.material = prims[k].material;
+        emit_mesh(prims[k], M, out.origin, m, out.stats.degenerate_triangles_dropped);
+        out.meshes.push_back(std::move(m));
+      }
+    }
+    if (n.light >= 0) {
+      Light l = src.lights[size_t(n.light)];
+      l.node = i;
+      if (l.name.empty()) l.name = node_label(src, i);
+      l.position = glm::vec3(at);
+      // KHR_lights_punctual: lights shine along the node's local -Z.
+      const glm::dvec3 d = L * glm::dvec3(0.0, 0.0, -1.0);
+      const double len = glm::length(d);
+      if (!(len > 0.0) || !std::isfinite(len)) {
+        if (l.type != LightType::Point)
+          throw InputError(src.file, "nodes[" + std::to_string(i) + "]", "the node's transform collapses the light's -Z direction; expected an invertible transform");
+      } else {
+        l.direction = glm::vec3(d / len);
+      }
+      out.lights.push_back(std::move(l));
+    }
+    if (n.camera >= 0) {
+      const CameraSource& c = src.cameras[size_t(n.camera)];
+      View v;
+      v.name = !n.name.empty() ? n.name : !c.name.empty() ? c.name : "camera" + std::to_string(n.camera);
+      v.node = i;
+      // glTF 2.0 spec, 3.10.1: a camera looks along its node's -Z with +Y up.
+      const glm::dvec3 f = L * glm::dvec3(0.0, 0.0, -1.0), u = L * glm::dvec3(0.0, 1.0, 0.0);
+      const glm::dvec3 r = glm::cross(f, u);
+      const double fl = glm::length(f), rl = glm::length(r);
+      if (!(fl > 0.0) || !(rl > 0.0) || !std::isfinite(fl) || !std::isfinite(rl))
+        throw InputError(src.file, "nodes[" + std::to_string(i) + "]", "the node's transform collapses the camera's axes; expected an invertible transform");
+      v.camera.position = glm::vec3(at);
+      v.camera.forward = glm::vec3(f / fl);
+      v.camera.right = glm::vec3(r / rl);
+      v.camera.up = glm::vec3(glm::cross(r / rl, f / fl));
+      v.camera.yfov = c.yfov;
+      v.camera.znear = c.znear;
+      v.camera.zfar = c.zfar;
+      out.views.push_back(std::move(v));
+    }
+  }
+  out.views.insert(out.views.end(), src.extra_views.begin(), src.extra_views.end());
+}
+
+}  // namespace giq::scenes

@@ -1,0 +1,149 @@
+#include "giq/scenes/scene.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <numbers>
+
+#include "giq/base/error.h"
+#include "scene_source.h"
+
+namespace giq::scenes {
+namespace {
+
+// Rec. ITU-R BT.709 relative luminance of linear RGB.
+double luminance(glm::vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+// Mean of the emissive texture over a triangle: the triangle is split into k^2 congruent
+// sub-triangles (k even and at least the longest edge in texels) and the texture is sampled
+// at each sub-triangle's centroid. Exact for textures linear over the triangle, and for
+// nearest-filtered texels whose edges fall on the subdivision; converging to the area
+// average as k grows otherwise.
+glm::vec3 mean_emission(const Mesh& m, const glm::uvec3& t, const Texture& tex) {
+  if (m.uvs.empty()) return glm::vec3(tex.sample(glm::vec2(0.0f)));
+  const glm::vec2 a = m.uvs[t.x], b = m.uvs[t.y], c = m.uvs[t.z];
+  const glm::vec2 size(float(tex.width), float(tex.height));
+  const float edge = std::max({glm::length((b - a) * size), glm::length((c - b) * size), glm::length((a - c) * size)});
+  const int k = 2 * std::clamp(int(std::ceil(0.5f * (std::isfinite(edge) ? edge : 1.0f))), 1, 32);
+  glm::dvec3 sum(0.0);
+  int count = 0;
+  // Sub-triangles of a k-subdivision: "upward" (i, j) and "downward" ones, in barycentric
+  // steps of 1/k.
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k - i; ++j) {
+      auto at = [&](double u, double v) {
+        const glm::vec2 uv = a + float(u / k) * (b - a) + float(v / k) * (c - a);
+        sum += glm::dvec3(glm::vec3(tex.sample(uv)));
+        ++count;
+      };
+      at(i + 1.0 / 3.0, j + 1.0 / 3.0);
+      if (i + j + 1 < k) at(i + 2.0 / 3.0, j + 2.0 / 3.0);
+    }
+  return glm::vec3(sum / double(count));
+}
+
+}  // namespace
+
+void Scene::derive() {
+  features = FeatureSet{};
+  emissive_triangles.clear();
+  bounds = Bounds{};
+  const size_t dropped = stats.degenerate_triangles_dropped;  // counted when posed, kept
+  stats = SceneStats{};
+  stats.degenerate_triangles_dropped = dropped;
+
+  for (const Light& l : lights) {
+    features.directional_lights |= l.type == LightType::Directional;
+    features.point_lights |= l.type == LightType::Point;
+    features.spot_lights |= l.type == LightType::Spot;
+  }
+  features.environment = environment != glm::vec3(0.0f);
+
+  for (uint32_t mi = 0; mi < meshes.size(); ++mi) {
+    const Mesh& m = meshes[mi];
+    stats.triangles += m.triangles.size();
+    stats.vertices += m.positions.size();
+    for (const auto& t : m.triangles)
+      for (int c = 0; c < 3; ++c)
+        if (t[c] < m.positions.size()) bounds.extend(m.positions[t[c]]);
+    if (m.triangles.empty() || m.material < 0 || size_t(m.material) >= materials.size()) continue;
+    const Material& mat = materials[size_t(m.material)];
+    features.specular |= mat.has_specular_lobe();
+    features.textures |= mat.has_textures();
+    features.normal_maps |= mat.normal_texture >= 0;
+    features.alpha_mask |= mat.alpha_mode == AlphaMode::Mask;
+    features.double_sided |= mat.double_sided;
+    features.one_sided |= !mat.double_sided;
+    if (!mat.is_emissive()) continue;
+    const Texture* tex = mat.emissive_texture >= 0 && size_t(mat.emissive_texture) < textures.size() ? &textures[size_t(mat.emissive_texture)] : nullptr;
+    for (uint32_t ti = 0; ti < m.triangles.size(); ++ti) {
+      const glm::uvec3 t = m.triangles[ti];
+      if (t.x >= m.positions.size() || t.y >= m.positions.size() || t.z >= m.positions.size()) continue;
+      const glm::vec3 p0 = m.positions[t.x], p1 = m.positions[t.y], p2 = m.positions[t.z];
+      EmissiveTriangle e;
+      e.mesh = mi;
+      e.triangle = ti;
+      e.area = 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
+      e.radiance = tex ? mat.emissive * mean_emission(m, t, *tex) : mat.emissive;
+      if (!(e.radiance.r > 0.0f || e.radiance.g > 0.0f || e.radiance.b > 0.0f) || !(e.area > 0.0f)) continue;
+      // A Lambertian emitter of radiance L and area A emits pi * A * L (per side).
+      e.power = float(std::numbers::pi * e.area * luminance(e.radiance) * (mat.double_sided ? 2.0 : 1.0));
+      stats.total_light_power += e.power;
+      emissive_triangles.push_back(e);
+    }
+  }
+  features.emissive_meshes = !emissive_triangles.empty();
+
+  // Punctual lights, roughly: a point light of intensity I emits 4 pi I; a spot, the solid
+  // angle of its cone (mid-way between inner and outer) times I; a directional light, its
+  // irradiance over the scene's bounding disc.
+  const glm::vec3 ext = bounds.extent();
+  const double radius = 0.5 * glm::length(glm::dvec3(ext));
+  for (const Light& l : lights) {
+    const double lum = luminance(l.radiant());
+    switch (l.type) {
+      case LightType::Point: stats.total_light_power += 4.0 * std::numbers::pi * lum; break;
+      case LightType::Spot:
+        stats.total_light_power += 2.0 * std::numbers::pi * (1.0 - std::cos(0.5 * (double(l.inner_cone) + l.outer_cone))) * lum;
+        break;
+      case LightType::Directional: stats.total_light_power += std::numbers::pi * radius * radius * lum; break;
+    }
+  }
+
+  // The sequence moves something when the playing clip has a channel whose keys differ and
+  // there is more than one frame to see it.
+  if (source_ && sequence.frames > 1 && sequence.animation >= 0 && size_t(sequence.animation) < source_->animations.size()) {
+    for (const auto& c : source_->animations[size_t(sequence.animation)].channels)
+      features.animation |= std::any_of(c.values.begin(), c.values.end(), [&](const glm::dvec4& v) { return v != c.values.front(); });
+  }
+}
+
+double Scene::duration() const {
+  if (!source_ || sequence.animation < 0 || size_t(sequence.animation) >= source_->animations.size()) return 0.0;
+  return source_->animations[size_t(sequence.animation)].end;
+}
+
+Scene Scene::at(double t) const {
+  Scene s = *this;
+  s.time = t;
+  if (!source_ || sequence.animation < 0) return s;
+  pose(*source_, world_transforms(*source_, sequence.animation, t), s);
+  s.derive();
+  return s;
+}
+
+const View& Scene::view(std::string_view name_or_index) const {
+  for (const View& v : views)
+    if (v.name == name_or_index) return v;
+  const bool number = !name_or_index.empty() && name_or_index.size() < 9 &&
+                      std::all_of(name_or_index.begin(), name_or_index.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; });
+  if (number) {
+    const size_t i = std::stoul(std::string(name_or_index));
+    if (i < views.size()) return views[i];
+  }
+  std::string available;
+  for (size_t i = 0; i < views.size(); ++i) available += (i ? ", " : "") + std::to_string(i) + " \"" + views[i].name + "\"";
+  throw InputError(path.string(), "view", "no view \"" + std::string(name_or_index) + "\"; available: " + (available.empty() ? "(none)" : available));
+}
+
+}  // namespace giq::scenes

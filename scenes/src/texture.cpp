@@ -1,0 +1,59 @@
+#include "giq/scenes/texture.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace giq::scenes {
+namespace {
+
+// Maps an integer texel coordinate (held in a double so that any finite uv is safe) onto
+// [0, n) following the glTF sampler wrap mode (glTF 2.0 spec, 5.26 "Sampler": wrapS/wrapT
+// take the OpenGL REPEAT, CLAMP_TO_EDGE and MIRRORED_REPEAT meanings).
+int wrap_index(double i, int n, Wrap mode) {
+  const double nd = double(n);
+  double w = 0.0;
+  switch (mode) {
+    case Wrap::Repeat:
+      w = i - nd * std::floor(i / nd);
+      break;
+    case Wrap::ClampToEdge:
+      w = std::clamp(i, 0.0, nd - 1.0);
+      break;
+    case Wrap::MirroredRepeat: {
+      const double m = i - 2.0 * nd * std::floor(i / (2.0 * nd));
+      w = m < nd ? m : 2.0 * nd - 1.0 - m;
+      break;
+    }
+  }
+  // Rounding in the divisions above can land exactly on n for huge |i|.
+  return std::clamp(int(w), 0, n - 1);
+}
+
+}  // namespace
+
+glm::vec4 Texture::sample(glm::vec2 uv) const {
+  if (width <= 0 || height <= 0 || !texels || texels->size() < size_t(width) * size_t(height))
+    return glm::vec4(0.0f);
+  // Beyond |uv| = 1e6 a float uv cannot address a texel anyway; bounding it keeps the index
+  // arithmetic below finite.
+  const double u = std::isfinite(uv.x) ? std::clamp(double(uv.x), -1e6, 1e6) : 0.0;
+  const double v = std::isfinite(uv.y) ? std::clamp(double(uv.y), -1e6, 1e6) : 0.0;
+  const auto& t = *texels;
+  auto at = [&](int x, int y) { return t[size_t(y) * size_t(width) + size_t(x)]; };
+  if (filter == Filter::Nearest) {
+    const int x = wrap_index(std::floor(u * width), width, wrap_s);
+    const int y = wrap_index(std::floor(v * height), height, wrap_t);
+    return at(x, y);
+  }
+  // Bilinear between the four nearest texel centres, which sit at (i + 0.5) / size.
+  const double x = u * width - 0.5, y = v * height - 0.5;
+  const double x0 = std::floor(x), y0 = std::floor(y);
+  const float fx = float(x - x0), fy = float(y - y0);
+  const int xa = wrap_index(x0, width, wrap_s), xb = wrap_index(x0 + 1.0, width, wrap_s);
+  const int ya = wrap_index(y0, height, wrap_t), yb = wrap_index(y0 + 1.0, height, wrap_t);
+  const glm::vec4 top = at(xa, ya) * (1.0f - fx) + at(xb, ya) * fx;
+  const glm::vec4 bottom = at(xa, yb) * (1.0f - fx) + at(xb, yb) * fx;
+  return top * (1.0f - fy) + bottom * fy;
+}
+
+}  // namespace giq::scenes

@@ -1,0 +1,474 @@
+#!/usr/bin/env python3
+"""Writes the glTF test scenes of tests/scenes and tests/cli (valid ones here, hostile ones
+under hostile/ with hostile/expected.tsv naming the glTF path each must be rejected at).
+
+Run from anywhere: python3 tests/data/scenes/generate.py. The output is deterministic, so
+re-running it gives the same bytes."""
+
+import base64
+import json
+import math
+import os
+import struct
+import zlib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+HOSTILE = os.path.join(HERE, "hostile")
+
+FLOAT, USHORT, UINT, UBYTE = 5126, 5123, 5125, 5121
+
+
+class Gltf:
+    """A tiny glTF builder: one binary buffer (data URI unless written to a file)."""
+
+    def __init__(self):
+        self.doc = {"asset": {"version": "2.0", "generator": "giq tests/data/scenes/generate.py"}}
+        self.bin = bytearray()
+
+    def add(self, key, obj):
+        self.doc.setdefault(key, []).append(obj)
+        return len(self.doc[key]) - 1
+
+    def view(self, data):
+        while len(self.bin) % 4:
+            self.bin.append(0)
+        offset = len(self.bin)
+        self.bin += data
+        return self.add("bufferViews", {"buffer": 0, "byteOffset": offset, "byteLength": len(data)})
+
+    def accessor(self, values, type_, ctype=FLOAT, minmax=False, **extra):
+        n = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[type_]
+        fmt = {FLOAT: "f", USHORT: "H", UINT: "I", UBYTE: "B"}[ctype]
+        flat = [x for v in values for x in (v if isinstance(v, (list, tuple)) else [v])]
+        a = {"bufferView": self.view(struct.pack("<%d%s" % (len(flat), fmt), *flat)),
+             "componentType": ctype, "count": len(flat) // n, "type": type_}
+        if minmax:
+            a["min"] = [min(flat[i::n]) for i in range(n)]
+            a["max"] = [max(flat[i::n]) for i in range(n)]
+        a.update(extra)
+        return self.add("accessors", a)
+
+    def mesh(self, name, positions, indices=None, normals=None, uvs=None, material=None, mode=None):
+        attrs = {"POSITION": self.accessor(positions, "VEC3", minmax=True)}
+        if normals:
+            attrs["NORMAL"] = self.accessor(normals, "VEC3")
+        if uvs:
+            attrs["TEXCOORD_0"] = self.accessor(uvs, "VEC2")
+        prim = {"attributes": attrs}
+        if indices is not None:
+            prim["indices"] = self.accessor(indices, "SCALAR", USHORT)
+        if material is not None:
+            prim["material"] = material
+        if mode is not None:
+            prim["mode"] = mode
+        return self.add("meshes", {"name": name, "primitives": [prim]})
+
+    def node(self, **kw):
+        return self.add("nodes", kw)
+
+    def finish(self, roots=None, external=None):
+        d = dict(self.doc)
+        if self.bin:
+            while len(self.bin) % 4:
+                self.bin.append(0)
+            uri = external or "data:application/octet-stream;base64," + base64.b64encode(bytes(self.bin)).decode()
+            d["buffers"] = [{"byteLength": len(self.bin), "uri": uri}]
+        if roots is None:
+            children = {c for n in d.get("nodes", []) for c in n.get("children", [])}
+            roots = [i for i in range(len(d.get("nodes", []))) if i not in children]
+        d["scenes"] = [{"nodes": roots}]
+        d["scene"] = 0
+        return d
+
+
+def write(path, doc):
+    with open(path, "w") as f:
+        json.dump(doc, f, indent=1)
+        f.write("\n")
+
+
+def png_rgba(width, height, rows):
+    """A minimal 8-bit RGBA PNG (ISO/IEC 15948: signature, IHDR, one IDAT, IEND)."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+    raw = b"".join(b"\0" + bytes(c for px in row for c in px) for row in rows)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
+QUAD_P = [(-1, 0, -1), (1, 0, -1), (1, 0, 1), (-1, 0, 1)]
+QUAD_I = [0, 2, 1, 0, 3, 2]  # counter-clockwise seen from +Y
+QUAD_N = [(0, 1, 0)] * 4
+TRI_P = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]  # counter-clockwise seen from +Z
+S45 = math.sqrt(0.5)
+
+
+def transforms():
+    g = Gltf()
+    quad = g.mesh("quad", QUAD_P, QUAD_I, QUAD_N)
+    tri = g.mesh("tri", TRI_P)
+    g.node(name="parent", mesh=quad, translation=[10, 0, 0], scale=[2, 2, 2], children=[1])
+    g.node(name="child", mesh=tri, translation=[0, 1, 0], rotation=[0, 0, S45, S45])  # 90 deg about +Z
+    g.node(name="mirror", mesh=tri, scale=[-1, 1, 1])
+    g.node(mesh=tri, matrix=[1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -3, 1])
+    return g.finish()
+
+
+def strip_fan():
+    g = Gltf()
+    prims = []
+    strip = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)]
+    prims.append({"attributes": {"POSITION": g.accessor(strip, "VEC3", minmax=True)}, "mode": 5})
+    fan = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (-1, 1, 0)]
+    prims.append({"attributes": {"POSITION": g.accessor(fan, "VEC3", minmax=True)}, "mode": 6})
+    # Triangles 1 (repeated vertex) and 2 (collinear) have no area.
+    tris = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (2, 0, 0)]
+    prims.append({"attributes": {"POSITION": g.accessor(tris, "VEC3", minmax=True)},
+                  "indices": g.accessor([0, 1, 2, 0, 0, 1, 0, 1, 3], "SCALAR", USHORT)})
+    # Sparse positions over an all-zero base: vertices 1 and 2 replaced.
+    sp = {"count": 2, "indices": {"bufferView": g.view(struct.pack("<2H", 1, 2)), "componentType": USHORT},
+          "values": {"bufferView": g.view(struct.pack("<6f", 1, 0, 0, 0, 1, 0))}}
+    acc = g.add("accessors", {"componentType": FLOAT, "count": 3, "type": "VEC3", "sparse": sp,
+                              "min": [0, 0, 0], "max": [1, 1, 0]})
+    prims.append({"attributes": {"POSITION": acc}})
+    m = g.add("meshes", {"name": "modes", "primitives": prims})
+    g.node(name="modes", mesh=m)
+    return g.finish()
+
+
+def textured():
+    g = Gltf()
+    # Texel (row, column): sRGB-encoded 8-bit values with known linear values.
+    png = png_rgba(2, 2, [[(255, 128, 0, 255), (188, 64, 32, 128)], [(0, 0, 0, 255), (255, 255, 255, 255)]])
+    g.add("images", {"name": "checker", "uri": "data:image/png;base64," + base64.b64encode(png).decode()})
+    g.add("samplers", {"magFilter": 9728, "minFilter": 9728, "wrapS": 33071, "wrapT": 33648})
+    g.add("textures", {"source": 0, "sampler": 0})
+    g.add("materials", {
+        "name": "textured",
+        "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicRoughnessTexture": {"index": 0},
+                                 "metallicFactor": 0.0},
+        "emissiveTexture": {"index": 0}, "emissiveFactor": [1, 1, 1],
+        "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2.0}},
+    })
+    g.doc["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+    # A unit quad in the XY plane with UV (0,0) at its top-left, covering the whole texture.
+    quad = g.mesh("screen", [(0, 1, 0), (1, 1, 0), (1, 0, 0), (0, 0, 0)], [0, 3, 2, 0, 2, 1],
+                  [(0, 0, 1)] * 4, [(0, 0), (1, 0), (1, 1), (0, 1)], material=0)
+    g.node(name="screen", mesh=quad)
+    return g.finish()
+
+
+def animated():
+    g = Gltf()
+    tri = g.mesh("tri", TRI_P)
+    g.doc["extensionsUsed"] = ["KHR_lights_punctual"]
+    g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"name": "bulb", "type": "point", "intensity": 5.0},
+        {"name": "sun", "type": "directional", "intensity": 2.0}]}}
+    g.add("cameras", {"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.05}})
+    g.node(name="mover", mesh=tri, extensions={"KHR_lights_punctual": {"light": 0}})  # 0: LINEAR translation
+    g.node(name="turner", extensions={"KHR_lights_punctual": {"light": 1}})  # 1: LINEAR rotation
+    g.node(name="grower", mesh=tri)  # 2: STEP scale
+    g.node(name="glider", camera=0)  # 3: CUBICSPLINE translation
+    t3 = g.accessor([0.0, 1.0, 2.0], "SCALAR", minmax=True)
+    t2 = g.accessor([0.0, 2.0], "SCALAR", minmax=True)
+    t1 = g.accessor([0.0, 1.0], "SCALAR", minmax=True)
+    samplers = [
+        {"input": t3, "output": g.accessor([(0, 0, 0), (1, 0, 0), (1, 2, 0)], "VEC3"), "interpolation": "LINEAR"},
+        {"input": t2, "output": g.accessor([(0, 0, 0, 1), (0, S45, 0, S45)], "VEC4"), "interpolation": "LINEAR"},
+        {"input": t1, "output": g.accessor([(1, 1, 1), (2, 2, 2)], "VEC3"), "interpolation": "STEP"},
+        # CUBICSPLINE: per key in-tangent, value, out-tangent.
+        {"input": t2, "output": g.accessor([(0, 0, 0), (0, 0, 0), (3, 0, 0), (0, 0, 0), (1, 0, 0), (0, 0, 0)], "VEC3"),
+         "interpolation": "CUBICSPLINE"},
+    ]
+    channels = [{"sampler": 0, "target": {"node": 0, "path": "translation"}},
+                {"sampler": 1, "target": {"node": 1, "path": "rotation"}},
+                {"sampler": 2, "target": {"node": 2, "path": "scale"}},
+                {"sampler": 3, "target": {"node": 3, "path": "translation"}}]
+    g.add("animations", {"name": "move", "samplers": samplers, "channels": channels})
+    d = g.finish()
+    d["extras"] = {"giq": {"sequence": {"frames": 61, "fps": 30, "animation": "move"}}}
+    return d
+
+
+def lights_cameras():
+    g = Gltf()
+    quad = g.mesh("floor", QUAD_P, QUAD_I, QUAD_N)
+    g.doc["extensionsUsed"] = ["KHR_lights_punctual"]
+    g.doc["extensionsRequired"] = ["KHR_lights_punctual"]
+    g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"name": "sun", "type": "directional", "color": [1.0, 0.9, 0.8], "intensity": 3.0},
+        {"type": "point", "intensity": 10.0, "range": 5.0},
+        {"name": "spot", "type": "spot", "intensity": 20.0, "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}}]}}
+    g.add("cameras", {"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1, "zfar": 100.0}})
+    g.add("cameras", {"name": "overview", "type": "perspective", "perspective": {"yfov": 1.0, "znear": 0.1}})
+    g.node(name="room", children=[1, 2, 3, 4, 5, 6], translation=[100, 0, 0])
+    g.node(name="floor", mesh=quad)
+    g.node(name="sun", rotation=[-S45, 0, 0, S45], extensions={"KHR_lights_punctual": {"light": 0}})  # -90 deg about X
+    g.node(name="bulb", translation=[0, 2, 0], extensions={"KHR_lights_punctual": {"light": 1}})
+    g.node(name="spot", translation=[0, 3, 0], rotation=[-S45, 0, 0, S45], extensions={"KHR_lights_punctual": {"light": 2}})
+    g.node(name="cam", translation=[0, 1, 5], camera=0)
+    g.node(translation=[0, 10, 0], rotation=[-S45, 0, 0, S45], camera=1)
+    d = g.finish()
+    d["extras"] = {"giq": {
+        "views": [{"name": "corner", "eye": [104, 1, 4], "target": [100, 1, 0], "yfov_deg": 60},
+                  {"name": "top", "eye": [100, 5, 0], "target": [100, 0, 0], "up": [0, 0, -1]}],
+        "sequence": {"frames": 1, "fps": 24},
+        "leak_regions": ["floor"],
+        "environment": {"radiance": [0.1, 0.2, 0.3]}}}
+    return d
+
+
+def materials():
+    g = Gltf()
+    png = png_rgba(1, 1, [[(128, 128, 255, 255)]])
+    g.add("images", {"uri": "data:image/png;base64," + base64.b64encode(png).decode()})
+    g.add("textures", {"source": 0})
+    g.doc["extensionsUsed"] = ["KHR_materials_specular", "KHR_materials_emissive_strength"]
+    g.add("materials", {  # Lambert: dielectric with the specular layer switched off
+        "name": "lambert", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 0.125, 1.0], "metallicFactor": 0.0},
+        "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}})
+    g.add("materials", {  # glossy dielectric, alpha-masked, double-sided, normal-mapped
+        "name": "masked", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.3},
+        "alphaMode": "MASK", "alphaCutoff": 0.25, "doubleSided": True,
+        "normalTexture": {"index": 0, "scale": 0.5},
+        "extensions": {"KHR_materials_specular": {"specularFactor": 0.5, "specularColorFactor": [1.0, 0.5, 0.25],
+                                                  "specularColorTexture": {"index": 0}}}})
+    g.add("materials", {  # emitter: factor x strength
+        "name": "lamp", "emissiveFactor": [1.0, 0.5, 0.25],
+        "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 8.0}}})
+    uvs = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    tangents = [(1, 0, 0, 1)] * 4
+    for k in range(3):
+        attrs = {"POSITION": g.accessor(QUAD_P, "VEC3", minmax=True), "NORMAL": g.accessor(QUAD_N, "VEC3"),
+                 "TEXCOORD_0": g.accessor(uvs, "VEC2"), "TANGENT": g.accessor(tangents, "VEC4")}
+        g.add("meshes", {"primitives": [{"attributes": attrs, "indices": g.accessor(QUAD_I, "SCALAR", USHORT), "material": k}]})
+        g.node(name=["lambert", "masked", "lamp"][k], mesh=k, translation=[3 * k, 0, 0])
+    g.node(name="masked_mirror", mesh=1, scale=[-1, 1, 1], translation=[0, 0, 5])
+    return g.finish()
+
+
+def external():
+    g = Gltf()
+    g.mesh("tri", TRI_P)
+    g.node(name="tri", mesh=0)
+    d = g.finish(external="external%20data.bin")
+    with open(os.path.join(HERE, "external data.bin"), "wb") as f:
+        f.write(bytes(g.bin))
+    return d
+
+
+def glb(doc_fn):
+    """The same document as a .glb: JSON chunk + BIN chunk (glTF 2.0 spec, 4.4)."""
+    g = Gltf()
+    g.mesh("quad", QUAD_P, QUAD_I, QUAD_N)
+    g.mesh("tri", TRI_P)
+    g.node(name="quad", mesh=0, children=[1])
+    g.node(name="tri", mesh=1, translation=[0, 0, 2])
+    d = g.finish()
+    d["buffers"] = [{"byteLength": len(g.bin)}]
+    js = json.dumps(d).encode()
+    js += b" " * (-len(js) % 4)
+    body = struct.pack("<II", len(js), 0x4E4F534A) + js + struct.pack("<II", len(g.bin), 0x004E4942) + bytes(g.bin)
+    return struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body
+
+
+def textured_glb():
+    """A .glb whose PNG lives in the BIN chunk, reached through a buffer view."""
+    g = Gltf()
+    png = png_rgba(1, 2, [[(255, 0, 0, 255)], [(0, 0, 255, 255)]])
+    g.add("images", {"bufferView": g.view(png), "mimeType": "image/png"})
+    g.add("textures", {"source": 0})
+    g.add("materials", {"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}})
+    g.mesh("quad", QUAD_P, QUAD_I, QUAD_N, [(0, 0), (1, 0), (1, 1), (0, 1)], material=0)
+    g.node(name="quad", mesh=0)
+    d = g.finish()
+    while len(g.bin) % 4:
+        g.bin.append(0)
+    d["buffers"] = [{"byteLength": len(g.bin)}]
+    js = json.dumps(d).encode()
+    js += b" " * (-len(js) % 4)
+    body = struct.pack("<II", len(js), 0x4E4F534A) + js + struct.pack("<II", len(g.bin), 0x004E4942) + bytes(g.bin)
+    return struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body
+
+
+def minimal(**patch):
+    """One triangle, everything valid; `patch` then breaks exactly one thing."""
+    g = Gltf()
+    g.mesh("tri", TRI_P, [0, 1, 2])
+    g.node(name="tri", mesh=0)
+    d = g.finish()
+    for fn in patch.values():
+        fn(d, g)
+    return d
+
+
+def hostile():
+    cases = []  # (file name, expected field, content: dict = JSON, bytes = raw)
+
+    def case(name, field, content):
+        cases.append((name, field, content))
+
+    def setp(path, value):
+        def f(d, g):
+            obj = d
+            for k in path[:-1]:
+                obj = obj[k]
+            obj[path[-1]] = value
+        return f
+
+    tri_mesh_prim = ("meshes", 0, "primitives", 0)
+    case("bad_json.gltf", "JSON", b'{"asset": {"version": "2.0"}, "nodes": [ {"name": "a",, } ]}\n')
+    case("not_gltf2.gltf", "asset.version", {"asset": {"version": "1.0"}})
+    case("missing_buffer.gltf", "buffers[0].uri", minimal(a=setp(("buffers", 0, "uri"), "missing.bin")))
+    case("absolute_uri.gltf", "buffers[0].uri", minimal(a=setp(("buffers", 0, "uri"), "/etc/passwd")))
+    case("escaping_uri.gltf", "buffers[0].uri", minimal(a=setp(("buffers", 0, "uri"), "../hostile/../../scenes/external%20data.bin")))
+    case("symlink_escape.gltf", "buffers[0].uri", minimal(a=setp(("buffers", 0, "uri"), "outside.bin")))
+    case("http_uri.gltf", "buffers[0].uri", minimal(a=setp(("buffers", 0, "uri"), "http://example.com/a.bin")))
+    case("bad_data_uri.gltf", "buffers[0].uri", minimal(a=setp(("buffers", 0, "uri"), "data:application/octet-stream;base64,AAA*AAAA")))
+    case("absurd_size.gltf", "buffers[0].byteLength", minimal(a=setp(("buffers", 0, "byteLength"), 1000000000)))
+    case("view_exceeds_buffer.gltf", "bufferViews[0]", minimal(a=setp(("bufferViews", 0, "byteLength"), 4096)))
+    case("accessor_exceeds_view.gltf", "accessors[0]", minimal(a=setp(("accessors", 0, "count"), 40)))
+    case("accessor_out_of_range.gltf", "meshes[0].primitives[0].attributes.POSITION",
+         minimal(a=setp(tri_mesh_prim + ("attributes", "POSITION"), 7)))
+    def huge_zeros(d, g):
+        del d["accessors"][0]["bufferView"]
+        d["accessors"][0]["count"] = 4000000000
+    case("huge_count.gltf", "accessors[0].count", minimal(a=huge_zeros))
+    case("wrong_component_type.gltf", "accessors[0].componentType", minimal(a=setp(("accessors", 0, "componentType"), USHORT)))
+    case("wrong_type.gltf", "accessors[0].type", minimal(a=setp(("accessors", 0, "type"), "VEC2")))
+    case("index_wrong_type.gltf", "accessors[1].componentType", minimal(a=setp(("accessors", 1, "componentType"), FLOAT)))
+
+    def bad_index(d, g):
+        # Third index 9 with only 3 vertices.
+        g2 = Gltf()
+        g2.accessor(TRI_P, "VEC3", minmax=True)
+        g2.accessor([0, 1, 9], "SCALAR", USHORT)
+        d["bufferViews"], d["accessors"] = g2.doc["bufferViews"], g2.doc["accessors"]
+        d["buffers"] = [{"byteLength": len(g2.bin), "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(g2.bin)).decode()}]
+    case("index_out_of_range.gltf", "meshes[0].primitives[0].indices", minimal(a=bad_index))
+
+    def nan_position(d, g):
+        g2 = Gltf()
+        g2.accessor([(0, 0, 0), (float("nan"), 0, 0), (0, 1, 0)], "VEC3")
+        g2.accessor([0, 1, 2], "SCALAR", USHORT)
+        d["bufferViews"], d["accessors"] = g2.doc["bufferViews"], g2.doc["accessors"]
+        d["buffers"] = [{"byteLength": len(g2.bin), "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(g2.bin)).decode()}]
+    case("nan_position.gltf", "accessors[0]", minimal(a=nan_position))
+
+    def cycle(d, g):
+        d["nodes"] = [{"name": "a", "children": [1]}, {"name": "b", "children": [0], "mesh": 0}]
+        d["scenes"] = [{"nodes": []}]
+    case("node_cycle.gltf", "nodes[0].children", minimal(a=cycle))
+
+    def two_parents(d, g):
+        d["nodes"] = [{"children": [2]}, {"children": [2]}, {"mesh": 0}]
+        d["scenes"] = [{"nodes": [0, 1]}]
+    case("two_parents.gltf", "nodes[1].children", minimal(a=two_parents))
+    inf = json.dumps(minimal(a=setp(("nodes", 0, "translation"), [0, "INF", 0]))).replace('"INF"', "1e400")
+    case("inf_translation.gltf", "JSON", (inf + "\n").encode())  # JSON itself cannot hold NaN or Inf
+
+    def overflow(d, g):
+        d["nodes"] = [{"scale": [1e300] * 3, "children": [1]}, {"scale": [1e300] * 3, "mesh": 0}]
+        d["scenes"] = [{"nodes": [0]}]
+    case("overflowing_transform.gltf", "nodes", minimal(a=overflow))
+    case("bad_child.gltf", "nodes[0].children", minimal(a=setp(("nodes", 0, "children"), [5])))
+    case("unsupported_extension.gltf", "extensionsRequired[0]",
+         minimal(a=setp(("extensionsRequired",), ["KHR_texture_transform"]), b=setp(("extensionsUsed",), ["KHR_texture_transform"])))
+
+    def texture(uri_bytes, tex_coord=0, ext=None):
+        def f(d, g):
+            d["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(uri_bytes).decode()}]
+            d["textures"] = [{"source": 0}]
+            info = {"index": 0}
+            if tex_coord:
+                info["texCoord"] = tex_coord
+            if ext:
+                info["extensions"] = ext
+            d["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": info}}]
+            d["meshes"][0]["primitives"][0]["material"] = 0
+        return f
+    good_png = png_rgba(1, 1, [[(255, 255, 255, 255)]])
+    case("bad_texture.gltf", "images[0]", minimal(a=texture(b"\x89PNG\r\n\x1a\n this is not an image")))
+    case("texcoord1.gltf", "materials[0].pbrMetallicRoughness.baseColorTexture.texCoord", minimal(a=texture(good_png, tex_coord=1)))
+    case("texture_transform.gltf", "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform",
+         minimal(a=texture(good_png, ext={"KHR_texture_transform": {"scale": [2, 2]}})))
+
+    def camera(kind):
+        def f(d, g):
+            if kind == "orthographic":
+                d["cameras"] = [{"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}]
+            d["nodes"][0]["camera"] = 0
+        return f
+    case("orthographic.gltf", "cameras[0].type", minimal(a=camera("orthographic")))
+    case("blend.gltf", "materials[0].alphaMode",
+         minimal(a=setp(("materials",), [{"alphaMode": "BLEND"}]), b=setp(tri_mesh_prim + ("material",), 0)))
+    case("skin.gltf", "nodes[0].skin", minimal(a=setp(("skins",), [{"joints": [0]}]), b=setp(("nodes", 0, "skin"), 0)))
+    case("morph.gltf", "meshes[0].primitives[0].targets", minimal(a=setp(tri_mesh_prim + ("targets",), [{"POSITION": 0}])))
+    case("points.gltf", "meshes[0].primitives[0].mode", minimal(a=setp(tri_mesh_prim + ("mode",), 0)))
+    case("lines.gltf", "meshes[0].primitives[0].mode", minimal(a=setp(tri_mesh_prim + ("mode",), 1)))
+
+    def anim(path, times=(0.0, 1.0)):
+        def f(d, g):
+            g2 = Gltf()
+            g2.bin = bytearray(base64.b64decode(d["buffers"][0]["uri"].split(",", 1)[1]))
+            g2.doc["bufferViews"], g2.doc["accessors"] = d["bufferViews"], d["accessors"]
+            t = g2.accessor(list(times), "SCALAR", minmax=True)
+            o = g2.accessor([1.0, 1.0], "SCALAR") if path == "weights" else g2.accessor([(0, 0, 0), (1, 0, 0)], "VEC3")
+            d["buffers"] = [{"byteLength": len(g2.bin), "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(g2.bin)).decode()}]
+            d["animations"] = [{"samplers": [{"input": t, "output": o}], "channels": [{"sampler": 0, "target": {"node": 0, "path": path}}]}]
+        return f
+    case("weights_animation.gltf", "animations[0].channels[0].target.path", minimal(a=anim("weights")))
+    case("decreasing_keys.gltf", "accessors[2]", minimal(a=anim("translation", (1.0, 0.5))))
+
+    def extras(giq):
+        return setp(("extras",), {"giq": giq})
+    view = {"name": "v", "eye": [0, 0, 3], "target": [0, 0, 0]}
+    case("extras_unknown_key.gltf", "extras.giq.veiws", minimal(a=extras({"veiws": [view]})))
+    case("extras_unknown_view_key.gltf", "extras.giq.views[0].fov", minimal(a=extras({"views": [dict(view, fov=40)]})))
+    case("extras_duplicate_view.gltf", "extras.giq.views[1].name", minimal(a=extras({"views": [view, view]})))
+    case("extras_bad_eye.gltf", "extras.giq.views[0].eye", minimal(a=extras({"views": [dict(view, eye=[0, 0])]})))
+    case("extras_unknown_leak_region.gltf", "extras.giq.leak_regions[0]", minimal(a=extras({"leak_regions": ["nowhere"]})))
+    case("extras_unknown_animation.gltf", "extras.giq.sequence.animation", minimal(a=extras({"sequence": {"animation": "walk"}})))
+
+    tri_glb = glb(None)
+    case("truncated.glb", "glb header.length", tri_glb[: len(tri_glb) // 2])
+    bad_chunk = bytearray(tri_glb)
+    struct.pack_into("<I", bad_chunk, 12, 1 << 30)  # JSON chunk length far beyond the file
+    case("bad_chunk.glb", "glb chunk[0].chunkLength", bytes(bad_chunk))
+    return cases
+
+
+def main():
+    write(os.path.join(HERE, "transforms.gltf"), transforms())
+    write(os.path.join(HERE, "strip_fan.gltf"), strip_fan())
+    write(os.path.join(HERE, "textured.gltf"), textured())
+    write(os.path.join(HERE, "animated.gltf"), animated())
+    write(os.path.join(HERE, "lights_cameras.gltf"), lights_cameras())
+    write(os.path.join(HERE, "materials.gltf"), materials())
+    write(os.path.join(HERE, "external.gltf"), external())
+    with open(os.path.join(HERE, "quad_tri.glb"), "wb") as f:
+        f.write(glb(None))
+    with open(os.path.join(HERE, "textured.glb"), "wb") as f:
+        f.write(textured_glb())
+    os.makedirs(HOSTILE, exist_ok=True)
+    lines = ["# hostile file\tglTF path the error must name (tests/scenes/hostile_test.cpp, tests/cli)"]
+    for name, field, content in hostile():
+        path = os.path.join(HOSTILE, name)
+        if isinstance(content, dict):
+            write(path, content)
+        else:
+            with open(path, "wb") as f:
+                f.write(content)
+        lines.append(name + "\t" + field)
+    # outside.bin points out of hostile/ at a real buffer: a symlink escape.
+    link = os.path.join(HOSTILE, "outside.bin")
+    if os.path.lexists(link):
+        os.remove(link)
+    os.symlink("../external data.bin", link)
+    with open(os.path.join(HOSTILE, "expected.tsv"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,174 @@
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "giq/base/error.h"
+#include "giq/image/io.h"
+
+namespace fs = std::filesystem;
+using giq::image::Image;
+
+namespace {
+
+fs::path fresh_dir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("giq_exr_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+size_t entries(const fs::path& d) { return size_t(std::distance(fs::directory_iterator(d), fs::directory_iterator{})); }
+
+// Every float32 class that must survive a round trip bit for bit.
+std::vector<float> special_values() {
+  const float inf = std::numeric_limits<float>::infinity();
+  return {0.0f, -0.0f, 1.0f, -1.0f, 0.1f, 3.14159265f, 1e-8f, 1e6f, 3.4e38f, -3.4e38f, inf, -inf,
+          std::numeric_limits<float>::quiet_NaN(), std::bit_cast<float>(0x7fa00001u) /* NaN payload */,
+          std::numeric_limits<float>::denorm_min(), 1e-40f /* denormal */, -1e-42f,
+          std::numeric_limits<float>::min(), 65504.0f, 123456.789f};
+}
+
+Image reference_like(int w, int h) {
+  Image img(w, h);
+  const auto special = special_values();
+  const char* names[] = {"R", "G", "B", "indirect.R", "indirect.G", "indirect.B", "variance.R", "variance.G",
+                         "variance.B", "N.X", "N.Y", "N.Z", "Z", "objectId", "spp"};
+  uint32_t state = 12345u;
+  for (const char* n : names) {
+    float* p = img.add_channel(n);
+    for (size_t i = 0; i < img.pixel_count(); ++i) {
+      state = state * 1664525u + 1013904223u;  // LCG (Numerical Recipes): arbitrary bits
+      p[i] = i < special.size() ? special[i] : std::bit_cast<float>(state);
+    }
+  }
+  img.metadata["giq:scene_hash"] = "0123456789abcdef";
+  img.metadata["giq:view"] = "front";
+  img.metadata["giq:settings"] = "{\"spp\": 64, \"unicode\": \"\xc3\xa9\"}";
+  return img;
+}
+
+void expect_bit_exact(const Image& a, const Image& b) {
+  ASSERT_EQ(a.width(), b.width());
+  ASSERT_EQ(a.height(), b.height());
+  ASSERT_EQ(a.channel_names().size(), b.channel_names().size());
+  for (const auto& n : a.channel_names()) {
+    ASSERT_TRUE(b.has_channel(n)) << n;
+    const float* pa = a.channel(n);
+    const float* pb = b.channel(n);
+    for (size_t i = 0; i < a.pixel_count(); ++i)
+      ASSERT_EQ(std::bit_cast<uint32_t>(pa[i]), std::bit_cast<uint32_t>(pb[i])) << n << " pixel " << i;
+  }
+}
+
+}  // namespace
+
+TEST(Exr, MultiLayerRoundTripIsBitExact) {
+  fs::path d = fresh_dir("roundtrip");
+  Image img = reference_like(37, 23);
+  for (auto c : {giq::image::ExrOptions::Compression::Zip, giq::image::ExrOptions::Compression::None,
+                 giq::image::ExrOptions::Compression::Piz}) {
+    giq::image::ExrOptions opt;
+    opt.compression = c;
+    giq::image::write_exr(img, d / "a.exr", opt);
+    Image back = giq::image::read_image(d / "a.exr");
+    expect_bit_exact(img, back);
+    for (const auto& [k, v] : img.metadata) EXPECT_EQ(back.metadata.at(k), v) << k;
+  }
+  EXPECT_EQ(entries(d), 1u);
+}
+
+TEST(Exr, HalfChannelsRoundTripRepresentableValuesExactly) {
+  fs::path d = fresh_dir("half");
+  Image img(8, 2);
+  // Values exactly representable in binary16: integers up to 2048, powers of two down to the
+  // smallest half denormal 2^-24, the largest half 65504, signed zeros and infinities.
+  const float inf = std::numeric_limits<float>::infinity();
+  const std::vector<float> v = {0.0f, -0.0f, 1.0f, 0.5f, 2048.0f, -3.0f, 65504.0f, std::ldexp(1.0f, -24),
+                                std::ldexp(1.0f, -14), 0.099975586f /* 1638*2^-14 */, inf, -inf, 1.5f,
+                                -0.25f, 1000.0f, 7.0f};
+  float* a = img.add_channel("albedo.R");
+  float* b = img.add_channel("R");
+  for (size_t i = 0; i < v.size(); ++i) a[i] = v[i], b[i] = v[i] + 1e-7f;
+  giq::image::ExrOptions opt;
+  opt.half_channels = {"albedo.R"};
+  giq::image::write_exr(img, d / "h.exr", opt);
+  Image back = giq::image::read_image(d / "h.exr");
+  for (size_t i = 0; i < v.size(); ++i) {
+    EXPECT_EQ(std::bit_cast<uint32_t>(back.channel("albedo.R")[i]), std::bit_cast<uint32_t>(v[i])) << i;
+    EXPECT_EQ(back.channel("R")[i], v[i] + 1e-7f);  // float32 channel untouched
+  }
+  // A value beyond the half range becomes inf, as io.h documents; NaN stays NaN.
+  a[0] = 1e6f;
+  a[1] = std::numeric_limits<float>::quiet_NaN();
+  giq::image::write_exr(img, d / "h.exr", opt);
+  back = giq::image::read_image(d / "h.exr");
+  EXPECT_TRUE(std::isinf(back.channel("albedo.R")[0]));
+  EXPECT_TRUE(std::isnan(back.channel("albedo.R")[1]));
+}
+
+TEST(Exr, ThrowingWriterLeavesNoPartialFile) {
+  fs::path d = fresh_dir("atomic");
+  Image good = reference_like(4, 4);
+  giq::image::write_exr(good, d / "a.exr");
+  const auto size_before = fs::file_size(d / "a.exr");
+  // OpenEXR rejects an empty channel name while writing: the failure happens inside the
+  // atomic writer, after the temporary file was named.
+  Image bad = reference_like(4, 4);
+  bad.add_channel("");
+  EXPECT_THROW(giq::image::write_exr(bad, d / "a.exr"), giq::InputError);
+  EXPECT_THROW(giq::image::write_exr(bad, d / "new.exr"), giq::InputError);
+  EXPECT_EQ(entries(d), 1u);  // no temporary left, no new.exr
+  EXPECT_EQ(fs::file_size(d / "a.exr"), size_before);
+  expect_bit_exact(good, giq::image::read_image(d / "a.exr"));
+}
+
+TEST(Exr, MetadataKeyCollidingWithStandardAttributeIsRejected) {
+  fs::path d = fresh_dir("collide");
+  Image img(2, 2);
+  img.add_channel("R");
+  img.metadata["compression"] = "none";
+  EXPECT_THROW(giq::image::write_exr(img, d / "a.exr"), giq::InputError);
+  EXPECT_EQ(entries(d), 0u);
+}
+
+TEST(Exr, TruncatedFileIsInputErrorNamingTheFile) {
+  fs::path d = fresh_dir("truncated");
+  Image img = reference_like(64, 64);
+  giq::image::ExrOptions opt;
+  opt.compression = giq::image::ExrOptions::Compression::None;
+  giq::image::write_exr(img, d / "full.exr", opt);
+  const auto size = fs::file_size(d / "full.exr");
+  for (double keep : {0.9, 0.5, 0.1, 0.01}) {
+    fs::copy_file(d / "full.exr", d / "cut.exr", fs::copy_options::overwrite_existing);
+    fs::resize_file(d / "cut.exr", uintmax_t(double(size) * keep));
+    try {
+      giq::image::read_image(d / "cut.exr");
+      ADD_FAILURE() << "truncated to " << keep << " was read without error";
+    } catch (const giq::InputError& e) {
+      EXPECT_EQ(e.file(), (d / "cut.exr").string());
+    }
+  }
+}
+
+TEST(Exr, MissingAndGarbageFilesAreInputErrors) {
+  fs::path d = fresh_dir("garbage");
+  EXPECT_THROW(giq::image::read_image(d / "nope.exr"), giq::InputError);
+  EXPECT_THROW(giq::image::read_image(d), giq::InputError);
+  {
+    std::ofstream(d / "magic.exr", std::ios::binary) << "\x76\x2f\x31\x01 then nonsense follows here";
+  }
+  try {
+    giq::image::read_image(d / "magic.exr");
+    FAIL() << "garbage was read";
+  } catch (const giq::InputError& e) {
+    EXPECT_EQ(e.file(), (d / "magic.exr").string());
+  }
+  { std::ofstream(d / "empty.exr", std::ios::binary); }
+  EXPECT_THROW(giq::image::read_image(d / "empty.exr"), giq::InputError);
+}

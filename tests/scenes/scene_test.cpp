@@ -1,0 +1,106 @@
+// A Scene built in code: derive() and the accessors, independent of any file.
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "giq/base/error.h"
+#include "giq/scenes/scene.h"
+
+namespace giq::scenes {
+namespace {
+
+Scene emissive_quad(bool double_sided) {
+  Scene s;
+  Material lamp;
+  lamp.emissive = {1.0f, 2.0f, 3.0f};
+  lamp.metallic = 0.0f;
+  lamp.specular = 0.0f;  // pure Lambert
+  lamp.double_sided = double_sided;
+  s.materials.push_back(lamp);
+  Mesh m;
+  m.name = "lamp";
+  m.material = 0;
+  // 2 x 1 rectangle in the z = 0 plane: two triangles of area 1.
+  m.positions = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}};
+  m.normals.assign(4, {0, 0, 1});
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  s.meshes.push_back(m);
+  s.derive();
+  return s;
+}
+
+TEST(Scene, EmissiveTrianglePowerIsPiAreaLuminance) {
+  const double lum = 0.2126 * 1.0 + 0.7152 * 2.0 + 0.0722 * 3.0;  // Rec. 709
+  for (bool two : {false, true}) {
+    const Scene s = emissive_quad(two);
+    ASSERT_EQ(s.emissive_triangles.size(), 2u);
+    for (const auto& e : s.emissive_triangles) {
+      EXPECT_EQ(e.mesh, 0u);
+      EXPECT_FLOAT_EQ(e.area, 1.0f);
+      EXPECT_EQ(e.radiance, glm::vec3(1, 2, 3));
+      EXPECT_NEAR(e.power, std::numbers::pi * lum * (two ? 2.0 : 1.0), 1e-5);
+    }
+    EXPECT_NEAR(s.stats.total_light_power, 2 * std::numbers::pi * lum * (two ? 2.0 : 1.0), 1e-4);
+    EXPECT_EQ(s.features.double_sided, two);
+    EXPECT_EQ(s.features.one_sided, !two);
+  }
+}
+
+TEST(Scene, DeriveFeaturesBoundsAndCounts) {
+  Scene s = emissive_quad(false);
+  EXPECT_TRUE(s.features.emissive_meshes);
+  EXPECT_FALSE(s.features.specular);  // metallic 0 and specular 0: Lambert only
+  EXPECT_FALSE(s.features.textures);
+  EXPECT_FALSE(s.features.animation);
+  EXPECT_EQ(s.stats.triangles, 2u);
+  EXPECT_EQ(s.stats.vertices, 4u);
+  EXPECT_EQ(s.bounds.lo, glm::vec3(0, 0, 0));
+  EXPECT_EQ(s.bounds.hi, glm::vec3(2, 1, 0));
+  EXPECT_EQ(s.features.names(), (std::vector<std::string>{"emissive_meshes", "one_sided"}));
+
+  s.materials[0].metallic = 0.5f;
+  Light sun;
+  sun.type = LightType::Directional;
+  s.lights.push_back(sun);
+  s.environment = {0.1f, 0.1f, 0.1f};
+  s.derive();
+  EXPECT_TRUE(s.features.specular);
+  EXPECT_TRUE(s.features.directional_lights);
+  EXPECT_FALSE(s.features.point_lights);
+  EXPECT_TRUE(s.features.environment);
+  EXPECT_EQ(s.features.names(),
+            (std::vector<std::string>{"directional_lights", "emissive_meshes", "environment", "specular", "one_sided"}));
+}
+
+TEST(Scene, ViewByNameOrIndex) {
+  Scene s;
+  s.path = "room.gltf";
+  s.views.push_back({"front", Camera{}, -1});
+  s.views.push_back({"7", Camera{}, -1});
+  s.views.push_back({"back", Camera{}, -1});
+  EXPECT_EQ(s.view("back").name, "back");
+  EXPECT_EQ(s.view("0").name, "front");
+  EXPECT_EQ(s.view("7").name, "7");  // a name wins over an index
+  try {
+    s.view("side");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "room.gltf");
+    EXPECT_EQ(e.field(), "view");
+    EXPECT_NE(std::string(e.what()).find("front"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("back"), std::string::npos);
+  }
+  EXPECT_THROW(s.view("3"), InputError);
+}
+
+TEST(Scene, CodeBuiltSceneIsStatic) {
+  const Scene s = emissive_quad(false);
+  EXPECT_EQ(s.duration(), 0.0);
+  const Scene t = s.at(1.5);
+  EXPECT_EQ(t.time, 1.5);
+  EXPECT_EQ(t.meshes[0].positions, s.meshes[0].positions);
+}
+
+}  // namespace
+}  // namespace giq::scenes

@@ -1,0 +1,367 @@
+#include "gltf_writer.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+namespace giq::scenegen {
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "glTF buffers are little-endian; this writer copies native floats");
+
+// glTF 2.0 §5.1.3 / §5.12 constants.
+constexpr int kFloat = 5126;
+constexpr int kUnsignedShort = 5123;
+constexpr int kArrayBuffer = 34962;
+constexpr int kElementArrayBuffer = 34963;
+
+constexpr const char* kLightsPunctual = "KHR_lights_punctual";
+constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
+constexpr const char* kSpecular = "KHR_materials_specular";
+
+// Values this close to zero are rounding noise of the double-precision construction (a
+// quaternion's 1e-17); writing them as 0 keeps the files readable and the same everywhere.
+float clean(double v) {
+  if (std::abs(v) < 1e-12) return 0.0f;
+  return static_cast<float>(v);
+}
+
+Json vec3(glm::dvec3 v) {
+  return Json::array({clean(v.x), clean(v.y), clean(v.z)});
+}
+
+std::string base64(const std::vector<uint8_t>& bytes) {
+  // RFC 4648 §4, with padding: the encoding data URIs use (RFC 2397).
+  static constexpr char kAlphabet[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    const size_t n = std::min<size_t>(3, bytes.size() - i);
+    uint32_t chunk = uint32_t(bytes[i]) << 16;
+    if (n > 1) chunk |= uint32_t(bytes[i + 1]) << 8;
+    if (n > 2) chunk |= uint32_t(bytes[i + 2]);
+    out += kAlphabet[(chunk >> 18) & 63];
+    out += kAlphabet[(chunk >> 12) & 63];
+    out += n > 1 ? kAlphabet[(chunk >> 6) & 63] : '=';
+    out += n > 2 ? kAlphabet[chunk & 63] : '=';
+  }
+  return out;
+}
+
+glm::dquat canonical(glm::dquat q) {
+  q = glm::normalize(q);
+  return q.w < 0.0 ? -q : q;
+}
+
+void write_pose(Json& node, const Pose& pose) {
+  const glm::dquat q = canonical(pose.rotation);
+  if (!(q.x == 0.0 && q.y == 0.0 && q.z == 0.0))
+    node["rotation"] = Json::array({clean(q.x), clean(q.y), clean(q.z), clean(q.w)});
+  if (pose.translation != glm::dvec3(0.0)) node["translation"] = vec3(pose.translation);
+}
+
+Json view_json(const ViewSpec& v) {
+  Json j;
+  j["name"] = v.name;
+  j["eye"] = vec3(v.eye);
+  j["target"] = vec3(v.target);
+  j["up"] = vec3(v.up);
+  j["yfov_deg"] = clean(v.yfov_deg);
+  return j;
+}
+
+}  // namespace
+
+glm::dquat look_rotation(glm::dvec3 eye, glm::dvec3 target, glm::dvec3 up) {
+  const glm::dvec3 f = glm::normalize(target - eye);
+  const glm::dvec3 r = glm::normalize(glm::cross(f, up));
+  const glm::dvec3 u = glm::cross(r, f);
+  // Columns: where the camera's local +X, +Y and +Z go (glTF 2.0 §3.10.3: the camera looks
+  // along its local -Z with +Y up).
+  return canonical(glm::quat_cast(glm::dmat3(r, u, -f)));
+}
+
+glm::dquat rotation_from_minus_z(glm::dvec3 direction) {
+  const glm::dvec3 a(0.0, 0.0, -1.0);
+  const glm::dvec3 b = glm::normalize(direction);
+  const double c = glm::dot(a, b);
+  if (c < -1.0 + 1e-9) return {0.0, 1.0, 0.0, 0.0};  // half turn about +Y
+  // Half-way quaternion: (1 + a.b, a x b), normalised, rotates a onto b.
+  const glm::dvec3 axis = glm::cross(a, b);
+  return canonical(glm::dquat(1.0 + c, axis.x, axis.y, axis.z));
+}
+
+int GltfWriter::add_accessor(const void* data, size_t bytes, int component_type, size_t count,
+                             const char* type, std::optional<int> target, Json min, Json max) {
+  // glTF 2.0 §3.6.2.4: an accessor's offset must be a multiple of its component size; 4-byte
+  // aligned views satisfy every component type used here.
+  while (buffer_.size() % 4 != 0) buffer_.push_back(0);
+  Json view;
+  view["buffer"] = 0;
+  view["byteOffset"] = buffer_.size();
+  view["byteLength"] = bytes;
+  if (target) view["target"] = *target;
+  const auto* p = static_cast<const uint8_t*>(data);
+  buffer_.insert(buffer_.end(), p, p + bytes);
+  buffer_views_.push_back(std::move(view));
+
+  Json acc;
+  acc["bufferView"] = buffer_views_.size() - 1;
+  acc["componentType"] = component_type;
+  acc["count"] = count;
+  acc["type"] = type;
+  if (!min.is_null()) acc["min"] = std::move(min);
+  if (!max.is_null()) acc["max"] = std::move(max);
+  accessors_.push_back(std::move(acc));
+  return static_cast<int>(accessors_.size() - 1);
+}
+
+int GltfWriter::add_vec3_accessor(const std::vector<glm::dvec3>& values, std::optional<int> target,
+                                  bool bounds) {
+  std::vector<float> data;
+  data.reserve(values.size() * 3);
+  glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-lo);
+  for (const glm::dvec3& v : values) {
+    const glm::vec3 f(clean(v.x), clean(v.y), clean(v.z));
+    data.insert(data.end(), {f.x, f.y, f.z});
+    lo = glm::min(lo, f);
+    hi = glm::max(hi, f);
+  }
+  Json min, max;
+  // Bounds of the float data as stored, so they match it exactly (§3.6.2.5).
+  if (bounds) {
+    min = Json::array({lo.x, lo.y, lo.z});
+    max = Json::array({hi.x, hi.y, hi.z});
+  }
+  return add_accessor(data.data(), data.size() * sizeof(float), kFloat, values.size(), "VEC3",
+                      target, std::move(min), std::move(max));
+}
+
+int GltfWriter::add_material(const MaterialSpec& spec) {
+  Json m;
+  m["name"] = spec.name;
+  Json pbr;
+  pbr["baseColorFactor"] = Json::array(
+      {clean(spec.base_color.r), clean(spec.base_color.g), clean(spec.base_color.b), 1.0f});
+  pbr["metallicFactor"] = clean(spec.metallic);
+  pbr["roughnessFactor"] = clean(spec.roughness);
+  m["pbrMetallicRoughness"] = std::move(pbr);
+  Json ext = Json::object();
+  const double peak = std::max({spec.emission.r, spec.emission.g, spec.emission.b});
+  if (peak > 0.0) {
+    if (peak > 1.0) {
+      m["emissiveFactor"] = vec3(spec.emission / peak);
+      ext[kEmissiveStrength] = {{"emissiveStrength", clean(peak)}};
+      extensions_.insert(kEmissiveStrength);
+    } else {
+      m["emissiveFactor"] = vec3(spec.emission);
+    }
+  }
+  if (spec.specular_factor) {
+    ext[kSpecular] = {{"specularFactor", clean(*spec.specular_factor)}};
+    extensions_.insert(kSpecular);
+  }
+  if (!ext.empty()) m["extensions"] = std::move(ext);
+  materials_.push_back(std::move(m));
+  material_specs_.push_back(spec);
+  return static_cast<int>(materials_.size() - 1);
+}
+
+int GltfWriter::add_node(Json node, int parent, const Pose& pose) {
+  Pose world = pose;
+  if (parent >= 0) {
+    const Pose& p = world_poses_.at(parent);
+    world = {p.rotation * pose.translation + p.translation, p.rotation * pose.rotation};
+  }
+  world_poses_.push_back(world);
+  nodes_.push_back(std::move(node));
+  const int index = static_cast<int>(nodes_.size() - 1);
+  if (parent < 0) {
+    roots_.push_back(index);
+  } else {
+    nodes_.at(parent)["children"].push_back(index);
+  }
+  return index;
+}
+
+int GltfWriter::add_mesh_node(const std::string& name, const MeshData& mesh, int material,
+                              const Pose& pose) {
+  if (mesh.positions.empty() || mesh.positions.size() > 65535)
+    throw std::logic_error(name + ": vertex count out of range for 16-bit indices");
+  Json attributes;
+  attributes["POSITION"] = add_vec3_accessor(mesh.positions, kArrayBuffer, true);
+  attributes["NORMAL"] = add_vec3_accessor(mesh.normals, kArrayBuffer, false);
+  const std::vector<uint16_t> indices(mesh.indices.begin(), mesh.indices.end());
+  const int index_accessor =
+      add_accessor(indices.data(), indices.size() * sizeof(uint16_t), kUnsignedShort,
+                   indices.size(), "SCALAR", kElementArrayBuffer);
+  Json primitive;
+  primitive["attributes"] = std::move(attributes);
+  primitive["indices"] = index_accessor;
+  primitive["material"] = material;
+  Json m;
+  m["name"] = name;
+  m["primitives"] = Json::array({std::move(primitive)});
+  meshes_.push_back(std::move(m));
+
+  Json node;
+  node["name"] = name;
+  node["mesh"] = meshes_.size() - 1;
+  write_pose(node, pose);
+
+  NodeFacts facts;
+  facts.name = name;
+  facts.material = materials_.at(material)["name"].get<std::string>();
+  facts.triangles = mesh.triangle_count();
+  facts.world_lo = glm::dvec3(std::numeric_limits<double>::infinity());
+  facts.world_hi = -facts.world_lo;
+  for (const glm::dvec3& p : mesh.positions) {
+    const glm::dvec3 w = pose.rotation * p + pose.translation;
+    facts.world_lo = glm::min(facts.world_lo, w);
+    facts.world_hi = glm::max(facts.world_hi, w);
+  }
+  facts_.push_back(facts);
+  return add_node(std::move(node), -1, pose);
+}
+
+int GltfWriter::add_camera_node(const ViewSpec& view, double aspect_ratio, double znear) {
+  Json perspective;
+  perspective["aspectRatio"] = clean(aspect_ratio);
+  perspective["yfov"] = clean(glm::radians(view.yfov_deg));
+  perspective["znear"] = clean(znear);
+  Json camera;
+  camera["name"] = view.name;
+  camera["type"] = "perspective";
+  camera["perspective"] = std::move(perspective);
+  cameras_.push_back(std::move(camera));
+
+  Json node;
+  node["name"] = view.name;
+  node["camera"] = cameras_.size() - 1;
+  const Pose pose{view.eye, look_rotation(view.eye, view.target, view.up)};
+  write_pose(node, pose);
+  camera_views_.push_back(view);
+  return add_node(std::move(node), -1, pose);
+}
+
+int GltfWriter::add_light_node(const LightSpec& light, const Pose& pose, int parent) {
+  Json l;
+  l["name"] = light.name;
+  l["type"] = light.kind == LightKind::Point ? "point" : "directional";
+  l["color"] = vec3(light.color);
+  l["intensity"] = clean(light.intensity);
+  lights_.push_back(std::move(l));
+  extensions_.insert(kLightsPunctual);
+
+  Json node;
+  node["name"] = light.name;
+  write_pose(node, pose);
+  node["extensions"] = {{kLightsPunctual, {{"light", lights_.size() - 1}}}};
+  const int index = add_node(std::move(node), parent, pose);
+  const Pose& world = world_poses_.back();
+  light_facts_.push_back({light, world.translation, world.rotation * glm::dvec3(0.0, 0.0, -1.0)});
+  return index;
+}
+
+int GltfWriter::add_group_node(const std::string& name, const Pose& pose, int parent) {
+  Json node;
+  node["name"] = name;
+  write_pose(node, pose);
+  return add_node(std::move(node), parent, pose);
+}
+
+int GltfWriter::add_animation(const std::string& name,
+                              const std::vector<TranslationTrack>& tracks) {
+  Json samplers = Json::array(), channels = Json::array();
+  for (const TranslationTrack& track : tracks) {
+    if (track.times.empty() || track.times.size() != track.values.size() ||
+        !std::is_sorted(track.times.begin(), track.times.end(), std::less_equal<double>()))
+      throw std::logic_error(name + ": key times must be strictly increasing, one per value");
+    std::vector<float> times;
+    for (double t : track.times) times.push_back(clean(t));
+    // §3.11: sampler input accessors must declare min and max.
+    const int input =
+        add_accessor(times.data(), times.size() * sizeof(float), kFloat, times.size(), "SCALAR",
+                     std::nullopt, Json::array({times.front()}), Json::array({times.back()}));
+    const int output = add_vec3_accessor(track.values, std::nullopt, false);
+    Json sampler;
+    sampler["input"] = input;
+    sampler["interpolation"] = track.interpolation == Interpolation::Linear ? "LINEAR" : "STEP";
+    sampler["output"] = output;
+    Json channel;
+    channel["sampler"] = samplers.size();
+    channel["target"] = {{"node", track.node}, {"path", "translation"}};
+    samplers.push_back(std::move(sampler));
+    channels.push_back(std::move(channel));
+  }
+  Json animation;
+  animation["name"] = name;
+  animation["channels"] = std::move(channels);
+  animation["samplers"] = std::move(samplers);
+  animations_.push_back(std::move(animation));
+  return static_cast<int>(animations_.size() - 1);
+}
+
+void GltfWriter::add_view(const ViewSpec& view) {
+  extra_views_.push_back(view);
+}
+
+void GltfWriter::set_sequence(int frames, double fps, int animation) {
+  Json s;
+  s["frames"] = frames;
+  s["fps"] = clean(fps);
+  s["animation"] = animation;
+  sequence_ = std::move(s);
+}
+
+void GltfWriter::add_leak_region(const std::string& node_name) {
+  leak_regions_.push_back(node_name);
+}
+
+std::string GltfWriter::dump() const {
+  std::set<std::string> node_names, view_names;
+  for (const Json& n : nodes_)
+    if (!node_names.insert(n["name"].get<std::string>()).second)
+      throw std::logic_error("duplicate node name " + n["name"].get<std::string>());
+  for (const auto* views : {&camera_views_, &extra_views_})
+    for (const ViewSpec& v : *views)
+      if (!view_names.insert(v.name).second) throw std::logic_error("duplicate view " + v.name);
+  for (const std::string& r : leak_regions_)
+    if (!node_names.count(r)) throw std::logic_error("leak region names no node: " + r);
+
+  Json doc;
+  doc["asset"] = {{"version", "2.0"}, {"generator", "giq-scenegen"}};
+  if (!extensions_.empty()) doc["extensionsUsed"] = extensions_;
+  if (!lights_.empty()) doc["extensions"] = {{kLightsPunctual, {{"lights", lights_}}}};
+
+  Json giq = Json::object();
+  if (!extra_views_.empty()) {
+    giq["views"] = Json::array();
+    for (const ViewSpec& v : extra_views_) giq["views"].push_back(view_json(v));
+  }
+  if (sequence_) giq["sequence"] = *sequence_;
+  if (!leak_regions_.empty()) giq["leak_regions"] = leak_regions_;
+  doc["extras"] = {{"giq", std::move(giq)}};
+
+  doc["scene"] = 0;
+  doc["scenes"] = Json::array({{{"nodes", roots_}}});
+  doc["nodes"] = nodes_;
+  // glTF arrays must not be empty when present (minItems 1): write only what the scene has.
+  if (!meshes_.empty()) doc["meshes"] = meshes_;
+  if (!materials_.empty()) doc["materials"] = materials_;
+  if (!cameras_.empty()) doc["cameras"] = cameras_;
+  if (!animations_.empty()) doc["animations"] = animations_;
+  doc["accessors"] = accessors_;
+  doc["bufferViews"] = buffer_views_;
+  doc["buffers"] =
+      Json::array({{{"byteLength", buffer_.size()},
+                    {"uri", "data:application/octet-stream;base64," + base64(buffer_)}}});
+  return doc.dump(2) + "\n";
+}
+
+}  // namespace giq::scenegen

@@ -1,0 +1,62 @@
+// giq-scenegen: writes the built-in scenes (scenes/*.gltf) and their documentation.
+// Usage: giq-scenegen <output-dir> [--doc <markdown-file>]. Deterministic: the same bytes on
+// every run, so a test can compare a fresh run with the committed files.
+
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <string>
+
+#include "documentation.h"
+#include "giq/base/atomic_file.h"
+#include "giq/base/error.h"
+#include "scenes.h"
+
+namespace giq::scenegen {
+
+std::vector<BuiltinScene> all_scenes() {
+  std::vector<BuiltinScene> scenes;
+  scenes.push_back(make_cornell());
+  scenes.push_back(make_leak());
+  scenes.push_back(make_sunroom());
+  scenes.push_back(make_movinglight());
+  return scenes;
+}
+
+}  // namespace giq::scenegen
+
+int main(int argc, char** argv) {
+  namespace fs = std::filesystem;
+  fs::path out_dir, doc;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--doc" && i + 1 < argc) {
+      doc = argv[++i];
+    } else if (arg == "-h" || arg == "--help") {
+      std::printf("usage: giq-scenegen <output-dir> [--doc <markdown-file>]\n");
+      return 0;
+    } else if (out_dir.empty() && !arg.starts_with("-")) {
+      out_dir = arg;
+    } else {
+      std::fprintf(stderr, "giq-scenegen: unexpected argument '%s'\n", arg.c_str());
+      return 2;
+    }
+  }
+  if (out_dir.empty()) {
+    std::fprintf(stderr, "usage: giq-scenegen <output-dir> [--doc <markdown-file>]\n");
+    return 2;
+  }
+  try {
+    const auto scenes = giq::scenegen::all_scenes();
+    for (const auto& scene : scenes)
+      giq::write_file_atomically(out_dir / (scene.name + ".gltf"), scene.gltf.dump());
+    if (!doc.empty()) giq::write_file_atomically(doc, giq::scenegen::documentation(scenes));
+  } catch (const giq::InputError& e) {
+    std::fprintf(stderr, "giq-scenegen: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "giq-scenegen: internal error: %s\n", e.what());
+    return 3;
+  }
+  return 0;
+}
