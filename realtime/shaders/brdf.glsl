@@ -1,9 +1,10 @@
 // The glTF 2.0 metallic-roughness BRDF with KHR_materials_specular, as the reference renders
-// it: Lambert diffuse and GGX specular (Trowbridge-Reitz D, Smith height-correlated
-// masking-shadowing, Schlick Fresnel), combined as glTF 2.0 Appendix B specifies:
-//   dielectric = mix(diffuse, specular, F_d),  F_d = Schlick(min(0.04 specular_color, 1) * specular, specular)
-//   metal      = specular * Schlick(base_color, 1)
-//   brdf       = mix(dielectric, metal, metallic)
+// it (reference/include/giq/reference/bsdf.h): Lambert diffuse and GGX specular
+// (Trowbridge-Reitz D, Smith height-correlated masking-shadowing, Schlick Fresnel), combined
+// as glTF 2.0 Appendix B with KHR_materials_specular's albedo scaling:
+//   dielectric = (1 - max(F_d)) diffuse + F_d specular,  F_d = Schlick(min(0.04 specular_color, 1) * specular, specular)
+//   metal      = Schlick(base_color, 1) specular
+//   brdf       = (1 - metallic) dielectric + metallic metal
 // Without GIQ_SPECULAR (no material in the scene has a GGX lobe) only Lambert is compiled.
 #ifndef GIQ_BRDF_GLSL
 #define GIQ_BRDF_GLSL
@@ -71,8 +72,8 @@ void brdf_parts(Surface s, vec3 wo, vec3 wi, out vec3 diffuse, out vec3 specular
   float spec = ggx_d(nh, a2) * smith_v(nl, nv, a2);
   vec3 fd = schlick(dielectric_f0(s), vec3(s.specular), vh);
   vec3 fm = schlick(s.base_color, vec3(1.0), vh);
-  // mix(mix(lambert, spec, fd), spec * fm, metallic), regrouped by lobe.
-  diffuse = (1.0 - s.metallic) * (1.0 - fd) * lambert;
+  // (1 - m) ((1 - max(fd)) lambert + fd spec) + m fm spec, regrouped by lobe.
+  diffuse = (1.0 - s.metallic) * (1.0 - max(fd.r, max(fd.g, fd.b))) * lambert;
   specular = ((1.0 - s.metallic) * fd + s.metallic * fm) * spec;
 #else
   diffuse = (1.0 - s.metallic) * lambert;
@@ -92,7 +93,7 @@ float specular_probability(Surface s, float nv) {
   vec3 fd = schlick(dielectric_f0(s), vec3(s.specular), nv);
   vec3 fm = schlick(s.base_color, vec3(1.0), nv);
   float spec = luminance(mix(fd, fm, s.metallic));
-  float diff = luminance(s.base_color * (1.0 - s.metallic) * (1.0 - fd));
+  float diff = luminance(s.base_color * (1.0 - s.metallic) * (1.0 - max(fd.r, max(fd.g, fd.b))));
   if (spec <= 0.0) return 0.0;
   if (diff <= 0.0) return 1.0;
   return clamp(spec / (spec + diff), 0.1, 0.9);
