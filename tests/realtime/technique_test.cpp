@@ -85,6 +85,25 @@ TEST_F(RendererTest, GpuTimeCoversComputeOnlyFrames) {
   EXPECT_GT(j["frame_gpu_ms"]["median"].get<double>(), 0.3 * j["frame_cpu_ms"]["median"].get<double>());
 }
 
+TEST_F(RendererTest, PtDoesNotDependOnHowSamplesAreSplitIntoFrames) {
+  // Samples 0..255 per pixel in one frame or in four frames of 64: the same samples, so the
+  // same bits. (lavapipe ends shader loops after 65535 iterations per invocation; a pt that
+  // traced many paths in one invocation lost the rest silently and came out darker.)
+  const scenes::Scene s = test::cornell_box();
+  auto render = [&](int frames, int spp) {
+    RenderOptions o;
+    o.technique = "pt";
+    o.width = o.height = 8;
+    o.frames = frames;
+    o.parameters = {"samples_per_frame=" + std::to_string(spp)};
+    image::Image last;
+    render_sequence(*ctx, *compiler, s, o, [&](RenderedFrame& f) { last = std::move(f.image); });
+    return last;
+  };
+  const image::Image a = render(1, 256), b = render(4, 64);
+  for (size_t i = 0; i < a.pixel_count(); ++i) ASSERT_EQ(a.channel("G")[i], b.channel("G")[i]) << i;
+}
+
 TEST_F(RendererTest, BadViewResolutionAndFramesAreInputErrors) {
   const scenes::Scene s = test::cornell_box();
   RenderOptions o;

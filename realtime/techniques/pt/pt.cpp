@@ -39,8 +39,7 @@ class PathTracer : public Technique {
     pc.environment = glm::vec4(scene_.environment, 0.0f);
     pc.width = width_;
     pc.height = height_;
-    pc.first_sample = uint32_t(in.frame) * spp_;
-    pc.samples_per_frame = spp_;
+    pc.samples_per_frame = 1;
     pc.max_bounces = max_bounces_;
     pc.emissive_count = scene_gpu_.emissive_count();
     pc.light_count = scene_gpu_.light_count();
@@ -50,9 +49,15 @@ class PathTracer : public Technique {
     auto d = scene_gpu_.descriptors();
     for (Image* img : images()) d.push_back(Descriptor::storage_image(*img));
     pipeline_.push_descriptors(in.cmd, d);
-    pipeline_.push_constants(in.cmd, pc);
-    pipeline_.dispatch_2d(in.cmd, width_, height_);
-    full_barrier(in.cmd);
+    // One dispatch per sample: a shader invocation never runs more than one path. lavapipe
+    // (llvmpipe) ends any loop after 65535 iterations per invocation to guard against hangs,
+    // which silently cut BVH traversals short when one invocation traced hundreds of paths.
+    for (uint32_t k = 0; k < spp_; ++k) {
+      pc.first_sample = uint32_t(in.frame) * spp_ + k;
+      pipeline_.push_constants(in.cmd, pc);
+      pipeline_.dispatch_2d(in.cmd, width_, height_);
+      full_barrier(in.cmd);
+    }
     in.timer.end(in.cmd);
   }
 
