@@ -14,8 +14,8 @@ struct PtPush {
   vec4 environment;        // constant environment radiance (rgb)
   uint width;
   uint height;
-  uint first_sample;       // samples accumulated before this frame
-  uint samples_per_frame;
+  uint first_sample;       // samples accumulated before this dispatch
+  uint samples_per_frame;  // paths per pixel in this dispatch (pt.cpp sends 1)
   uint max_bounces;        // path vertices after the camera
   uint emissive_count;
   uint light_count;
