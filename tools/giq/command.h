@@ -12,5 +12,8 @@ void add_score_command(CLI::App& app, int& exit_code);
 #ifdef GIQ_WITH_REFERENCE
 void add_reference_command(CLI::App& app, int& exit_code);
 #endif
+#ifdef GIQ_WITH_VULKAN
+void add_realtime_command(CLI::App& app, int& exit_code);
+#endif
 
 }  // namespace giq::cli

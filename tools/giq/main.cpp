@@ -22,6 +22,9 @@ int main(int argc, char** argv) {
 #ifdef GIQ_WITH_REFERENCE
   giq::cli::add_reference_command(app, exit_code);
 #endif
+#ifdef GIQ_WITH_VULKAN
+  giq::cli::add_realtime_command(app, exit_code);
+#endif
 
   try {
     app.parse(argc, argv);
