@@ -9,6 +9,12 @@ namespace giq::cli {
 
 void add_scene_command(CLI::App& app, int& exit_code);
 void add_score_command(CLI::App& app, int& exit_code);
+#ifdef GIQ_WITH_REFERENCE
+void add_reference_command(CLI::App& app, int& exit_code);
+#endif
+#ifdef GIQ_WITH_VULKAN
+void add_realtime_command(CLI::App& app, int& exit_code);
+#endif
 void add_gate_command(CLI::App& app, int& exit_code);
 void add_golden_command(CLI::App& app, int& exit_code);
 void add_report_command(CLI::App& app, int& exit_code);

@@ -19,6 +19,12 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   giq::cli::add_scene_command(app, exit_code);
   giq::cli::add_score_command(app, exit_code);
+#ifdef GIQ_WITH_REFERENCE
+  giq::cli::add_reference_command(app, exit_code);
+#endif
+#ifdef GIQ_WITH_VULKAN
+  giq::cli::add_realtime_command(app, exit_code);
+#endif
   giq::cli::add_gate_command(app, exit_code);
   giq::cli::add_golden_command(app, exit_code);
   giq::cli::add_report_command(app, exit_code);

@@ -1,0 +1,117 @@
+#pragma once
+// GPU buffers and images placed in the sub-allocator, staging uploads and read-back, and the
+// barriers between passes. Every resource is move-only and frees itself.
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "giq/realtime/allocator.h"
+
+namespace giq::realtime {
+
+class Context;
+
+class Buffer {
+ public:
+  Buffer() = default;
+  Buffer(Context& ctx, uint64_t size, VkBufferUsageFlags usage, MemoryUsage memory = MemoryUsage::Device);
+  ~Buffer();
+  Buffer(Buffer&& o) noexcept;
+  Buffer& operator=(Buffer&& o) noexcept;
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+
+  // A device-local storage buffer holding `bytes` (at least 16 bytes, so empty scene arrays
+  // still bind), filled through a staging buffer.
+  static Buffer storage(Context& ctx, const void* data, uint64_t bytes, VkBufferUsageFlags extra = 0);
+  template <class T>
+  static Buffer storage(Context& ctx, const std::vector<T>& v, VkBufferUsageFlags extra = 0) {
+    return storage(ctx, v.data(), v.size() * sizeof(T), extra);
+  }
+
+  VkBuffer handle() const { return buffer_; }
+  uint64_t size() const { return size_; }
+  void* mapped() const { return alloc_.mapped; }
+  explicit operator bool() const { return buffer_ != VK_NULL_HANDLE; }
+
+  // Copies host data in: directly when mapped, else through a staging buffer (blocking).
+  void upload(const void* data, uint64_t bytes, uint64_t offset = 0);
+  // Copies the buffer out (blocking; through a read-back buffer when not mapped).
+  std::vector<uint8_t> download() const;
+
+ private:
+  void release();
+  Context* ctx_ = nullptr;
+  VkBuffer buffer_ = VK_NULL_HANDLE;
+  Allocation alloc_;
+  uint64_t size_ = 0;
+};
+
+struct ImageDesc {
+  uint32_t width = 1, height = 1, layers = 1;
+  VkFormat format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  VkImageUsageFlags usage = 0;
+};
+
+class Image {
+ public:
+  Image() = default;
+  Image(Context& ctx, const ImageDesc& desc);
+  ~Image();
+  Image(Image&& o) noexcept;
+  Image& operator=(Image&& o) noexcept;
+  Image(const Image&) = delete;
+  Image& operator=(const Image&) = delete;
+
+  VkImage handle() const { return image_; }
+  VkImageView view() const { return view_; }              // all layers (2D array when layers > 1)
+  VkImageView layer_view(uint32_t layer) const { return layer_views_.at(layer); }
+  const ImageDesc& desc() const { return desc_; }
+  VkImageAspectFlags aspect() const;
+  VkImageLayout layout() const { return layout_; }
+  explicit operator bool() const { return image_ != VK_NULL_HANDLE; }
+
+  // Moves the image to `layout`, waiting for every earlier command. Passes in giq are few and
+  // large, so a full barrier costs little and cannot be wrong.
+  void transition(VkCommandBuffer cmd, VkImageLayout layout);
+  // Clears a colour image to `value` (leaves it in GENERAL layout).
+  void clear(VkCommandBuffer cmd, const float value[4]);
+
+  // Reads an RGBA32F or R32 image back (blocking): width*height*components floats, row-major.
+  std::vector<float> read_floats(uint32_t layer = 0);
+
+ private:
+  void release();
+  Context* ctx_ = nullptr;
+  VkImage image_ = VK_NULL_HANDLE;
+  VkImageView view_ = VK_NULL_HANDLE;
+  std::vector<VkImageView> layer_views_;
+  Allocation alloc_;
+  ImageDesc desc_;
+  VkImageLayout layout_ = VK_IMAGE_LAYOUT_UNDEFINED;
+};
+
+// Makes every earlier shader/transfer write visible to every later read or write.
+void full_barrier(VkCommandBuffer cmd);
+
+// A sampler object: linear or nearest filtering, clamp to edge, optional depth compare
+// (for PCF shadow lookups).
+class Sampler {
+ public:
+  Sampler() = default;
+  Sampler(Context& ctx, bool linear, bool depth_compare);
+  ~Sampler();
+  Sampler(Sampler&& o) noexcept : device_(o.device_), sampler_(o.sampler_) { o.sampler_ = VK_NULL_HANDLE; }
+  Sampler& operator=(Sampler&& o) noexcept;
+  Sampler(const Sampler&) = delete;
+  VkSampler handle() const { return sampler_; }
+
+ private:
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkSampler sampler_ = VK_NULL_HANDLE;
+};
+
+}  // namespace giq::realtime

@@ -1,0 +1,52 @@
+#pragma once
+// The scene uploaded once for every technique: vertices, triangles, materials, the BVH,
+// punctual lights and the emissive triangles with their power CDF, bound as bindings 0..6 of
+// any pipeline that reads the scene (shaders/scene_shared.h, shaders/scene.glsl).
+//
+// All meshes are concatenated in Scene::meshes order; a triangle's global index (reported by
+// ray queries) is its mesh's offset plus its index in the mesh.
+
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "giq/realtime/bvh.h"
+#include "giq/realtime/pipeline.h"
+#include "giq/realtime/resources.h"
+#include "giq/scenes/scene.h"
+
+namespace giq::realtime {
+
+class Context;
+
+struct FlatGeometry {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::uvec3> triangles;  // global vertex indices
+  std::vector<uint32_t> material;     // per triangle
+  std::vector<uint32_t> object_id;    // per triangle
+  std::vector<uint32_t> mesh_first_triangle;
+};
+FlatGeometry flatten(const scenes::Scene& scene);
+
+class SceneGpu {
+ public:
+  SceneGpu(Context& ctx, const scenes::Scene& scene);
+
+  static std::vector<VkDescriptorType> binding_types();  // GIQ_SCENE_BINDING_COUNT storage buffers
+  std::vector<Descriptor> descriptors() const;
+
+  const Buffer& index_buffer() const { return indices_; }  // uint32 triples, for rasterisation
+  uint32_t triangle_count() const { return triangle_count_; }
+  uint32_t light_count() const { return light_count_; }
+  uint32_t emissive_count() const { return emissive_count_; }
+  const Bvh& bvh() const { return bvh_; }
+  const FlatGeometry& geometry() const { return geometry_; }
+
+ private:
+  FlatGeometry geometry_;
+  Bvh bvh_;
+  Buffer vertices_, triangles_, materials_, nodes_, prims_, lights_, emissive_, indices_;
+  uint32_t triangle_count_ = 0, light_count_ = 0, emissive_count_ = 0;
+};
+
+}  // namespace giq::realtime

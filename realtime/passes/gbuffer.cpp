@@ -1,0 +1,93 @@
+#include "passes/gbuffer.h"
+
+#include "giq/realtime/context.h"
+#include "giq/realtime/scene_gpu.h"
+#include "giq/realtime/shader.h"
+#include "giq/realtime/timer.h"
+#include "passes/gbuffer_shared.h"
+
+namespace giq::realtime {
+
+GBufferPass::GBufferPass(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene,
+                         const scenes::FeatureSet& features, uint32_t width, uint32_t height, bool ray_traced)
+    : scene_(scene), width_(width), height_(height), ray_traced_(ray_traced) {
+  const VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
+  position_ = Image(ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, color});
+  normal_ = Image(ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, color});
+  ids_ = Image(ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_UINT, color});
+  depth_ = Image(ctx, {width, height, 1, VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
+  const auto defines = feature_defines(features);
+  if (ray_traced_) {
+    auto bindings = SceneGpu::binding_types();
+    bindings.insert(bindings.end(), 3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+    pipeline_ = Pipeline::compute(ctx, compiler.compile("passes/gbuffer_rays.comp", defines), bindings,
+                                  sizeof(gpu::GBufferPush));
+    return;
+  }
+  GraphicsDesc g;
+  g.vertex_spirv = compiler.compile("passes/gbuffer.vert", defines);
+  g.fragment_spirv = compiler.compile("passes/gbuffer.frag", defines);
+  g.color_formats = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R32G32B32A32_UINT};
+  g.depth_format = VK_FORMAT_D32_SFLOAT;
+  pipeline_ = Pipeline::graphics(ctx, g, SceneGpu::binding_types(), sizeof(gpu::GBufferPush));
+}
+
+void GBufferPass::record(VkCommandBuffer cmd, const scenes::Camera& camera, GpuTimer& timer) {
+  // A camera without a near plane (znear 0) would map every depth to 1; 1 mm keeps the
+  // rasteriser working at every scene scale the tests use.
+  const float znear = camera.znear > 0.0f ? camera.znear : 1e-3f;
+  const gpu::GBufferPush pc{gpu::make_gpu_camera(camera), glm::vec4(float(width_), float(height_), znear, 0.0f)};
+  timer.begin(cmd, "gbuffer");
+  if (ray_traced_) {
+    for (Image* i : {&position_, &normal_, &ids_}) i->transition(cmd, VK_IMAGE_LAYOUT_GENERAL);
+    pipeline_.bind(cmd);
+    auto d = scene_.descriptors();
+    for (Image* i : {&position_, &normal_, &ids_}) d.push_back(Descriptor::storage_image(*i));
+    pipeline_.push_descriptors(cmd, d);
+    pipeline_.push_constants(cmd, pc);
+    pipeline_.dispatch_2d(cmd, width_, height_);
+    timer.end(cmd);
+    return;
+  }
+  for (Image* i : {&position_, &normal_, &ids_}) i->transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  depth_.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+  VkRenderingAttachmentInfo colors[3];
+  Image* targets[3] = {&position_, &normal_, &ids_};
+  for (int i = 0; i < 3; ++i) {
+    colors[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    colors[i].imageView = targets[i]->view();
+    colors[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    colors[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    colors[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    colors[i].clearValue = {};
+  }
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = depth_.view();
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, {width_, height_}};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 3;
+  ri.pColorAttachments = colors;
+  ri.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &ri);
+  VkViewport vp{0.0f, 0.0f, float(width_), float(height_), 0.0f, 1.0f};
+  VkRect2D sc{{0, 0}, {width_, height_}};
+  vkCmdSetViewport(cmd, 0, 1, &vp);
+  vkCmdSetScissor(cmd, 0, 1, &sc);
+  pipeline_.bind(cmd);
+  pipeline_.push_descriptors(cmd, scene_.descriptors());
+  pipeline_.push_constants(cmd, pc);
+  if (scene_.triangle_count() > 0) {
+    vkCmdBindIndexBuffer(cmd, scene_.index_buffer().handle(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, 3 * scene_.triangle_count(), 1, 0, 0, 0);
+  }
+  vkCmdEndRendering(cmd);
+  for (Image* i : {&position_, &normal_, &ids_}) i->transition(cmd, VK_IMAGE_LAYOUT_GENERAL);
+  timer.end(cmd);
+}
+
+}  // namespace giq::realtime

@@ -1,0 +1,154 @@
+#include "passes/shadow_maps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "giq/realtime/context.h"
+#include "giq/realtime/scene_gpu.h"
+#include "giq/realtime/shader.h"
+#include "giq/realtime/timer.h"
+#include "passes/shadow_maps_shared.h"
+
+namespace giq::realtime {
+
+namespace {
+float diagonal(const scenes::Bounds& b) { return std::max(glm::length(b.extent()), 1e-6f); }
+glm::vec3 centre(const scenes::Bounds& b) { return b.empty() ? glm::vec3(0.0f) : 0.5f * (b.lo + b.hi); }
+}  // namespace
+
+ShadowMaps::ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene, const scenes::Bounds& bounds,
+                       uint32_t size)
+    : ctx_(ctx), scene_(scene), bounds_(bounds), size_(size), sampler_(ctx, false, true) {
+  GraphicsDesc g;
+  g.vertex_spirv = compiler.compile("passes/shadow_maps.vert");
+  g.depth_format = VK_FORMAT_D32_SFLOAT;
+  g.depth_bias = true;
+  pipeline_ = Pipeline::graphics(ctx, g, SceneGpu::binding_types(), sizeof(glm::mat4));
+}
+
+uint32_t ShadowMaps::add_cube(glm::vec3 position) {
+  const uint32_t first = uint32_t(layers_.size());
+  sources_.push_back({true, position, first});
+  // Near plane: a thousandth of the scene; far: beyond the farthest point of the scene.
+  const float diag = diagonal(bounds_);
+  const float znear = 1e-3f * diag, zfar = 2.0f * diag + glm::length(position - centre(bounds_));
+  const glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, znear, zfar);
+  const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+  for (int f = 0; f < 6; ++f) {
+    layers_.push_back(proj * glm::lookAtRH(position, position + dirs[f], ups[f]));
+    // A 90-degree face is 2 units wide at distance 1.
+    params_.emplace_back(GIQ_SHADOW_CUBE_FACE, 2.0f / float(size_), 0.0f, 0.0f);
+  }
+  return first;
+}
+
+uint32_t ShadowMaps::add_cascades(glm::vec3 direction) {
+  const uint32_t first = uint32_t(layers_.size());
+  sources_.push_back({false, glm::normalize(direction), first});
+  for (int c = 0; c < kCascades; ++c) {
+    layers_.emplace_back(1.0f);
+    params_.emplace_back(GIQ_SHADOW_CASCADE, 0.0f, 0.0f, 0.0f);
+  }
+  return first;
+}
+
+void ShadowMaps::create_resources() {
+  const uint32_t n = std::max<uint32_t>(1, layer_count());
+  depth_ = Image(ctx_, {size_, size_, n, VK_FORMAT_D32_SFLOAT,
+                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+  layer_buffer_ = Buffer(ctx_, n * sizeof(gpu::GpuShadowLayer), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
+}
+
+void ShadowMaps::update_cascades(const Source& s, const scenes::Camera& camera, float aspect) {
+  // The camera frustum from its near plane to the farthest point of the scene, split into
+  // kCascades slices; each slice's bounding sphere sets a square orthographic window.
+  const glm::vec3 lo = bounds_.lo, hi = bounds_.hi;
+  float far_d = 0.0f;
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 corner((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
+    far_d = std::max(far_d, glm::dot(corner - camera.position, camera.forward));
+  }
+  const float near_d = camera.znear > 0.0f ? camera.znear : 1e-3f;
+  far_d = std::max(far_d, 2.0f * near_d);
+  const float t = std::tan(0.5f * camera.yfov);
+  // The light's view is fixed for the scene (so texel snapping below is stable as the camera
+  // moves): looking along the light from outside the scene's bounding sphere.
+  const float radius = 0.5f * diagonal(bounds_);
+  const glm::vec3 c0 = centre(bounds_);
+  const glm::vec3 up = std::abs(s.v.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  const glm::mat4 view = glm::lookAtRH(c0 - s.v * (2.0f * radius), c0, up);
+  auto split = [&](int i) {
+    const float f = float(i) / float(kCascades);
+    const float log_split = near_d * std::pow(far_d / near_d, f), uni = near_d + (far_d - near_d) * f;
+    return split_lambda_ * log_split + (1.0f - split_lambda_) * uni;
+  };
+  for (int c = 0; c < kCascades; ++c) {
+    const float d0 = split(c), d1 = split(c + 1);
+    glm::vec3 corners[8];
+    glm::vec3 mid(0.0f);
+    for (int i = 0; i < 8; ++i) {
+      const float d = (i & 4) ? d1 : d0;
+      const float x = (i & 1) ? 1.0f : -1.0f, y = (i & 2) ? 1.0f : -1.0f;
+      corners[i] = camera.position + d * (camera.forward + x * t * aspect * camera.right + y * t * camera.up);
+      mid += corners[i] / 8.0f;
+    }
+    float r = 0.0f;
+    for (const auto& p : corners) r = std::max(r, glm::length(p - mid));
+    r = std::min(r, radius * 1.01f + glm::length(mid - c0));  // no bigger than needed for the scene
+    const float texel = 2.0f * r / float(size_);
+    // Snap the window to whole texels in light space: a moving camera then does not make the
+    // shadow edges crawl.
+    glm::vec4 m = view * glm::vec4(mid, 1.0f);
+    m.x = std::round(m.x / texel) * texel;
+    m.y = std::round(m.y / texel) * texel;
+    const glm::mat4 proj = glm::orthoRH_ZO(m.x - r, m.x + r, m.y - r, m.y + r, 0.0f, 4.0f * radius);
+    layers_[s.first_layer + c] = proj * view;
+    params_[s.first_layer + c] = glm::vec4(GIQ_SHADOW_CASCADE, texel, d1, 0.0f);
+  }
+}
+
+void ShadowMaps::record(VkCommandBuffer cmd, const scenes::Camera& camera, float aspect, GpuTimer& timer) {
+  if (!depth_) create_resources();
+  for (const auto& s : sources_)
+    if (!s.cube) update_cascades(s, camera, aspect);
+  auto* out = static_cast<gpu::GpuShadowLayer*>(layer_buffer_.mapped());
+  for (uint32_t i = 0; i < layer_count(); ++i) out[i] = {layers_[i], params_[i]};
+
+  timer.begin(cmd, "shadow_maps");
+  depth_.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+  pipeline_.bind(cmd);
+  pipeline_.push_descriptors(cmd, scene_.descriptors());
+  for (uint32_t l = 0; l < layer_count(); ++l) {
+    if (cache_static_ && rendered_ && params_[l].x == GIQ_SHADOW_CUBE_FACE) continue;
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = depth_.layer_view(l);
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depth.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    ri.renderArea = {{0, 0}, {size_, size_}};
+    ri.layerCount = 1;
+    ri.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &ri);
+    VkViewport vp{0.0f, 0.0f, float(size_), float(size_), 0.0f, 1.0f};
+    VkRect2D sc{{0, 0}, {size_, size_}};
+    vkCmdSetViewport(cmd, 0, 1, &vp);
+    vkCmdSetScissor(cmd, 0, 1, &sc);
+    // Slope-scaled bias: surfaces at grazing angles to the light need the most.
+    vkCmdSetDepthBias(cmd, 0.0f, 0.0f, 1.5f);
+    pipeline_.push_constants(cmd, layers_[l]);
+    if (scene_.triangle_count() > 0) {
+      vkCmdBindIndexBuffer(cmd, scene_.index_buffer().handle(), 0, VK_INDEX_TYPE_UINT32);
+      vkCmdDrawIndexed(cmd, 3 * scene_.triangle_count(), 1, 0, 0, 0);
+    }
+    vkCmdEndRendering(cmd);
+  }
+  depth_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  rendered_ = true;
+  timer.end(cmd);
+}
+
+}  // namespace giq::realtime

@@ -1,0 +1,77 @@
+#pragma once
+// The shared shadow-map pass (seed 004 section 5.4): cube maps for point and spot lights and
+// for the representative points of area lights, cascaded maps for directional lights, all as
+// layers of one depth 2D array so that lookups need no descriptor indexing. A cube is six
+// 90-degree layers (+x, -x, +y, -y, +z, -z); the lighting shader picks the face by the major
+// axis of the light-to-point direction. Depth uses slope-scaled bias when rendering and a
+// normal offset of a few texels when sampling (shaders/shadow.glsl); filtering is PCF over a
+// (2r+1)^2 texel grid.
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "giq/realtime/pipeline.h"
+#include "giq/realtime/resources.h"
+#include "giq/scenes/camera.h"
+#include "giq/scenes/scene.h"
+
+namespace giq::realtime {
+
+class Context;
+class GpuTimer;
+class SceneGpu;
+class ShaderCompiler;
+
+class ShadowMaps {
+ public:
+  static constexpr int kCascades = 3;
+
+  ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene, const scenes::Bounds& bounds, uint32_t size);
+
+  // Declare the maps before the first record(); each returns its first layer.
+  uint32_t add_cube(glm::vec3 position);
+  uint32_t add_cascades(glm::vec3 direction);
+  // The fraction between logarithmic (1) and uniform (0) cascade splits (Zhang et al. 2006,
+  // "Parallel-Split Shadow Maps", practical split scheme).
+  void set_split_lambda(float lambda) { split_lambda_ = lambda; }
+  // Render cube maps on the first record() only. The geometry and the punctual lights of a
+  // technique instance never change (an animated scene recreates the technique each frame),
+  // so their cube maps stay valid; cascades follow the camera and are always re-rendered.
+  void set_cache_static(bool cache) { cache_static_ = cache; }
+
+  // Renders every layer; cascades follow the camera. Pass name "shadow_maps".
+  void record(VkCommandBuffer cmd, const scenes::Camera& camera, float aspect, GpuTimer& timer);
+
+  uint32_t layer_count() const { return uint32_t(layers_.size()); }
+  uint32_t size() const { return size_; }
+  const Image& depth() const { return depth_; }
+  const Buffer& layers() const { return layer_buffer_; }
+  const Sampler& sampler() const { return sampler_; }
+
+ private:
+  struct Source {
+    bool cube;
+    glm::vec3 v;  // position (cube) or direction (cascades)
+    uint32_t first_layer;
+  };
+  void create_resources();
+  void update_cascades(const Source& s, const scenes::Camera& camera, float aspect);
+
+  Context& ctx_;
+  const SceneGpu& scene_;
+  scenes::Bounds bounds_;
+  uint32_t size_;
+  float split_lambda_ = 0.5f;
+  bool cache_static_ = true;
+  bool rendered_ = false;
+  std::vector<Source> sources_;
+  std::vector<glm::mat4> layers_;
+  std::vector<glm::vec4> params_;
+  Image depth_;
+  Buffer layer_buffer_;
+  Sampler sampler_;
+  Pipeline pipeline_;
+};
+
+}  // namespace giq::realtime

@@ -1,0 +1,24 @@
+// Shadow-map layers as the lighting shaders read them (shadow_maps.cpp, shadow.glsl).
+#ifndef GIQ_SHADOW_MAPS_SHARED_H
+#define GIQ_SHADOW_MAPS_SHARED_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+namespace giq::realtime::gpu {
+using vec4 = glm::vec4;
+using mat4 = glm::mat4;
+#endif
+
+#define GIQ_SHADOW_CUBE_FACE 0.0
+#define GIQ_SHADOW_CASCADE 1.0
+
+struct GpuShadowLayer {
+  mat4 view_proj;  // local frame -> clip, depth in [0, 1]
+  vec4 params;     // x: kind (GIQ_SHADOW_*); y: world size of a texel at distance 1 (cube) or
+                   // of a texel (cascade); z: far split distance along the view (cascade)
+};
+
+#ifdef __cplusplus
+}  // namespace giq::realtime::gpu
+#endif
+#endif

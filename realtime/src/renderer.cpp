@@ -1,0 +1,115 @@
+#include "giq/realtime/renderer.h"
+
+#include <chrono>
+#include <memory>
+
+#include "giq/base/error.h"
+#include "giq/base/version.h"
+#include "giq/realtime/context.h"
+#include "giq/realtime/resources.h"
+#include "giq/realtime/scene_gpu.h"
+#include "giq/realtime/shader.h"
+#include "giq/realtime/technique.h"
+
+namespace giq::realtime {
+
+image::Image read_outputs(Technique& technique, uint32_t width, uint32_t height) {
+  image::Image out{int(width), int(height)};
+  for (auto& [layer, img] : technique.outputs()) {
+    const std::vector<float> rgba = img->read_floats();
+    const std::string prefix = layer.empty() ? "" : layer + ".";
+    const char* names[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c) {
+      float* dst = out.add_channel(prefix + names[c]);
+      for (size_t i = 0; i < out.pixel_count(); ++i) dst[i] = rgba[4 * i + c];
+    }
+  }
+  return out;
+}
+
+nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& scene,
+                               const RenderOptions& options, const std::function<void(RenderedFrame&)>& on_frame) {
+  const TechniqueInfo& info = find_technique(options.technique);
+  const ParameterValues params(info.parameters, options.parameters);
+  if (options.width < 1 || options.height < 1 || options.width > 16384 || options.height > 16384)
+    throw InputError("", "--width/--height", "resolution " + std::to_string(options.width) + "x" +
+                                                 std::to_string(options.height) + " is outside 1..16384");
+  if (options.frames < 1) throw InputError("", "--frames", std::to_string(options.frames) + " frames; expected at least 1");
+  if (options.warmup < 0) throw InputError("", "--warmup", std::to_string(options.warmup) + "; expected 0 or more");
+  const scenes::View& view0 = scene.view(options.view);  // throws InputError naming the views
+  const std::string view_name = view0.name;
+
+  GpuTimer timer(ctx);
+  std::unique_ptr<SceneGpu> scene_gpu;
+  std::unique_ptr<Technique> technique;
+  std::unique_ptr<scenes::Scene> posed;
+  std::vector<FrameTiming> timings;
+  int technique_frame = 0;
+  const int total = options.warmup + options.frames;
+  for (int f = 0; f < total; ++f) {
+    // A static scene is uploaded once; an animated one is posed and uploaded per frame, and
+    // the technique is recreated for the new geometry.
+    if (!technique || scene.features.animation) {
+      technique.reset();
+      scene_gpu.reset();
+      posed = std::make_unique<scenes::Scene>(scene.features.animation ? scene.at_frame(f) : scene);
+      scene_gpu = std::make_unique<SceneGpu>(ctx, *posed);
+      technique = info.create({ctx, compiler, *posed, *scene_gpu, options.width, options.height, params});
+      technique_frame = 0;
+    }
+    const scenes::Camera camera = posed->view(view_name).camera;
+    FrameTiming t;
+    t.frame = f;
+    t.warmup = f < options.warmup;
+    const auto start = std::chrono::steady_clock::now();
+    ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+      timer.reset(cmd);
+      technique->render({cmd, technique_frame, camera, timer});
+    });
+    t.cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    t.passes = timer.resolve();
+    t.gpu_ms = timer.frame_ms();
+    timings.push_back(t);
+    ++technique_frame;
+    if (t.warmup) continue;
+
+    RenderedFrame out;
+    out.frame = f;
+    out.timing = t;
+    if (options.read_back) out.image = read_outputs(*technique, options.width, options.height);
+    nlohmann::json pj = params.all();
+    out.image.metadata = {{"giq.version", version()},
+                          {"giq.renderer", "realtime"},
+                          {"giq.technique", info.name},
+                          {"giq.parameters", pj.dump()},
+                          {"giq.scene", scene.path.string()},
+                          {"giq.scene_hash", scene.content_hash},
+                          {"giq.view", view_name},
+                          {"giq.frame", std::to_string(f)},
+                          {"giq.technique_frame", std::to_string(technique_frame)},
+                          {"giq.device", ctx.info().name},
+                          {"giq.driver", ctx.info().driver},
+                          {"giq.gpu_ms", std::to_string(t.gpu_ms)}};
+    on_frame(out);
+  }
+
+  std::vector<std::string> declared = technique ? technique->passes() : std::vector<std::string>{};
+  nlohmann::json run = {
+      {"giq_version", version()},
+      {"technique", info.name},
+      {"parameters", params.all()},
+      {"scene", scene.path.string()},
+      {"scene_hash", scene.content_hash},
+      {"view", view_name},
+      {"resolution", {options.width, options.height}},
+      {"device", {{"name", ctx.info().name}, {"driver", ctx.info().driver}, {"type", ctx.info().type},
+                  {"vulkan", std::to_string(VK_API_VERSION_MAJOR(ctx.info().api_version)) + "." +
+                                 std::to_string(VK_API_VERSION_MINOR(ctx.info().api_version)) + "." +
+                                 std::to_string(VK_API_VERSION_PATCH(ctx.info().api_version))}}},
+      {"declared_passes", declared},
+      {"validation", ctx.validation_enabled()},
+  };
+  return timings_json(timings, run);
+}
+
+}  // namespace giq::realtime

@@ -1,0 +1,59 @@
+#include "giq/realtime/technique.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "giq/base/error.h"
+
+namespace giq::realtime {
+
+ParameterValues::ParameterValues(const std::vector<Parameter>& declared, const std::vector<std::string>& assignments) {
+  for (const auto& p : declared) values_[p.name] = p.default_value;
+  for (const auto& a : assignments) {
+    const auto eq = a.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError("", "--param", "expected name=value, got '" + a + "'");
+    const std::string name = a.substr(0, eq), text = a.substr(eq + 1);
+    const Parameter* p = nullptr;
+    for (const auto& d : declared)
+      if (d.name == name) p = &d;
+    if (!p) {
+      std::string names;
+      for (const auto& d : declared) names += (names.empty() ? "" : ", ") + d.name;
+      throw InputError("", "--param", "unknown parameter '" + name + "'; expected one of: " + (names.empty() ? "(none)" : names));
+    }
+    double v = 0.0;
+    size_t used = 0;
+    try {
+      v = std::stod(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != text.size() || text.empty() || !std::isfinite(v))
+      throw InputError("", "--param " + name, "'" + text + "' is not a finite number");
+    if (p->integer && v != std::floor(v))
+      throw InputError("", "--param " + name, "'" + text + "' is not an integer");
+    if (v < p->min_value || v > p->max_value) {
+      std::ostringstream m;
+      m << text << " is outside [" << p->min_value << ", " << p->max_value << "]";
+      throw InputError("", "--param " + name, m.str());
+    }
+    values_[name] = v;
+  }
+}
+
+double ParameterValues::get(std::string_view name) const {
+  auto it = values_.find(name);
+  if (it == values_.end()) throw std::logic_error("undeclared parameter '" + std::string(name) + "'");
+  return it->second;
+}
+
+const TechniqueInfo& find_technique(std::string_view name) {
+  for (const auto& t : techniques())
+    if (t.name == name) return t;
+  std::string names;
+  for (const auto& t : techniques()) names += (names.empty() ? "" : ", ") + t.name;
+  throw InputError("", "--technique", "unknown technique '" + std::string(name) + "'; expected one of: " + names);
+}
+
+}  // namespace giq::realtime

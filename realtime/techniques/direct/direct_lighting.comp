@@ -1,0 +1,174 @@
+#version 460
+// `direct` lighting: for each G-buffer texel, emission seen directly plus light arriving
+// straight from the light sources, each attenuated by its shadow map; no indirect light.
+// Punctual lights are evaluated exactly (glTF units and falloff). Emissive meshes are area
+// lights: the diffuse part integrates each emissive triangle exactly (Lambert's polygon
+// formula after clipping to the horizon; Arvo 1995, "Applications of Irradiance Tensors to
+// the Simulation of Non-Lambertian Phenomena", eq. 7), the specular part uses the
+// representative point on the triangle closest to the reflection ray with energy
+// normalisation (Karis 2013, "Real Shading in Unreal Engine 4"; seed 001, "Area Lights").
+#extension GL_GOOGLE_include_directive : require
+
+#include "shaders/scene.glsl"
+#include "shaders/brdf.glsl"
+#include "shaders/lights.glsl"
+#include "techniques/direct/direct_shared.h"
+#include "passes/shadow_maps_shared.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(binding = GIQ_SCENE_BINDING_COUNT + 0, rgba32f) uniform readonly image2D gb_position;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 1, rgba32f) uniform readonly image2D gb_normal;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 2, rgba32ui) uniform readonly uimage2D gb_ids;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 3) uniform sampler2DArrayShadow shadow_map;
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 4) readonly buffer ShadowLayers { GpuShadowLayer shadow_layers[]; };
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 5) readonly buffer AreaLights { GpuAreaLight area_lights[]; };
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 6) readonly buffer AreaTriangles { GpuAreaTriangle area_triangles[]; };
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 7) readonly buffer LightShadow { uint light_shadow_layer[]; };
+layout(binding = GIQ_SCENE_BINDING_COUNT + 8, rgba32f) uniform writeonly image2D out_beauty;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 9, rgba32f) uniform writeonly image2D out_direct;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 10, rgba32f) uniform writeonly image2D out_indirect;
+
+layout(push_constant) uniform Push { DirectPush pc; };
+
+#include "passes/shadow.glsl"
+
+// The triangle (a, b, c), relative to the shading point, clipped to the half-space n.x >= 0
+// (Sutherland-Hodgman against one plane: at most 4 vertices).
+int clip_to_horizon(vec3 a, vec3 b, vec3 c, vec3 n, out vec3 v[4]) {
+  vec3 tri[3] = vec3[3](a, b, c);
+  int count = 0;
+  for (int i = 0; i < 3; ++i) {
+    vec3 p0 = tri[i], p1 = tri[(i + 1) % 3];
+    float d0 = dot(n, p0), d1 = dot(n, p1);
+    if (d0 >= 0.0) v[count++] = p0;
+    if ((d0 >= 0.0) != (d1 >= 0.0)) v[count++] = p0 + (p1 - p0) * (d0 / (d0 - d1));
+  }
+  return count;
+}
+
+// Irradiance at the origin (normal n) from a polygon of unit radiance:
+// E = 1/2 sum_i theta_i n.unit(v_i x v_i+1) (Lambert's formula; Arvo 1995).
+float polygon_irradiance(vec3 a, vec3 b, vec3 c, vec3 n) {
+  vec3 v[4];
+  int count = clip_to_horizon(a, b, c, n, v);
+  if (count < 3) return 0.0;
+  // A shading point on a vertex of the light sees it edge-on: no irradiance, and no NaN.
+  for (int i = 0; i < count; ++i)
+    if (dot(v[i], v[i]) <= 1e-30) return 0.0;
+  float sum = 0.0;
+  for (int i = 0; i < count; ++i) {
+    vec3 v0 = normalize(v[i]), v1 = normalize(v[(i + 1) % count]);
+    vec3 cr = cross(v0, v1);
+    float len = length(cr);
+    // atan(|v0 x v1|, v0.v1) keeps the angle accurate for small, distant triangles.
+    if (len > 0.0) sum += atan(len, dot(v0, v1)) * dot(n, cr / len);
+  }
+  return 0.5 * abs(sum);
+}
+
+#ifdef GIQ_SPECULAR
+// The point of triangle (a, b, c) closest to q (Ericson 2004, "Real-Time Collision
+// Detection", 5.1.5).
+vec3 closest_on_triangle(vec3 q, vec3 a, vec3 b, vec3 c) {
+  vec3 ab = b - a, ac = c - a, ap = q - a;
+  float d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  vec3 bp = q - b;
+  float d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  float vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + ab * (d1 / (d1 - d3));
+  vec3 cp = q - c;
+  float d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  float vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
+  float va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  float denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+#endif
+
+vec3 area_light(GpuAreaLight l, Surface s, vec3 p, vec3 wo) {
+  vec3 sum = vec3(0.0);
+  for (uint k = 0u; k < l.range.y; ++k) {
+    GpuAreaTriangle t = area_triangles[l.range.x + k];
+    vec3 a = t.a.xyz - p, b = t.b.xyz - p, c = t.c.xyz - p;
+    vec3 ng = cross(b - a, c - a);
+    // A one-sided emitter lights only the half-space in front of it.
+    if (t.a.w == 0.0 && dot(ng, -a) <= 0.0) continue;
+    float e = polygon_irradiance(a, b, c, s.n);
+    if (e <= 0.0) continue;
+    vec3 tri_mid = (a + b + c) / 3.0;
+    vec3 diffuse, specular;
+    brdf_parts(s, wo, normalize(tri_mid), diffuse, specular);
+    vec3 f = diffuse;
+#ifdef GIQ_SPECULAR
+    vec3 r = reflect(-wo, s.n);
+    float rn = dot(r, ng);
+    vec3 q = tri_mid;
+    if (abs(rn) > 0.0) {
+      float tt = dot(a, ng) / rn;
+      if (tt > 0.0) q = r * tt;
+    }
+    q = closest_on_triangle(q, a, b, c);
+    float d = length(q);
+    if (d > 0.0) {
+      vec3 dd, spec;
+      brdf_parts(s, wo, q / d, dd, spec);
+      // Widening the lobe by the light's angular size keeps the energy of a wide light from
+      // concentrating at the representative point: (alpha / alpha')^2.
+      float source_radius = sqrt(0.5 * length(ng) / PI);
+      float a2 = clamp(s.alpha + source_radius / (2.0 * d), 0.0, 1.0);
+      f += spec * (s.alpha * s.alpha) / (a2 * a2);
+    }
+#endif
+    sum += f * t.radiance.rgb * e;
+  }
+  return sum;
+}
+
+void main() {
+  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+  if (px.x >= int(pc.viewport.x) || px.y >= int(pc.viewport.y)) return;
+  vec4 pos = imageLoad(gb_position, px);
+  uvec4 ids = imageLoad(gb_ids, px);
+  vec3 radiance = vec3(0.0);
+  if (ids.x == 0u) {
+    radiance = pc.environment.rgb;  // the camera sees the environment directly
+  } else {
+    GpuMaterial mat = scene_materials[ids.y];
+    bool back = ids.w != 0u;
+    if (!back || mat.params.w != 0.0) {  // the back of a one-sided material is black
+      vec3 p = pos.xyz;
+      vec3 n = imageLoad(gb_normal, px).xyz;
+      vec3 wo = normalize(pc.camera.position.xyz - p);
+      if (mat.emissive.w != 0.0) radiance += mat.emissive.rgb;
+      Surface s = make_surface(mat, n);
+      float normal_offset = pc.viewport.z;
+      int pcf = int(pc.viewport.w);
+      for (uint i = 0u; i < pc.counts.x; ++i) {
+        vec3 wi;
+        float dist;
+        vec3 e = punctual_incident(scene_lights[i], p, wi, dist);
+        float cos_i = dot(n, wi);
+        if (cos_i <= 0.0 || all(equal(e, vec3(0.0)))) continue;
+        float vis = int(scene_lights[i].position.w) == GIQ_LIGHT_DIRECTIONAL
+                        ? shadow_cascades(light_shadow_layer[i], dot(p - pc.camera.position.xyz, pc.camera.forward.xyz), p, n, normal_offset, pcf)
+                        : shadow_cube(light_shadow_layer[i], scene_lights[i].position.xyz, p, n, normal_offset, pcf);
+        radiance += brdf_eval(s, wo, wi) * e * cos_i * vis;
+      }
+      for (uint i = 0u; i < pc.counts.y; ++i) {
+        GpuAreaLight l = area_lights[i];
+        vec3 c = area_light(l, s, p, wo);
+        if (all(equal(c, vec3(0.0)))) continue;
+        radiance += c * shadow_cube(uint(l.position.w), l.position.xyz, p, n, normal_offset, pcf);
+      }
+    }
+  }
+  imageStore(out_beauty, px, vec4(radiance, 1.0));
+  imageStore(out_direct, px, vec4(radiance, 1.0));
+  imageStore(out_indirect, px, vec4(0.0, 0.0, 0.0, 1.0));
+}

@@ -1,0 +1,17 @@
+// The registry of real-time techniques: adding a technique is adding its folder and one line
+// here.
+#include "giq/realtime/technique.h"
+#include "techniques/direct/direct.h"
+#include "techniques/pt/pt.h"
+
+namespace giq::realtime {
+
+const std::vector<TechniqueInfo>& techniques() {
+  static const std::vector<TechniqueInfo> all = {
+      direct_technique(),
+      pt_technique(),
+  };
+  return all;
+}
+
+}  // namespace giq::realtime
