@@ -137,6 +137,7 @@ TEST_F(GateCli, ProvesTheGateCanFail) {
   EXPECT_EQ(e["settings"]["resolution"], json::array({16, 8}));
   EXPECT_EQ(e["files"].size(), 1u);
   EXPECT_EQ(e["scene_hash"].get<std::string>().size(), 16u);
+  EXPECT_EQ(fs::path(e["scene"].get<std::string>()).filename(), "cornell.gltf");  // relative to the config
   EXPECT_EQ(update().code, 0);
   EXPECT_EQ(calls("reference"), 1);  // fresh: not rendered again
 

@@ -163,7 +163,7 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
                                                       log.string() + "): " + r.log_tail);
     fs::remove(log, ec);
     gate::GoldenEntry e;
-    e.scene = c.scene.lexically_relative(config.file.parent_path()).generic_string();
+    e.scene = fs::absolute(c.scene).lexically_relative(fs::absolute(config.file).parent_path()).generic_string();
     e.scene_hash = hash;
     e.settings = gate::golden_settings(c);
     e.render_seconds = r.seconds;
