@@ -1,11 +1,12 @@
 // Gate config parsing: defaults, path resolution, bound forms, and bad input naming the field.
 
+#include "giq/gate/config.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "giq/base/error.h"
-#include "giq/gate/config.h"
 
 namespace {
 
@@ -86,38 +87,44 @@ TEST_P(GateConfigBad, NamesTheField) {
   }
 }
 
-#define CASE_PREFIX R"({"version": 1, "cases": [{"name": "a", "scene": "s.gltf", "technique": "t", )"
+#define CASE_PREFIX \
+  R"({"version": 1, "cases": [{"name": "a", "scene": "s.gltf", "technique": "t", )"
 
 INSTANTIATE_TEST_SUITE_P(
     Inputs, GateConfigBad,
-    testing::Values(Bad{"{", "", "not valid JSON"}, Bad{R"({"version": 2, "cases": []})", "version", "expected 1"},
-                    Bad{R"({"version": 1})", "cases", "missing or empty"},
-                    Bad{R"({"version": 1, "cases": [], "extra": 1})", "extra", "unknown key"},
-                    Bad{CASE_PREFIX R"("bounds": {"flip_mean": {"fail": 0.1, "warn": 0.2}}}]})",
-                        "cases[0].bounds.flip_mean.warn", "stricter"},
-                    Bad{CASE_PREFIX R"("bounds": {"ssim": {"fail": 0.9, "warn": 0.8}}}]})", "cases[0].bounds.ssim.warn",
-                        "stricter"},
-                    Bad{CASE_PREFIX R"("bounds": {"gpu_ms": 3}}]})", "cases[0].bounds.gpu_ms.device", "device"},
-                    Bad{CASE_PREFIX R"("bounds": {"relmse": "small"}}]})", "cases[0].bounds.relmse", "not an object"},
-                    Bad{CASE_PREFIX R"("bounds": {"relmse": {}}}]})", "cases[0].bounds.relmse", "fail level"},
-                    Bad{CASE_PREFIX R"("bounds": {"relmse": {"fail": 1, "better": "up"}}}]})",
-                        "cases[0].bounds.relmse.better", "\"lower\" or \"higher\""},
-                    Bad{CASE_PREFIX R"("bounds": {}}]})", "cases[0].bounds", "at least one metric"},
-                    Bad{CASE_PREFIX R"("frames": "5:2", "bounds": {"relmse": 1}}]})", "cases[0].frames", "A <= B"},
-                    Bad{CASE_PREFIX R"("resolution": [0, 4], "bounds": {"relmse": 1}}]})", "cases[0].resolution[0]",
-                        "integer in [1, 16384]"},
-                    Bad{CASE_PREFIX R"("golden": {"spp": 4, "rel_error": 0.1}, "bounds": {"relmse": 1}}]})",
-                        "cases[0].golden", "not both"},
-                    Bad{CASE_PREFIX R"("golden": {"rel_error": 2}, "bounds": {"relmse": 1}}]})",
-                        "cases[0].golden.rel_error", "fraction"},
-                    Bad{CASE_PREFIX R"("colour": 1, "bounds": {"relmse": 1}}]})", "cases[0].colour", "unknown key"},
-                    Bad{CASE_PREFIX R"("bounds": {"relmse": 1}}, {"name": "a", "scene": "s", "technique": "t",
+    testing::Values(
+        Bad{"{", "", "not valid JSON"},
+        Bad{R"({"version": 2, "cases": []})", "version", "expected 1"},
+        Bad{R"({"version": 1})", "cases", "missing or empty"},
+        Bad{R"({"version": 1, "cases": [], "extra": 1})", "extra", "unknown key"},
+        Bad{CASE_PREFIX R"("bounds": {"flip_mean": {"fail": 0.1, "warn": 0.2}}}]})",
+            "cases[0].bounds.flip_mean.warn", "stricter"},
+        Bad{CASE_PREFIX R"("bounds": {"ssim": {"fail": 0.9, "warn": 0.8}}}]})",
+            "cases[0].bounds.ssim.warn", "stricter"},
+        Bad{CASE_PREFIX R"("bounds": {"gpu_ms": 3}}]})", "cases[0].bounds.gpu_ms.device", "device"},
+        Bad{CASE_PREFIX R"("bounds": {"relmse": "small"}}]})", "cases[0].bounds.relmse",
+            "not an object"},
+        Bad{CASE_PREFIX R"("bounds": {"relmse": {}}}]})", "cases[0].bounds.relmse", "fail level"},
+        Bad{CASE_PREFIX R"("bounds": {"relmse": {"fail": 1, "better": "up"}}}]})",
+            "cases[0].bounds.relmse.better", "\"lower\" or \"higher\""},
+        Bad{CASE_PREFIX R"("bounds": {}}]})", "cases[0].bounds", "at least one metric"},
+        Bad{CASE_PREFIX R"("frames": "5:2", "bounds": {"relmse": 1}}]})", "cases[0].frames",
+            "A <= B"},
+        Bad{CASE_PREFIX R"("resolution": [0, 4], "bounds": {"relmse": 1}}]})",
+            "cases[0].resolution[0]", "integer in [1, 16384]"},
+        Bad{CASE_PREFIX R"("golden": {"spp": 4, "rel_error": 0.1}, "bounds": {"relmse": 1}}]})",
+            "cases[0].golden", "not both"},
+        Bad{CASE_PREFIX R"("golden": {"rel_error": 2}, "bounds": {"relmse": 1}}]})",
+            "cases[0].golden.rel_error", "fraction"},
+        Bad{CASE_PREFIX R"("colour": 1, "bounds": {"relmse": 1}}]})", "cases[0].colour",
+            "unknown key"},
+        Bad{CASE_PREFIX R"("bounds": {"relmse": 1}}, {"name": "a", "scene": "s", "technique": "t",
                         "bounds": {"relmse": 1}}]})",
-                        "cases[1].name", "unique"},
-                    Bad{R"({"version": 1, "cases": [{"name": "a/b", "scene": "s", "technique": "t", "bounds": {"x": 1}}]})",
-                        "cases[0].name", "folders"},
-                    Bad{R"({"version": 1, "cases": [{"name": "a", "technique": "t", "bounds": {"x": 1}}]})",
-                        "cases[0].scene", "missing"}));
+            "cases[1].name", "unique"},
+        Bad{R"({"version": 1, "cases": [{"name": "a/b", "scene": "s", "technique": "t", "bounds": {"x": 1}}]})",
+            "cases[0].name", "folders"},
+        Bad{R"({"version": 1, "cases": [{"name": "a", "technique": "t", "bounds": {"x": 1}}]})",
+            "cases[0].scene", "missing"}));
 
 TEST(GateConfig, Glob) {
   using giq::gate::glob_match;

@@ -1,12 +1,13 @@
 // Bound evaluation: PASS, WARN, FAIL, UNRESOLVED both ways, SKIP on another device, missing
 // and undefined metrics, metric names resolved in single-image and sequence metrics.json.
 
+#include "giq/gate/evaluation.h"
+
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
 #include "giq/gate/config.h"
-#include "giq/gate/evaluation.h"
 #include "giq/gate/metric_lookup.h"
 
 namespace {
@@ -15,8 +16,9 @@ using giq::gate::Status;
 using nlohmann::json;
 
 giq::gate::Case make_case(const std::string& bounds) {
-  const std::string text = R"({"version": 1, "cases": [{"name": "c1", "scene": "s.gltf", "technique": "t", "bounds": )" +
-                           bounds + "}]}";
+  const std::string text =
+      R"({"version": 1, "cases": [{"name": "c1", "scene": "s.gltf", "technique": "t", "bounds": )" +
+      bounds + "}]}";
   return giq::gate::parse_config(text, "g.json").cases[0];
 }
 
@@ -68,25 +70,32 @@ TEST(GateEvaluation, UnresolvedIsNeverPass) {
   const auto within = giq::gate::evaluate(make_case(R"({"mse": 0.01})"), evidence(image_metrics()));
   EXPECT_EQ(within[0].status, Status::Unresolved);
   EXPECT_FALSE(within[0].fails_gate);
-  const auto beyond = giq::gate::evaluate(make_case(R"({"mse": 0.001})"), evidence(image_metrics()));
+  const auto beyond =
+      giq::gate::evaluate(make_case(R"({"mse": 0.001})"), evidence(image_metrics()));
   EXPECT_EQ(beyond[0].status, Status::Unresolved);
   EXPECT_TRUE(beyond[0].fails_gate);
   EXPECT_NE(beyond[0].message.find("more samples"), std::string::npos);
   // psnr is higher-is-better: 31.5 >= 30 holds, 31.5 < 35 cannot be decided.
-  EXPECT_FALSE(giq::gate::evaluate(make_case(R"({"psnr": 30})"), evidence(image_metrics()))[0].fails_gate);
-  EXPECT_TRUE(giq::gate::evaluate(make_case(R"({"psnr": 35})"), evidence(image_metrics()))[0].fails_gate);
+  EXPECT_FALSE(
+      giq::gate::evaluate(make_case(R"({"psnr": 30})"), evidence(image_metrics()))[0].fails_gate);
+  EXPECT_TRUE(
+      giq::gate::evaluate(make_case(R"({"psnr": 35})"), evidence(image_metrics()))[0].fails_gate);
 }
 
 TEST(GateEvaluation, GpuMsOnlyOnItsDevice) {
-  const auto c = make_case(R"({"gpu_ms": {"fail": 3, "warn": 2, "device": "h100"}, "relmse": 0.05})");
-  const auto other = giq::gate::evaluate(c, evidence(image_metrics(), timings("llvmpipe (LLVM 15.0.6)", 40.0)));
+  const auto c =
+      make_case(R"({"gpu_ms": {"fail": 3, "warn": 2, "device": "h100"}, "relmse": 0.05})");
+  const auto other =
+      giq::gate::evaluate(c, evidence(image_metrics(), timings("llvmpipe (LLVM 15.0.6)", 40.0)));
   EXPECT_EQ(other[0].status, Status::Skip);
   EXPECT_FALSE(other[0].fails_gate);
   EXPECT_NE(other[0].message.find("llvmpipe"), std::string::npos);
   EXPECT_EQ(other[1].status, Status::Pass);
-  const auto same = giq::gate::evaluate(c, evidence(image_metrics(), timings("NVIDIA H100 80GB HBM3", 2.5)));
+  const auto same =
+      giq::gate::evaluate(c, evidence(image_metrics(), timings("NVIDIA H100 80GB HBM3", 2.5)));
   EXPECT_EQ(same[0].status, Status::Warn);  // case-insensitive device match
-  const auto slow = giq::gate::evaluate(c, evidence(image_metrics(), timings("NVIDIA H100 80GB HBM3", 3.5)));
+  const auto slow =
+      giq::gate::evaluate(c, evidence(image_metrics(), timings("NVIDIA H100 80GB HBM3", 3.5)));
   EXPECT_EQ(slow[0].status, Status::Fail);
   const auto none = giq::gate::evaluate(c, evidence(image_metrics()));
   EXPECT_EQ(none[0].status, Status::Fail);  // a device bound without timings cannot be checked
@@ -119,7 +128,8 @@ TEST(GateEvaluation, MissingUndefinedAndProblems) {
 }
 
 TEST(GateMetricLookup, PathsAndInfinities) {
-  const json m = json::parse(R"({"metrics": {"psnr": {"value": "inf"}, "flip": {"max": {"value": 0.9}}}})");
+  const json m =
+      json::parse(R"({"metrics": {"psnr": {"value": "inf"}, "flip": {"max": {"value": 0.9}}}})");
   EXPECT_TRUE(std::isinf(*giq::gate::find_metric(m, "psnr")->value));
   EXPECT_DOUBLE_EQ(*giq::gate::find_metric(m, "flip.max")->value, 0.9);
   EXPECT_DOUBLE_EQ(*giq::gate::find_metric(m, "metrics.flip.max")->value, 0.9);

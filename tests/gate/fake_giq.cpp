@@ -49,13 +49,16 @@ std::map<std::string, std::vector<std::string>> parse(int argc, char** argv) {
   for (int i = 2; i < argc; ++i) {
     std::string k = argv[i];
     if (k.rfind("--", 0) != 0) continue;
-    if (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0) o[k].push_back(argv[++i]);
-    else o[k].push_back("");
+    if (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0)
+      o[k].push_back(argv[++i]);
+    else
+      o[k].push_back("");
   }
   return o;
 }
 
-std::string one(const std::map<std::string, std::vector<std::string>>& o, const std::string& k, const std::string& d = "") {
+std::string one(const std::map<std::string, std::vector<std::string>>& o, const std::string& k,
+                const std::string& d = "") {
   const auto it = o.find(k);
   return it == o.end() || it->second.empty() ? d : it->second.back();
 }
@@ -78,8 +81,8 @@ json behaviour(const std::string& name) {
   return all.contains(name) ? all[name] : json::object();
 }
 
-void write_frame(const fs::path& p, int w, int h, const std::map<std::string, std::string>& meta, bool variance = false,
-                 bool brighten = false) {
+void write_frame(const fs::path& p, int w, int h, const std::map<std::string, std::string>& meta,
+                 bool variance = false, bool brighten = false) {
   giq::image::Image img(w, h);
   for (const char* c : {"R", "G", "B"}) {
     float* v = img.add_channel(c, 0.5f);
@@ -110,7 +113,8 @@ int main(int argc, char** argv) {
   }
   const std::string cmd = argv[1];
   const auto o = parse(argc, argv);
-  const int w = std::atoi(one(o, "--width", "8").c_str()), h = std::atoi(one(o, "--height", "8").c_str());
+  const int w = std::atoi(one(o, "--width", "8").c_str()),
+            h = std::atoi(one(o, "--height", "8").c_str());
   if (cmd == "reference") {
     int a = 0, b = 0;
     std::sscanf(one(o, "--frames", "0:0").c_str(), "%d:%d", &a, &b);
@@ -119,11 +123,14 @@ int main(int argc, char** argv) {
     for (int f = a; f <= b; ++f) {
       char num[16];
       std::snprintf(num, sizeof num, "%04d", f);
-      write_frame(hash == std::string::npos ? pattern : pattern.substr(0, hash) + num + pattern.substr(hash + 4), w, h,
-                  {{"giq.spp", one(o, "--spp", "77")},
-                   {"giq.version", "fake-reference"},
-                   {"giq.renderTime", std::to_string(0.01 * std::atof(one(o, "--spp", "77").c_str()))}},
-                  true);
+      write_frame(
+          hash == std::string::npos ? pattern
+                                    : pattern.substr(0, hash) + num + pattern.substr(hash + 4),
+          w, h,
+          {{"giq.spp", one(o, "--spp", "77")},
+           {"giq.version", "fake-reference"},
+           {"giq.renderTime", std::to_string(0.01 * std::atof(one(o, "--spp", "77").c_str()))}},
+          true);
     }
     return 0;
   }
@@ -131,7 +138,8 @@ int main(int argc, char** argv) {
     std::printf("direct\n    shadow maps\n");
     std::printf("    --param pcf_radius=1   [0, 4] integer  PCF kernel radius\n");
     std::printf("    --param normal_offset=1.5   [0, 8]  texels\n");
-    std::printf("pt\n    path tracer\n    --param samples_per_frame=1   [1, 64] integer  samples\n");
+    std::printf(
+        "pt\n    path tracer\n    --param samples_per_frame=1   [1, 64] integer  samples\n");
     return 0;
   }
   if (cmd == "realtime") {
@@ -140,14 +148,17 @@ int main(int argc, char** argv) {
     const std::string mode = b.value("realtime", "ok");
     if (mode == "crash") std::abort();
     fs::create_directories(out);
-    const int warmup = std::atoi(one(o, "--warmup", "0").c_str()), frames = std::atoi(one(o, "--frames", "1").c_str());
+    const int warmup = std::atoi(one(o, "--warmup", "0").c_str()),
+              frames = std::atoi(one(o, "--frames", "1").c_str());
     double sum = 0.0;
     if (o.count("--param"))
-      for (const std::string& p : o.at("--param")) sum += std::atof(p.substr(p.find('=') + 1).c_str());
+      for (const std::string& p : o.at("--param"))
+        sum += std::atof(p.substr(p.find('=') + 1).c_str());
     const std::string technique = one(o, "--technique");
     if (!o.count("--no-images") && mode != "no-frames")
       for (int f = warmup; f < warmup + frames; ++f)
-        write_frame(out / frame_file(f), w, h, {{"giq.technique", technique}, {"fake.sum", std::to_string(sum)}}, false,
+        write_frame(out / frame_file(f), w, h,
+                    {{"giq.technique", technique}, {"fake.sum", std::to_string(sum)}}, false,
                     mode == "brighten");
     const char* dev = std::getenv("FAKE_GIQ_DEVICE");
     const char* env_ms = std::getenv("FAKE_GIQ_GPU_MS");
@@ -163,7 +174,8 @@ int main(int argc, char** argv) {
     const fs::path out = one(o, "--out");
     const json b = behaviour(case_of(out));
     if (b.value("score", "ok") == "crash") std::abort();
-    if (const char* real = std::getenv("FAKE_GIQ_REAL"); real && !b.contains("metrics") && !b.contains("raw")) {
+    if (const char* real = std::getenv("FAKE_GIQ_REAL");
+        real && !b.contains("metrics") && !b.contains("raw")) {
       std::vector<char*> args = {const_cast<char*>(real)};
       for (int i = 1; i < argc; ++i) args.push_back(argv[i]);
       args.push_back(nullptr);
@@ -188,13 +200,17 @@ int main(int argc, char** argv) {
     fs::create_directories(out);
     json dflt = {{"relmse", {{"value", 0.01}}}};
     giq::image::Image test;
-    if (one(o, "--test").find('%') == std::string::npos) test = giq::image::read_image(one(o, "--test"));
+    if (one(o, "--test").find('%') == std::string::npos)
+      test = giq::image::read_image(one(o, "--test"));
     if (test.metadata.count("fake.sum"))
-      dflt["flip"] = {{"mean", {{"value", 1.0 / (1.0 + std::atof(test.metadata.at("fake.sum").c_str()))}}}};
+      dflt["flip"] = {
+          {"mean", {{"value", 1.0 / (1.0 + std::atof(test.metadata.at("fake.sum").c_str()))}}}};
     if (test.metadata.count("giq.spp"))
       dflt["rmse"] = {{"value", 0.5 / std::sqrt(std::atof(test.metadata.at("giq.spp").c_str()))}};
     json m = b.contains("raw") ? b["raw"] : json{{"metrics", b.value("metrics", dflt)}};
-    m["inputs"] = {{"reference", one(o, "--ref")}, {"test", one(o, "--test")}, {"layer", one(o, "--layer", "beauty")}};
+    m["inputs"] = {{"reference", one(o, "--ref")},
+                   {"test", one(o, "--test")},
+                   {"layer", one(o, "--layer", "beauty")}};
     std::ofstream(out / "metrics.json") << m.dump(2);
     return 0;
   }

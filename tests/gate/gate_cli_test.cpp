@@ -35,8 +35,9 @@ struct Result {
 class GateCli : public testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("giq_gate_cli_" + std::to_string(::getpid()) + "_" +
-                                        testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ =
+        fs::temp_directory_path() / ("giq_gate_cli_" + std::to_string(::getpid()) + "_" +
+                                     testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     ::setenv("FAKE_GIQ_LOG", (dir_ / "calls.log").c_str(), 1);
@@ -52,14 +53,17 @@ class GateCli : public testing::Test {
 
   void config(const json& cases) {
     json c = {{"version", 1},
-              {"defaults", {{"scene", std::string(GIQ_SCENES_DIR) + "/cornell.gltf"}, {"resolution", {16, 8}},
-                            {"golden", {{"spp", 32}, {"seed", 2}}}}},
+              {"defaults",
+               {{"scene", std::string(GIQ_SCENES_DIR) + "/cornell.gltf"},
+                {"resolution", {16, 8}},
+                {"golden", {{"spp", 32}, {"seed", 2}}}}},
               {"cases", cases}};
     std::ofstream(dir_ / "gate.json") << c.dump(2);
   }
 
   Result giq(const std::string& args) {
-    const std::string cmd = std::string("cd ") + dir_.string() + " && " + GIQ_BINARY + " " + args + " >out.txt 2>err.txt";
+    const std::string cmd = std::string("cd ") + dir_.string() + " && " + GIQ_BINARY + " " + args +
+                            " >out.txt 2>err.txt";
     const int status = std::system(cmd.c_str());
     Result r;
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -78,7 +82,8 @@ class GateCli : public testing::Test {
   std::string status(const std::string& c, const std::string& m) {
     const json g = json::parse(slurp(dir_ / "out" / "gate.json"));
     for (const auto& o : g["outcomes"])
-      if (o["case"] == c && o["metric"] == m) return o["status"].get<std::string>() + " " + o["message"].get<std::string>();
+      if (o["case"] == c && o["metric"] == m)
+        return o["status"].get<std::string>() + " " + o["message"].get<std::string>();
     return "absent";
   }
 
@@ -93,7 +98,8 @@ class GateCli : public testing::Test {
 };
 
 TEST_F(GateCli, BadConfigExitsTwoWithOneLine) {
-  std::ofstream(dir_ / "gate.json") << R"({"version": 1, "cases": [{"name": "a", "scene": "s", "technique": "t",
+  std::ofstream(dir_ / "gate.json")
+      << R"({"version": 1, "cases": [{"name": "a", "scene": "s", "technique": "t",
       "bounds": {"flip_mean": {"fail": 0.1, "warn": 0.3}}}]})";
   for (const Result& r : {gate(), update()}) {
     EXPECT_EQ(r.code, 2);
@@ -109,14 +115,21 @@ TEST_F(GateCli, BadConfigExitsTwoWithOneLine) {
 
 TEST_F(GateCli, ProvesTheGateCanFail) {
   config(json::array({
-      {{"name", "good"}, {"technique", "direct"}, {"parameters", {{"pcf_radius", 2}}},
-       {"bounds", {{"relmse", {{"fail", 0.05}, {"warn", 0.02}}}, {"gpu_ms", {{"fail", 1}, {"device", "H100"}}}}}},
-      {{"name", "bright"}, {"technique", "direct"}, {"bounds", {{"flip_mean", 0.1}, {"relmse", 0.05}}}},
+      {{"name", "good"},
+       {"technique", "direct"},
+       {"parameters", {{"pcf_radius", 2}}},
+       {"bounds",
+        {{"relmse", {{"fail", 0.05}, {"warn", 0.02}}},
+         {"gpu_ms", {{"fail", 1}, {"device", "H100"}}}}}},
+      {{"name", "bright"},
+       {"technique", "direct"},
+       {"bounds", {{"flip_mean", 0.1}, {"relmse", 0.05}}}},
       {{"name", "noframes"}, {"technique", "pt"}, {"bounds", {{"relmse", 0.05}}}},
       {{"name", "crash"}, {"technique", "pt"}, {"bounds", {{"relmse", 0.05}}}},
       {{"name", "noisy"}, {"technique", "pt"}, {"bounds", {{"relmse", 0.005}}}},
   }));
-  behave({{"bright", {{"metrics", {{"flip", {{"mean", {{"value", 0.3}}}}}, {"relmse", {{"value", 0.01}}}}}}},
+  behave({{"bright",
+           {{"metrics", {{"flip", {{"mean", {{"value", 0.3}}}}}, {"relmse", {{"value", 0.01}}}}}}},
           {"noframes", {{"realtime", "no-frames"}}},
           {"crash", {{"score", "crash"}}},
           {"noisy", {{"metrics", {{"relmse", {{"value", 0.01}, {"unresolved", true}}}}}}}});
@@ -124,7 +137,8 @@ TEST_F(GateCli, ProvesTheGateCanFail) {
   // No golden yet: every case fails and says what to run; nothing is scored.
   Result r = gate();
   EXPECT_EQ(r.code, 1) << r.out << r.err;
-  EXPECT_NE(status("good", "relmse").find("giq golden update"), std::string::npos) << status("good", "relmse");
+  EXPECT_NE(status("good", "relmse").find("giq golden update"), std::string::npos)
+      << status("good", "relmse");
   EXPECT_EQ(calls("score"), 0);
 
   r = update("--jobs 2");
@@ -137,18 +151,23 @@ TEST_F(GateCli, ProvesTheGateCanFail) {
   EXPECT_EQ(e["settings"]["resolution"], json::array({16, 8}));
   EXPECT_EQ(e["files"].size(), 1u);
   EXPECT_EQ(e["scene_hash"].get<std::string>().size(), 16u);
-  EXPECT_EQ(fs::path(e["scene"].get<std::string>()).filename(), "cornell.gltf");  // relative to the config
+  EXPECT_EQ(fs::path(e["scene"].get<std::string>()).filename(),
+            "cornell.gltf");  // relative to the config
   EXPECT_EQ(update().code, 0);
   EXPECT_EQ(calls("reference"), 1);  // fresh: not rendered again
 
   r = gate("--jobs 3");
   EXPECT_EQ(r.code, 1) << r.out << r.err;
   EXPECT_EQ(status("good", "relmse").rfind("PASS", 0), 0u);
-  EXPECT_EQ(status("good", "gpu_ms").rfind("SKIP", 0), 0u) << status("good", "gpu_ms");  // llvmpipe, not H100
-  EXPECT_EQ(status("bright", "flip_mean").rfind("FAIL flip_mean = 0.3", 0), 0u) << status("bright", "flip_mean");
+  EXPECT_EQ(status("good", "gpu_ms").rfind("SKIP", 0), 0u)
+      << status("good", "gpu_ms");  // llvmpipe, not H100
+  EXPECT_EQ(status("bright", "flip_mean").rfind("FAIL flip_mean = 0.3", 0), 0u)
+      << status("bright", "flip_mean");
   EXPECT_EQ(status("bright", "relmse").rfind("PASS", 0), 0u);
-  EXPECT_NE(status("noframes", "relmse").find("did not write"), std::string::npos) << status("noframes", "relmse");
-  EXPECT_NE(status("crash", "relmse").find("giq score failed (exit 134"), std::string::npos) << status("crash", "relmse");
+  EXPECT_NE(status("noframes", "relmse").find("did not write"), std::string::npos)
+      << status("noframes", "relmse");
+  EXPECT_NE(status("crash", "relmse").find("giq score failed (exit 134"), std::string::npos)
+      << status("crash", "relmse");
   EXPECT_EQ(status("noisy", "relmse").rfind("UNRESOLVED", 0), 0u);
   EXPECT_NE(r.out.find("FAILED"), std::string::npos);
 
@@ -164,12 +183,17 @@ TEST_F(GateCli, ProvesTheGateCanFail) {
   XML_Parser p = XML_ParserCreate("UTF-8");
   EXPECT_EQ(XML_Parse(p, xml.data(), int(xml.size()), 1), XML_STATUS_OK) << xml;
   XML_ParserFree(p);
-  EXPECT_NE(xml.find("<testsuites name=\"giq gate\" tests=\"7\" failures=\"4\" errors=\"0\" skipped=\"1\""),
-            std::string::npos)
+  EXPECT_NE(
+      xml.find(
+          "<testsuites name=\"giq gate\" tests=\"7\" failures=\"4\" errors=\"0\" skipped=\"1\""),
+      std::string::npos)
       << xml;
-  EXPECT_NE(xml.find("<testcase classname=\"giq.gate.bright\" name=\"flip_mean\""), std::string::npos);
-  EXPECT_NE(slurp(dir_ / "out" / "gate-summary.md").find("| bright | flip_mean | 0.3 |"), std::string::npos);
-  EXPECT_TRUE(fs::exists(dir_ / "out" / "cases" / "bright" / "score" / "metrics.json"));  // kept beside the report
+  EXPECT_NE(xml.find("<testcase classname=\"giq.gate.bright\" name=\"flip_mean\""),
+            std::string::npos);
+  EXPECT_NE(slurp(dir_ / "out" / "gate-summary.md").find("| bright | flip_mean | 0.3 |"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "cases" / "bright" / "score" /
+                         "metrics.json"));  // kept beside the report
 
   // Only the passing case: exit 0, and its identical outputs are reused, not rendered again.
   const int before = calls("realtime --scene");
@@ -184,7 +208,8 @@ TEST_F(GateCli, ProvesTheGateCanFail) {
   std::ofstream(dir_ / "refs" / "cornell_0_f0-0" / "frame_0000.exr", std::ios::app) << "x";
   r = gate("--only good");
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(status("good", "relmse").find("modified"), std::string::npos) << status("good", "relmse");
+  EXPECT_NE(status("good", "relmse").find("modified"), std::string::npos)
+      << status("good", "relmse");
 }
 
 // The real giq score on fake images: identical images give errors that the reference's
@@ -192,8 +217,12 @@ TEST_F(GateCli, ProvesTheGateCanFail) {
 // relmse with the right case and metric.
 TEST_F(GateCli, RealScoreOfABrightenedRegionFails) {
   ::setenv("FAKE_GIQ_REAL", GIQ_BINARY, 1);
-  config(json::array({{{"name", "same"}, {"technique", "direct"}, {"bounds", {{"flip_mean", 0.05}, {"relmse", 0.01}}}},
-                      {{"name", "bright"}, {"technique", "direct"}, {"bounds", {{"flip_mean", 0.05}, {"relmse", 0.01}}}}}));
+  config(json::array({{{"name", "same"},
+                       {"technique", "direct"},
+                       {"bounds", {{"flip_mean", 0.05}, {"relmse", 0.01}}}},
+                      {{"name", "bright"},
+                       {"technique", "direct"},
+                       {"bounds", {{"flip_mean", 0.05}, {"relmse", 0.01}}}}}));
   behave({{"bright", {{"realtime", "brighten"}}}});
   ASSERT_EQ(update().code, 0);
   const Result r = gate();
@@ -209,7 +238,10 @@ TEST_F(GateCli, RealScoreOfABrightenedRegionFails) {
 }
 
 TEST_F(GateCli, SequenceCaseScoresEveryFrame) {
-  config(json::array({{{"name", "seq"}, {"technique", "pt"}, {"frames", "2:4"}, {"view", "0"},
+  config(json::array({{{"name", "seq"},
+                       {"technique", "pt"},
+                       {"frames", "2:4"},
+                       {"view", "0"},
                        {"bounds", {{"flicker", 0.01}}}}}));
   behave({{"seq", {{"raw", {{"sequence", {{"flicker", {{"value", 0.02}}}}}}}}}});
   ASSERT_EQ(update().code, 0);
@@ -222,7 +254,8 @@ TEST_F(GateCli, SequenceCaseScoresEveryFrame) {
   EXPECT_EQ(r.code, 1);
   EXPECT_EQ(calls("--warmup 2 --frames 3"), 1);
   EXPECT_EQ(calls("--frames 2:4 --layer beauty"), 1);
-  EXPECT_EQ(status("seq", "flicker").rfind("FAIL flicker = 0.02", 0), 0u) << status("seq", "flicker");
+  EXPECT_EQ(status("seq", "flicker").rfind("FAIL flicker = 0.02", 0), 0u)
+      << status("seq", "flicker");
 }
 
 }  // namespace

@@ -46,8 +46,8 @@ class GoldenManifest : public testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   Freshness check(const giq::gate::Case& c, const std::string& hash = "00112233aabbccdd") {
-    return giq::gate::check_golden(giq::gate::read_manifest(config_.golden_dir / "manifest.json"), config_.golden_dir, c,
-                                   hash);
+    return giq::gate::check_golden(giq::gate::read_manifest(config_.golden_dir / "manifest.json"),
+                                   config_.golden_dir, c, hash);
   }
 
   fs::path dir_;

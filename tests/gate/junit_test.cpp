@@ -2,6 +2,8 @@
 // <testsuite> agree with the outcomes, one <testcase> per case and metric, failures and
 // skips where the statuses say, hostile names escaped.
 
+#include "giq/gate/junit.h"
+
 #include <expat.h>
 #include <gtest/gtest.h>
 
@@ -9,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "giq/gate/junit.h"
 #include "giq/gate/summary.h"
 
 namespace {
@@ -52,17 +53,20 @@ Parsed parse(const std::string& xml) {
 
 Outcome make(const std::string& c, const std::string& m, Status s, bool fails, double v) {
   Outcome o;
-  o.case_name = c, o.metric = m, o.status = s, o.fails_gate = fails, o.value = v, o.bound = "<= 0.1";
+  o.case_name = c, o.metric = m, o.status = s, o.fails_gate = fails, o.value = v,
+  o.bound = "<= 0.1";
   o.message = s == Status::Pass ? "" : "why & <because> \"quoted\" \x01 control";
   return o;
 }
 
 TEST(GateJUnit, ParsesBackWithMatchingCounts) {
   const std::string hostile = "scene<script>alert('x')</script>&";
-  const std::vector<Outcome> outcomes = {
-      make("a", "flip_mean", Status::Pass, false, 0.01), make("a", "relmse", Status::Fail, true, 0.3),
-      make("a", "gpu_ms", Status::Skip, false, 40), make(hostile, "flicker", Status::Warn, false, 0.05),
-      make(hostile, "mse", Status::Unresolved, false, 1e-4), make(hostile, "psnr", Status::Unresolved, true, 20)};
+  const std::vector<Outcome> outcomes = {make("a", "flip_mean", Status::Pass, false, 0.01),
+                                         make("a", "relmse", Status::Fail, true, 0.3),
+                                         make("a", "gpu_ms", Status::Skip, false, 40),
+                                         make(hostile, "flicker", Status::Warn, false, 0.05),
+                                         make(hostile, "mse", Status::Unresolved, false, 1e-4),
+                                         make(hostile, "psnr", Status::Unresolved, true, 20)};
   const std::string xml = giq::gate::junit_xml(outcomes, {{"a", 1.5}, {hostile, 2.25}});
   const Parsed p = parse(xml);
   ASSERT_TRUE(p.error.empty()) << p.error << "\n" << xml;

@@ -1,13 +1,14 @@
 // Pareto front on hand-made points, the log-log slope fit on synthetic power laws, the SVG
 // plot and the sweep table.
 
+#include "giq/gate/pareto.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "giq/gate/fit.h"
-#include "giq/gate/pareto.h"
 #include "giq/gate/plot.h"
 #include "giq/gate/sweep_table.h"
 
@@ -17,14 +18,13 @@ TEST(GatePareto, HandMadePoints) {
   // (ms, error). B is dominated by A (slower and worse); D by C; E ties C exactly, so neither
   // is strictly better and both stay; F has no error (NaN) and is never on the front.
   const std::vector<giq::gate::CostError> p = {
-      {1.0, 0.5},  // A: cheapest
-      {2.0, 0.6},  // B: dominated by A
-      {3.0, 0.2},  // C
-      {3.5, 0.2},  // D: same error as C, slower -> dominated
-      {3.0, 0.2},  // E: equal to C
-      {4.0, std::nan("")},
-      {10.0, 0.05},  // G: most accurate
-      {10.0, 0.07},  // H: same cost as G, worse -> dominated
+      {1.0, 0.5},                         // A: cheapest
+      {2.0, 0.6},                         // B: dominated by A
+      {3.0, 0.2},                         // C
+      {3.5, 0.2},                         // D: same error as C, slower -> dominated
+      {3.0, 0.2},                         // E: equal to C
+      {4.0, std::nan("")}, {10.0, 0.05},  // G: most accurate
+      {10.0, 0.07},                       // H: same cost as G, worse -> dominated
   };
   const std::vector<bool> want = {true, false, true, false, true, false, true, false};
   EXPECT_EQ(giq::gate::pareto_front(p), want);
@@ -34,7 +34,8 @@ TEST(GatePareto, HandMadePoints) {
 TEST(GateFit, RecoversKnownSlope) {
   // RMSE of a Monte Carlo estimate ~ c * spp^-1/2: exact data gives the slope to rounding.
   std::vector<double> x, y;
-  for (int k = 0; k <= 10; ++k) x.push_back(std::pow(2.0, k)), y.push_back(0.3 * std::pow(x.back(), -0.5));
+  for (int k = 0; k <= 10; ++k)
+    x.push_back(std::pow(2.0, k)), y.push_back(0.3 * std::pow(x.back(), -0.5));
   auto f = giq::gate::fit_log_log(x, y);
   EXPECT_NEAR(f.slope, -0.5, 1e-12);
   EXPECT_NEAR(f.intercept, std::log10(0.3), 1e-12);
@@ -62,7 +63,8 @@ TEST(GateFit, RecoversKnownSlope) {
 
 TEST(GatePlot, SweepSvgHasFrontDefaultsAndEscapedNames) {
   std::vector<giq::gate::SweepRow> rows(4);
-  rows[0].technique = "direct", rows[0].gpu_ms = 1.0, rows[0].metrics["flip_mean"] = 0.3, rows[0].is_default = true;
+  rows[0].technique = "direct", rows[0].gpu_ms = 1.0, rows[0].metrics["flip_mean"] = 0.3,
+  rows[0].is_default = true;
   rows[1].technique = "direct", rows[1].gpu_ms = 2.0, rows[1].metrics["flip_mean"] = 0.35;
   rows[2].technique = "<b>pt</b>", rows[2].gpu_ms = 8.0, rows[2].metrics["flip_mean"] = 0.05;
   rows[2].parameters = {{"samples_per_frame", 4}};
@@ -81,10 +83,13 @@ TEST(GatePlot, SweepSvgHasFrontDefaultsAndEscapedNames) {
   EXPECT_EQ(std::count(svg.begin(), svg.end(), '\n') > 10, true);
 
   const std::string csv = giq::gate::sweep_csv(rows, {"flip_mean"});
-  EXPECT_NE(csv.find("technique,parameters,default,gpu_ms,flip_mean,pareto_front,error\n"), std::string::npos);
+  EXPECT_NE(csv.find("technique,parameters,default,gpu_ms,flip_mean,pareto_front,error\n"),
+            std::string::npos);
   EXPECT_NE(csv.find("<b>pt</b>,samples_per_frame=4,0,8,0.05,1,\n"), std::string::npos);
-  EXPECT_NE(csv.find("\"giq realtime failed, \"\"exit 3\"\"\""), std::string::npos);  // RFC 4180 quoting
-  const auto back = giq::gate::sweep_rows(giq::gate::sweep_json(rows, "flip_mean", {}), "sweep.json");
+  EXPECT_NE(csv.find("\"giq realtime failed, \"\"exit 3\"\"\""),
+            std::string::npos);  // RFC 4180 quoting
+  const auto back =
+      giq::gate::sweep_rows(giq::gate::sweep_json(rows, "flip_mean", {}), "sweep.json");
   ASSERT_EQ(back.size(), 4u);
   EXPECT_EQ(back[2].parameters, rows[2].parameters);
   EXPECT_DOUBLE_EQ(*back[2].metrics.at("flip_mean"), 0.05);

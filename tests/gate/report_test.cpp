@@ -40,8 +40,9 @@ const char* kHostileTechnique = "<img src=x onerror=alert(2)>";
 class Report : public testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("giq_report_test_" + std::to_string(::getpid()) + "_" +
-                                        testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ =
+        fs::temp_directory_path() / ("giq_report_test_" + std::to_string(::getpid()) + "_" +
+                                     testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     const fs::path a = dir_ / "cases" / "cornell-direct" / "score";
     fs::create_directories(a);
@@ -52,10 +53,20 @@ class Report : public testing::Test {
     std::vector<unsigned char> px;
     for (int i = 0; i < 24 * 24; ++i) px.insert(px.end(), yellow, yellow + 3);
     giq::image::write_png_rgb8(a / "abs_error.png", 24, 24, 3, px.data());
-    json m = {{"inputs", {{"reference", "ref.exr"}, {"test", "tech.exr"}, {"layer", "beauty"}, {"scene", kHostileScene}}},
+    json m = {{"inputs",
+               {{"reference", "ref.exr"},
+                {"test", "tech.exr"},
+                {"layer", "beauty"},
+                {"scene", kHostileScene}}},
               {"metrics", {{"relmse", {{"value", 0.25}}}, {"flip", {{"mean", {{"value", 0.1}}}}}}},
-              {"maps", {{"abs_error", {{"png", "abs_error.png"}, {"colormap", "magma"}, {"range", {0, 2}},
-                                        {"unit", "radiance"}, {"definition", "|T - R|"}, {"range_rule", "p99"}}}}}};
+              {"maps",
+               {{"abs_error",
+                 {{"png", "abs_error.png"},
+                  {"colormap", "magma"},
+                  {"range", {0, 2}},
+                  {"unit", "radiance"},
+                  {"definition", "|T - R|"},
+                  {"range_rule", "p99"}}}}}};
     std::ofstream(a / "metrics.json") << m.dump();
 
     const fs::path s = dir_ / "seq";
@@ -67,14 +78,24 @@ class Report : public testing::Test {
       std::snprintf(name, sizeof name, "t_%04d.exr", f);
       solid_exr(s / name, f * 0.3f, f * 0.3f, f * 0.3f, "pt");
     }
-    json q = {{"inputs", {{"reference", "r_%04d.exr"}, {"test", "t_%04d.exr"}, {"frames", {0, 2}}, {"layer", "beauty"},
-                          {"scene", "movinglight.gltf"}}},
+    json q = {{"inputs",
+               {{"reference", "r_%04d.exr"},
+                {"test", "t_%04d.exr"},
+                {"frames", {0, 2}},
+                {"layer", "beauty"},
+                {"scene", "movinglight.gltf"}}},
               {"sequence", {{"flicker", {{"value", 0.3}}}}},
               {"last_frame", {{"metrics", {{"relmse", {{"value", 0.01}, {"unresolved", true}}}}}}}};
     std::ofstream(s / "metrics.json") << q.dump();
-    json g = {{"passed", false}, {"config", "gate.json"},
-              {"outcomes", {{{"case", "<b>bold</b>"}, {"metric", "relmse"}, {"status", "FAIL"}, {"value", 0.25},
-                             {"bound", "<= 0.1"}, {"message", "too big & wrong"}}}}};
+    json g = {{"passed", false},
+              {"config", "gate.json"},
+              {"outcomes",
+               {{{"case", "<b>bold</b>"},
+                 {"metric", "relmse"},
+                 {"status", "FAIL"},
+                 {"value", 0.25},
+                 {"bound", "<= 0.1"},
+                 {"message", "too big & wrong"}}}}};
     std::ofstream(dir_ / "gate.json") << g.dump();
   }
   // GIQ_KEEP_TEST_OUTPUT=1 keeps the page and the screenshot for a look.
@@ -83,7 +104,8 @@ class Report : public testing::Test {
   }
 
   int giq(const std::string& args) {
-    const std::string cmd = std::string(GIQ_BINARY) + " " + args + " >" + (dir_ / "out.txt").string() + " 2>&1";
+    const std::string cmd =
+        std::string(GIQ_BINARY) + " " + args + " >" + (dir_ / "out.txt").string() + " 2>&1";
     const int status = std::system(cmd.c_str());
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
@@ -104,9 +126,11 @@ TEST_F(Report, EscapesTextFromFilesAndEmbedsImages) {
   EXPECT_EQ(html.find("http://"), std::string::npos);
   EXPECT_EQ(html.find("https://"), std::string::npos);
   EXPECT_EQ(html.find("src=\"file:"), std::string::npos);
-  // Two panes + a map for the image comparison, 2 panes and 3 + 3 flip-book frames for the sequence.
+  // Two panes + a map for the image comparison, 2 panes and 3 + 3 flip-book frames for the
+  // sequence.
   size_t pngs = 0;
-  for (size_t p = 0; (p = html.find("src=\"data:image/png;base64,", p)) != std::string::npos; ++p) ++pngs;
+  for (size_t p = 0; (p = html.find("src=\"data:image/png;base64,", p)) != std::string::npos; ++p)
+    ++pngs;
   EXPECT_EQ(pngs, 3u + 2u + 6u);
   EXPECT_NE(html.find("class=\"flipbook\""), std::string::npos);
   EXPECT_NE(html.find("unresolved"), std::string::npos);
@@ -121,12 +145,13 @@ TEST_F(Report, ChromiumShowsTheImages) {
   if (chromium.empty()) GTEST_SKIP() << "chromium is not installed (tools/bootstrap installs it)";
   ASSERT_EQ(giq("report " + dir_.string()), 0) << slurp(dir_ / "out.txt");
   const fs::path shot = dir_ / "shot.png", profile = dir_ / "profile";
-  const std::string cmd = chromium +
-                          " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
-                          " --disable-background-networking --disable-component-update --disable-sync"
-                          " --hide-scrollbars --user-data-dir=" + profile.string() + " --screenshot=" + shot.string() +
-                          " --window-size=1400,1400 file://" + (dir_ / "report.html").string() + " >" +
-                          (dir_ / "chromium.log").string() + " 2>&1";
+  const std::string cmd =
+      chromium +
+      " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
+      " --disable-background-networking --disable-component-update --disable-sync"
+      " --hide-scrollbars --user-data-dir=" +
+      profile.string() + " --screenshot=" + shot.string() + " --window-size=1400,1400 file://" +
+      (dir_ / "report.html").string() + " >" + (dir_ / "chromium.log").string() + " 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir_ / "chromium.log");
   ASSERT_TRUE(fs::exists(shot)) << slurp(dir_ / "chromium.log");
   const giq::image::Image img = giq::image::read_image(shot);
@@ -138,10 +163,14 @@ TEST_F(Report, ChromiumShowsTheImages) {
   for (size_t i = 0; i < size_t(img.width()) * size_t(img.height()); ++i) {
     const bool R = r[i] > 0.95f, G = g[i] > 0.95f, B = b[i] > 0.95f;
     const bool r0 = r[i] < 0.05f, g0 = g[i] < 0.05f, b0 = b[i] < 0.05f;
-    if (R && g0 && b0) ++red;
-    else if (r0 && g0 && B) ++blue;
-    else if (R && G && b0) ++yellow;
-    else ++other;
+    if (R && g0 && b0)
+      ++red;
+    else if (r0 && g0 && B)
+      ++blue;
+    else if (R && G && b0)
+      ++yellow;
+    else
+      ++other;
   }
   EXPECT_GT(red, 51200u);
   EXPECT_GT(blue, 51200u);

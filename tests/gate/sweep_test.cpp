@@ -46,8 +46,9 @@ TEST(SweepPlan, ParsesTheListing) {
 TEST(SweepPlan, GridAutoAndDefaults) {
   const auto t = giq::cli::parse_technique_list(kListing);
   // Two axes: 2 x 3 settings plus the defaults (shadow_map_size 2048, normal_offset 1.5).
-  auto s = giq::cli::plan_settings(t[0], {"shadow_map_size=512,1024", "direct.normal_offset=0,1,2", "samples_per_frame=4"},
-                                   0, 64);
+  auto s = giq::cli::plan_settings(
+      t[0], {"shadow_map_size=512,1024", "direct.normal_offset=0,1,2", "samples_per_frame=4"}, 0,
+      64);
   ASSERT_EQ(s.size(), 7u);
   EXPECT_EQ(s[0], (Setting{{"normal_offset", 0}, {"shadow_map_size", 512}}));
   EXPECT_EQ(s.back(), (Setting{{"normal_offset", 1.5}, {"shadow_map_size", 2048}}));
@@ -70,8 +71,9 @@ TEST(SweepPlan, GridAutoAndDefaults) {
 class SweepCli : public testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("giq_sweep_cli_" + std::to_string(::getpid()) + "_" +
-                                        testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ =
+        fs::temp_directory_path() / ("giq_sweep_cli_" + std::to_string(::getpid()) + "_" +
+                                     testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     ::unsetenv("FAKE_GIQ_BEHAVIOUR");
@@ -82,8 +84,9 @@ class SweepCli : public testing::Test {
     if (!HasFailure()) fs::remove_all(dir_);
   }
   int giq(const std::string& args) {
-    const std::string cmd = "cd " + dir_.string() + " && " + GIQ_BINARY + " sweep --giq " + FAKE_GIQ + " --scene " +
-                            GIQ_SCENES_DIR + "/cornell.gltf --width 8 --height 8 --out out " + args + " >log.txt 2>&1";
+    const std::string cmd =
+        "cd " + dir_.string() + " && " + GIQ_BINARY + " sweep --giq " + FAKE_GIQ + " --scene " +
+        GIQ_SCENES_DIR + "/cornell.gltf --width 8 --height 8 --out out " + args + " >log.txt 2>&1";
     const int status = std::system(cmd.c_str());
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
@@ -95,13 +98,15 @@ class SweepCli : public testing::Test {
 };
 
 TEST_F(SweepCli, ParetoFrontAcrossTechniques) {
-  ASSERT_EQ(giq("--technique direct --technique pt --grid pcf_radius=0,2,4 --grid pt.samples_per_frame=1,4,16 "
+  ASSERT_EQ(giq("--technique direct --technique pt --grid pcf_radius=0,2,4 --grid "
+                "pt.samples_per_frame=1,4,16 "
                 "--warmup 1 --frames 3 --ref-spp 8 --jobs 2"),
             0)
       << std::ifstream(dir_ / "log.txt").rdbuf();
   // fake_giq: direct costs 1 + v ms, pt 2 (1 + v); flip_mean = 1 / (1 + v) for both.
   const json s = read("sweep.json");
-  ASSERT_EQ(s["rows"].size(), 7u);  // direct: 3 + its default (1); pt: 3, its default (1) among them
+  ASSERT_EQ(s["rows"].size(),
+            7u);  // direct: 3 + its default (1); pt: 3, its default (1) among them
   std::map<std::string, bool> front;
   for (const json& r : s["rows"]) {
     const double v = r["parameters"].begin().value().get<double>();
@@ -129,7 +134,8 @@ TEST_F(SweepCli, ParetoFrontAcrossTechniques) {
 }
 
 TEST_F(SweepCli, ReferenceConvergenceSlope) {
-  ASSERT_EQ(giq("--convergence --spp 1,4,16,64 --ref-spp 4096"), 0) << std::ifstream(dir_ / "log.txt").rdbuf();
+  ASSERT_EQ(giq("--convergence --spp 1,4,16,64 --ref-spp 4096"), 0)
+      << std::ifstream(dir_ / "log.txt").rdbuf();
   // fake rmse = 0.5 spp^-1/2 and 0.01 s per spp: both slopes are -1/2 up to rounding of the
   // printed values (%.10g-level), far below 1e-6.
   const json c = read("convergence.json");

@@ -8,11 +8,11 @@
 
 #include <cmath>
 #include <cstdio>
-#include <set>
 #include <iostream>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "command.h"
 #include "gate_runner.h"
@@ -44,7 +44,8 @@ struct GateArgs {
 Toolchain toolchain(const GateArgs& a) {
   Toolchain t;
   t.giq = a.giq.empty() ? self_executable() : fs::absolute(a.giq);
-  if (!fs::exists(t.giq)) throw InputError(a.giq, "--giq", "no such program; expected the path of a giq binary");
+  if (!fs::exists(t.giq))
+    throw InputError(a.giq, "--giq", "no such program; expected the path of a giq binary");
   t.device = a.device;
   t.rerender = a.rerender;
   return t;
@@ -60,9 +61,13 @@ std::vector<const gate::Case*> load_cases(const GateArgs& a, gate::Config& confi
 }
 
 json outcome_json(const gate::Outcome& o) {
-  return {{"case", o.case_name}, {"metric", o.metric}, {"status", gate::to_string(o.status)},
+  return {{"case", o.case_name},
+          {"metric", o.metric},
+          {"status", gate::to_string(o.status)},
           {"value", o.value && std::isfinite(*o.value) ? json(*o.value) : json(nullptr)},
-          {"bound", o.bound},    {"message", o.message}, {"fails_gate", o.fails_gate}};
+          {"bound", o.bound},
+          {"message", o.message},
+          {"fails_gate", o.fails_gate}};
 }
 
 int run_gate(const GateArgs& a) {
@@ -81,7 +86,9 @@ int run_gate(const GateArgs& a) {
     runs[i] = run_case(tools, *cases[i], config, manifest, out);
     std::lock_guard<std::mutex> g(progress);
     ++done;
-    if (tty) std::fprintf(stderr, "\rgiq gate: %zu/%zu cases  (%s %.1f s)   ", done, cases.size(), cases[i]->name.c_str(), runs[i].seconds);
+    if (tty)
+      std::fprintf(stderr, "\rgiq gate: %zu/%zu cases  (%s %.1f s)   ", done, cases.size(),
+                   cases[i]->name.c_str(), runs[i].seconds);
   });
   if (tty) std::fprintf(stderr, "\n");
 
@@ -117,10 +124,12 @@ int run_gate(const GateArgs& a) {
                                                 {"passed", code == 0},
                                                 {"cases", case_list},
                                                 {"outcomes", outcome_list}}
-                                                   .dump(2) + "\n");
+                                                   .dump(2) +
+                                               "\n");
   std::cout << gate::format_table(outcomes) << '\n'
-            << "giq gate: " << (code == 0 ? "passed" : "FAILED") << ", " << gate::count_line(outcomes) << "; "
-            << (out / "gate-report.xml").string() << ", " << (out / "gate-summary.md").string() << '\n';
+            << "giq gate: " << (code == 0 ? "passed" : "FAILED") << ", "
+            << gate::count_line(outcomes) << "; " << (out / "gate-report.xml").string() << ", "
+            << (out / "gate-summary.md").string() << '\n';
   return code;
 }
 
@@ -137,16 +146,19 @@ int run_golden_update(const GateArgs& a) {
     if (keys.insert(gate::golden_key(*c)).second) unique.push_back(c);
   std::vector<GoldenRun> runs(unique.size());
   std::mutex lock;
-  parallel_for(unique.size(), a.jobs,
-               [&](size_t i) { runs[i] = update_golden(tools, *unique[i], config, a.force, manifest, lock); });
+  parallel_for(unique.size(), a.jobs, [&](size_t i) {
+    runs[i] = update_golden(tools, *unique[i], config, a.force, manifest, lock);
+  });
   int failed = 0, rendered = 0;
   for (const GoldenRun& r : runs) {
-    std::cout << "  " << r.key << ": " << r.action << (r.message.empty() ? "" : "  " + r.message) << '\n';
+    std::cout << "  " << r.key << ": " << r.action << (r.message.empty() ? "" : "  " + r.message)
+              << '\n';
     failed += r.action == "failed";
     rendered += r.action == "rendered";
   }
-  std::cout << "giq golden update: " << rendered << " rendered, " << (runs.size() - size_t(rendered + failed))
-            << " fresh, " << failed << " failed; manifest " << (config.golden_dir / "manifest.json").string() << '\n';
+  std::cout << "giq golden update: " << rendered << " rendered, "
+            << (runs.size() - size_t(rendered + failed)) << " fresh, " << failed
+            << " failed; manifest " << (config.golden_dir / "manifest.json").string() << '\n';
   return failed ? 1 : 0;
 }
 
@@ -154,19 +166,25 @@ void common_options(CLI::App* cmd, GateArgs& a) {
   cmd->add_option("--config", a.config, "Gate config (JSON, docs/gate.md)")->capture_default_str();
   cmd->add_option("--only", a.only, "Only the cases whose name matches this glob ('*', '?')");
   cmd->add_option("--jobs", a.jobs, "Cases run in parallel")->capture_default_str();
-  cmd->add_option("--giq", a.giq, "giq binary whose reference/realtime/score subcommands are run (default: this one)");
+  cmd->add_option(
+      "--giq", a.giq,
+      "giq binary whose reference/realtime/score subcommands are run (default: this one)");
 }
 
 }  // namespace
 
 void add_gate_command(CLI::App& app, int& exit_code) {
   auto a = std::make_shared<GateArgs>();
-  CLI::App* cmd = app.add_subcommand("gate", "Render, score and check every case of a gate config (exit 1 on failure)");
+  CLI::App* cmd = app.add_subcommand(
+      "gate", "Render, score and check every case of a gate config (exit 1 on failure)");
   common_options(cmd, *a);
-  cmd->add_option("--out", a->out, "Folder for gate-report.xml, gate-summary.md, gate.json and each case's outputs")
+  cmd->add_option("--out", a->out,
+                  "Folder for gate-report.xml, gate-summary.md, gate.json and each case's outputs")
       ->capture_default_str();
-  cmd->add_option("--device", a->device, "Vulkan device for giq realtime (index or part of its name)");
-  cmd->add_flag("--rerender", a->rerender, "Render and score again even where outputs of an identical run exist");
+  cmd->add_option("--device", a->device,
+                  "Vulkan device for giq realtime (index or part of its name)");
+  cmd->add_flag("--rerender", a->rerender,
+                "Render and score again even where outputs of an identical run exist");
   cmd->callback([a, &exit_code] { exit_code = run_gate(*a); });
 }
 
@@ -174,7 +192,8 @@ void add_golden_command(CLI::App& app, int& exit_code) {
   auto a = std::make_shared<GateArgs>();
   CLI::App* golden = app.add_subcommand("golden", "Golden references of the gate");
   golden->require_subcommand(1);
-  CLI::App* update = golden->add_subcommand("update", "Render the missing or stale golden references of a gate config");
+  CLI::App* update = golden->add_subcommand(
+      "update", "Render the missing or stale golden references of a gate config");
   common_options(update, *a);
   update->add_flag("--force", a->force, "Render every golden again, fresh or not");
   update->callback([a, &exit_code] { exit_code = run_golden_update(*a); });

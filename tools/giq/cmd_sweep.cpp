@@ -7,13 +7,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
-#include <tuple>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <tuple>
 
 #include "command.h"
 #include "giq/base/atomic_file.h"
@@ -33,13 +33,15 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const std::vector<std::string> kMetrics = {"flip_mean", "relmse", "mse", "smape", "ssim", "psnr", "leak"};
+const std::vector<std::string> kMetrics = {"flip_mean", "relmse", "mse", "smape",
+                                           "ssim",      "psnr",   "leak"};
 
 struct SweepArgs {
   std::string scene, view = "0", ref, layer = "beauty", error, out = "sweep-out", device, giq;
   std::vector<std::string> techniques, grid;
   std::vector<uint32_t> spp;
-  int auto_steps = 0, width = 128, height = 128, warmup = 10, frames = 20, jobs = 1, max_settings = 64;
+  int auto_steps = 0, width = 128, height = 128, warmup = 10, frames = 20, jobs = 1,
+      max_settings = 64;
   uint32_t ref_spp = 1024;
   bool convergence = false, linear = false;
 };
@@ -59,34 +61,38 @@ std::string slurp(const fs::path& p) {
 
 void must(const ProcessResult& r, const std::string& what, const fs::path& log) {
   if (r.exit_code != 0)
-    throw InputError(log.string(), what, "failed (exit " + std::to_string(r.exit_code) + "): " + r.log_tail);
+    throw InputError(log.string(), what,
+                     "failed (exit " + std::to_string(r.exit_code) + "): " + r.log_tail);
 }
 
 // A reference: the given file, or one rendered by giq reference at --ref-spp.
-fs::path reference(const SweepArgs& a, const fs::path& giq, const fs::path& out, uint32_t spp, uint64_t seed,
-                   const std::string& name, double* seconds = nullptr) {
+fs::path reference(const SweepArgs& a, const fs::path& giq, const fs::path& out, uint32_t spp,
+                   uint64_t seed, const std::string& name, double* seconds = nullptr) {
   const fs::path file = out / name;
   const fs::path log = out / "log.txt";
-  const ProcessResult r = run_process({giq.string(), "reference", "--scene", a.scene, "--view", a.view, "--spp",
-                                       std::to_string(spp), "--seed", std::to_string(seed), "--width",
-                                       std::to_string(a.width), "--height", std::to_string(a.height), "--record-time",
-                                       "--out", file.string()},
-                                      log);
+  const ProcessResult r = run_process(
+      {giq.string(), "reference", "--scene", a.scene, "--view", a.view, "--spp",
+       std::to_string(spp), "--seed", std::to_string(seed), "--width", std::to_string(a.width),
+       "--height", std::to_string(a.height), "--record-time", "--out", file.string()},
+      log);
   must(r, "giq reference", log);
   if (seconds) {
     // The renderer's own time (without scene loading and BVH build) when it recorded it.
     *seconds = r.seconds;
     const image::Image img = image::read_image(file);
-    if (auto it = img.metadata.find("giq.renderTime"); it != img.metadata.end()) *seconds = std::strtod(it->second.c_str(), nullptr);
+    if (auto it = img.metadata.find("giq.renderTime"); it != img.metadata.end())
+      *seconds = std::strtod(it->second.c_str(), nullptr);
   }
   return file;
 }
 
-std::map<std::string, std::optional<double>> score(const SweepArgs& a, const fs::path& giq, const fs::path& ref,
-                                                   const fs::path& test, const fs::path& timings, const fs::path& dir,
+std::map<std::string, std::optional<double>> score(const SweepArgs& a, const fs::path& giq,
+                                                   const fs::path& ref, const fs::path& test,
+                                                   const fs::path& timings, const fs::path& dir,
                                                    const fs::path& log) {
-  std::vector<std::string> sc = {giq.string(), "score", "--ref", ref.string(), "--test", test.string(), "--layer", a.layer,
-                                 "--scene", a.scene, "--out", dir.string()};
+  std::vector<std::string> sc = {giq.string(), "score",       "--ref",   ref.string(),
+                                 "--test",     test.string(), "--layer", a.layer,
+                                 "--scene",    a.scene,       "--out",   dir.string()};
   if (!timings.empty()) sc.insert(sc.end(), {"--timings", timings.string()});
   must(run_process(sc, log), "giq score", log);
   const json m = read_json(dir / "metrics.json");
@@ -98,11 +104,13 @@ std::map<std::string, std::optional<double>> score(const SweepArgs& a, const fs:
 }
 
 int run_techniques(const SweepArgs& a, const fs::path& giq, const fs::path& out) {
-  if (a.techniques.empty()) throw InputError("", "--technique", "give at least one technique (giq realtime --list)");
+  if (a.techniques.empty())
+    throw InputError("", "--technique", "give at least one technique (giq realtime --list)");
   const std::string error = a.error.empty() ? "flip_mean" : a.error;
   const fs::path list_log = out / "techniques.txt";
   fs::remove(list_log);
-  must(run_process({giq.string(), "realtime", "--list"}, list_log), "giq realtime --list", list_log);
+  must(run_process({giq.string(), "realtime", "--list"}, list_log), "giq realtime --list",
+       list_log);
   std::string listing = slurp(list_log);
   listing = listing.substr(listing.find('\n') + 1);  // the log's first line is the command
   const auto declared = parse_technique_list(listing);
@@ -113,11 +121,15 @@ int run_techniques(const SweepArgs& a, const fs::path& giq, const fs::path& out)
   };
   std::vector<Job> jobs;
   for (const std::string& name : a.techniques) {
-    const auto it = std::find_if(declared.begin(), declared.end(), [&](const auto& t) { return t.name == name; });
-    if (it == declared.end()) throw InputError("", "--technique", "'" + name + "' is not listed by giq realtime --list");
-    for (const Setting& s : plan_settings(*it, a.grid, a.auto_steps, a.max_settings)) jobs.push_back({&*it, s});
+    const auto it = std::find_if(declared.begin(), declared.end(),
+                                 [&](const auto& t) { return t.name == name; });
+    if (it == declared.end())
+      throw InputError("", "--technique", "'" + name + "' is not listed by giq realtime --list");
+    for (const Setting& s : plan_settings(*it, a.grid, a.auto_steps, a.max_settings))
+      jobs.push_back({&*it, s});
   }
-  const fs::path ref = a.ref.empty() ? reference(a, giq, out, a.ref_spp, 1, "reference.exr") : fs::path(a.ref);
+  const fs::path ref =
+      a.ref.empty() ? reference(a, giq, out, a.ref_spp, 1, "reference.exr") : fs::path(a.ref);
   if (!fs::exists(ref)) throw InputError(ref.string(), "--ref", "no such reference file");
 
   std::vector<gate::SweepRow> rows(jobs.size());
@@ -131,10 +143,15 @@ int run_techniques(const SweepArgs& a, const fs::path& giq, const fs::path& out)
       fs::remove_all(dir);
       fs::create_directories(dir);
       const fs::path log = dir / "log.txt";
-      std::vector<std::string> rt = {giq.string(), "realtime", "--scene", a.scene, "--view", a.view, "--technique",
-                                     row.technique, "--width", std::to_string(a.width), "--height",
-                                     std::to_string(a.height), "--warmup", std::to_string(a.warmup), "--frames",
-                                     std::to_string(a.frames), "--out", (dir / "technique").string()};
+      std::vector<std::string> rt = {giq.string(),  "realtime",
+                                     "--scene",     a.scene,
+                                     "--view",      a.view,
+                                     "--technique", row.technique,
+                                     "--width",     std::to_string(a.width),
+                                     "--height",    std::to_string(a.height),
+                                     "--warmup",    std::to_string(a.warmup),
+                                     "--frames",    std::to_string(a.frames),
+                                     "--out",       (dir / "technique").string()};
       for (const auto& [k, v] : row.parameters) {
         char buf[64];
         std::snprintf(buf, sizeof buf, "%s=%.10g", k.c_str(), v);
@@ -155,53 +172,72 @@ int run_techniques(const SweepArgs& a, const fs::path& giq, const fs::path& out)
   std::vector<std::string> names = kMetrics;
   names.push_back("rmse");
   write_file_atomically(out / "sweep.csv", gate::sweep_csv(rows, names));
-  const json run = {{"scene", a.scene}, {"view", a.view}, {"resolution", {a.width, a.height}}, {"warmup", a.warmup},
-                    {"frames", a.frames}, {"reference", ref.string()}, {"layer", a.layer}};
+  const json run = {{"scene", a.scene},   {"view", a.view},     {"resolution", {a.width, a.height}},
+                    {"warmup", a.warmup}, {"frames", a.frames}, {"reference", ref.string()},
+                    {"layer", a.layer}};
   write_file_atomically(out / "sweep.json", gate::sweep_json(rows, error, run).dump(2) + "\n");
-  write_file_atomically(out / "sweep.svg", gate::sweep_svg(rows, error, !a.linear, fs::path(a.scene).stem().string() +
-                                                                                      " / " + a.view + ": " + error +
-                                                                                      " vs GPU ms"));
+  write_file_atomically(out / "sweep.svg",
+                        gate::sweep_svg(rows, error, !a.linear,
+                                        fs::path(a.scene).stem().string() + " / " + a.view + ": " +
+                                            error + " vs GPU ms"));
   int failed = 0;
   for (const auto& r : rows) {
-    if (!r.error.empty()) ++failed, std::cerr << "giq sweep: " << r.technique << " " << gate::setting_label(r.parameters) << ": " << r.error << '\n';
+    if (!r.error.empty())
+      ++failed, std::cerr << "giq sweep: " << r.technique << " "
+                          << gate::setting_label(r.parameters) << ": " << r.error << '\n';
   }
-  std::cout << "giq sweep: " << rows.size() << " settings (" << failed << " failed), Pareto front on " << error << " -> "
-            << (out / "sweep.csv").string() << ", sweep.json, sweep.svg\n";
+  std::cout << "giq sweep: " << rows.size() << " settings (" << failed
+            << " failed), Pareto front on " << error << " -> " << (out / "sweep.csv").string()
+            << ", sweep.json, sweep.svg\n";
   return failed ? 1 : 0;
 }
 
 int run_convergence(const SweepArgs& a, const fs::path& giq, const fs::path& out) {
-  if (a.spp.size() < 2) throw InputError("", "--spp", "give at least two sample counts, e.g. --spp 1,4,16,64");
+  if (a.spp.size() < 2)
+    throw InputError("", "--spp", "give at least two sample counts, e.g. --spp 1,4,16,64");
   const std::string error = a.error.empty() ? "rmse" : a.error;
-  const fs::path truth = a.ref.empty() ? reference(a, giq, out, a.ref_spp, 1, "truth.exr") : fs::path(a.ref);
+  const fs::path truth =
+      a.ref.empty() ? reference(a, giq, out, a.ref_spp, 1, "truth.exr") : fs::path(a.ref);
   std::vector<double> spp, seconds, err;
   json rows = json::array();
   for (uint32_t n : a.spp) {
     double s = 0.0;
     // A seed other than the truth's, so the two estimates' noise is independent.
     const fs::path img = reference(a, giq, out, n, 2, "spp_" + std::to_string(n) + ".exr", &s);
-    const auto m = score(a, giq, truth, img, {}, out / ("score_spp_" + std::to_string(n)), out / "log.txt");
+    const auto m =
+        score(a, giq, truth, img, {}, out / ("score_spp_" + std::to_string(n)), out / "log.txt");
     const auto it = m.find(error);
     const double e = it != m.end() && it->second ? *it->second : std::nan("");
     spp.push_back(n), seconds.push_back(s), err.push_back(e);
-    rows.push_back({{"spp", n}, {"seconds", s}, {error, std::isfinite(e) ? json(e) : json(nullptr)}});
+    rows.push_back(
+        {{"spp", n}, {"seconds", s}, {error, std::isfinite(e) ? json(e) : json(nullptr)}});
   }
-  const gate::LineFit by_spp = gate::fit_log_log(spp, err), by_seconds = gate::fit_log_log(seconds, err);
+  const gate::LineFit by_spp = gate::fit_log_log(spp, err),
+                      by_seconds = gate::fit_log_log(seconds, err);
   auto fit_json = [](const gate::LineFit& f) {
-    return json{{"slope", f.slope}, {"intercept_log10", f.intercept}, {"r2", f.r2}, {"points", f.points}};
+    return json{
+        {"slope", f.slope}, {"intercept_log10", f.intercept}, {"r2", f.r2}, {"points", f.points}};
   };
-  write_file_atomically(out / "convergence.json",
-                        json{{"version", 1}, {"scene", a.scene}, {"view", a.view}, {"error_metric", error},
-                             {"truth", truth.string()}, {"rows", rows}, {"fit_spp", fit_json(by_spp)},
-                             {"fit_seconds", fit_json(by_seconds)}}
-                                .dump(2) + "\n");
+  write_file_atomically(out / "convergence.json", json{{"version", 1},
+                                                       {"scene", a.scene},
+                                                       {"view", a.view},
+                                                       {"error_metric", error},
+                                                       {"truth", truth.string()},
+                                                       {"rows", rows},
+                                                       {"fit_spp", fit_json(by_spp)},
+                                                       {"fit_seconds", fit_json(by_seconds)}}
+                                                          .dump(2) +
+                                                      "\n");
   std::ostringstream csv;
   csv << "spp,seconds," << error << '\n';
-  for (size_t i = 0; i < spp.size(); ++i) csv << spp[i] << ',' << seconds[i] << ',' << err[i] << '\n';
+  for (size_t i = 0; i < spp.size(); ++i)
+    csv << spp[i] << ',' << seconds[i] << ',' << err[i] << '\n';
   write_file_atomically(out / "convergence.csv", csv.str());
   for (const auto& [x, f, label, file] :
-       {std::tuple{&spp, by_spp, std::string("samples per pixel"), std::string("convergence_spp.svg")},
-        std::tuple{&seconds, by_seconds, std::string("render seconds"), std::string("convergence_seconds.svg")}}) {
+       {std::tuple{&spp, by_spp, std::string("samples per pixel"),
+                   std::string("convergence_spp.svg")},
+        std::tuple{&seconds, by_seconds, std::string("render seconds"),
+                   std::string("convergence_seconds.svg")}}) {
     gate::PlotSeries s{"reference " + error, {}, true};
     for (size_t i = 0; i < x->size(); ++i) s.points.push_back({(*x)[i], err[i], false, ""});
     gate::PlotOptions o;
@@ -209,14 +245,16 @@ int run_convergence(const SweepArgs& a, const fs::path& giq, const fs::path& out
     o.x_label = label, o.y_label = error, o.log_x = o.log_y = true, o.fit = f;
     write_file_atomically(out / file, gate::svg_plot({s}, o));
   }
-  std::printf("giq sweep --convergence: %s slope %.3f vs spp, %.3f vs seconds (R^2 %.3f) -> %s\n", error.c_str(),
-              by_spp.slope, by_seconds.slope, by_spp.r2, (out / "convergence.json").c_str());
+  std::printf("giq sweep --convergence: %s slope %.3f vs spp, %.3f vs seconds (R^2 %.3f) -> %s\n",
+              error.c_str(), by_spp.slope, by_seconds.slope, by_spp.r2,
+              (out / "convergence.json").c_str());
   return 0;
 }
 
 int run_sweep(const SweepArgs& a) {
   if (a.scene.empty()) throw InputError("", "--scene", "a scene is required");
-  if (a.jobs < 1 || a.frames < 1 || a.warmup < 0) throw InputError("", "--jobs/--frames/--warmup", "must be positive");
+  if (a.jobs < 1 || a.frames < 1 || a.warmup < 0)
+    throw InputError("", "--jobs/--frames/--warmup", "must be positive");
   const fs::path giq = a.giq.empty() ? self_executable() : fs::absolute(a.giq);
   const fs::path out = fs::absolute(a.out);  // recorded in metrics.json: valid from anywhere
   fs::create_directories(out);
@@ -227,28 +265,41 @@ int run_sweep(const SweepArgs& a) {
 
 void add_sweep_command(CLI::App& app, int& exit_code) {
   auto a = std::make_shared<SweepArgs>();
-  CLI::App* cmd = app.add_subcommand("sweep", "Speed against accuracy: techniques over parameter settings, or reference convergence");
+  CLI::App* cmd = app.add_subcommand(
+      "sweep",
+      "Speed against accuracy: techniques over parameter settings, or reference convergence");
   cmd->add_option("--scene", a->scene, "Scene (.gltf/.glb)");
   cmd->add_option("--view", a->view, "View name or index")->capture_default_str();
-  cmd->add_option("--technique", a->techniques, "Technique to sweep (repeatable; several share one plot)");
+  cmd->add_option("--technique", a->techniques,
+                  "Technique to sweep (repeatable; several share one plot)");
   cmd->add_option("--grid", a->grid, "Axis 'param=a,b,c' or 'technique.param=a,b,c' (repeatable)");
-  cmd->add_option("--auto", a->auto_steps, "Values per declared parameter range for parameters without --grid");
-  cmd->add_option("--max-settings", a->max_settings, "Refuse plans with more settings per technique")->capture_default_str();
-  cmd->add_option("--ref", a->ref, "Reference EXR (default: rendered with giq reference at --ref-spp)");
-  cmd->add_option("--ref-spp", a->ref_spp, "Samples per pixel of a rendered reference")->capture_default_str();
+  cmd->add_option("--auto", a->auto_steps,
+                  "Values per declared parameter range for parameters without --grid");
+  cmd->add_option("--max-settings", a->max_settings,
+                  "Refuse plans with more settings per technique")
+      ->capture_default_str();
+  cmd->add_option("--ref", a->ref,
+                  "Reference EXR (default: rendered with giq reference at --ref-spp)");
+  cmd->add_option("--ref-spp", a->ref_spp, "Samples per pixel of a rendered reference")
+      ->capture_default_str();
   cmd->add_option("--layer", a->layer, "Layer scored")->capture_default_str();
-  cmd->add_option("--error", a->error, "Error metric of the front and plots (default flip_mean; rmse for --convergence)");
+  cmd->add_option(
+      "--error", a->error,
+      "Error metric of the front and plots (default flip_mean; rmse for --convergence)");
   cmd->add_option("--width", a->width, "Image width")->capture_default_str();
   cmd->add_option("--height", a->height, "Image height")->capture_default_str();
   cmd->add_option("--warmup", a->warmup, "Frames before the measured ones")->capture_default_str();
   cmd->add_option("--frames", a->frames, "Measured frames (median GPU ms)")->capture_default_str();
   cmd->add_option("--device", a->device, "Vulkan device for giq realtime");
-  cmd->add_option("--jobs", a->jobs, "Settings run in parallel (GPU timings are cleaner with 1)")->capture_default_str();
+  cmd->add_option("--jobs", a->jobs, "Settings run in parallel (GPU timings are cleaner with 1)")
+      ->capture_default_str();
   cmd->add_option("--out", a->out, "Output folder")->capture_default_str();
   cmd->add_option("--giq", a->giq, "giq binary whose subcommands are run (default: this one)");
   cmd->add_flag("--linear", a->linear, "Linear axes instead of log-log");
-  cmd->add_flag("--convergence", a->convergence, "Reference convergence: error vs spp and seconds (with --spp)");
-  cmd->add_option("--spp", a->spp, "Sample counts for --convergence, e.g. 1,4,16,64")->delimiter(',');
+  cmd->add_flag("--convergence", a->convergence,
+                "Reference convergence: error vs spp and seconds (with --spp)");
+  cmd->add_option("--spp", a->spp, "Sample counts for --convergence, e.g. 1,4,16,64")
+      ->delimiter(',');
   cmd->callback([a, &exit_code] { exit_code = run_sweep(*a); });
 }
 

@@ -20,7 +20,9 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string frames_arg(int a, int b) { return std::to_string(a) + ":" + std::to_string(b); }
+std::string frames_arg(int a, int b) {
+  return std::to_string(a) + ":" + std::to_string(b);
+}
 
 json read_json(const fs::path& p) {
   std::ifstream in(p);
@@ -43,23 +45,25 @@ bool up_to_date(const fs::path& dir, const json& stamp) {
 }
 
 // Runs one step; a non-zero exit becomes a problem naming the step and the log.
-std::string step(const std::vector<std::string>& argv, const fs::path& dir, const fs::path& log, const std::string& what,
-                 const json& stamp, bool rerender) {
+std::string step(const std::vector<std::string>& argv, const fs::path& dir, const fs::path& log,
+                 const std::string& what, const json& stamp, bool rerender) {
   if (!rerender && up_to_date(dir, stamp)) return "";
   std::error_code ec;
   fs::remove_all(dir, ec);
   fs::create_directories(dir);
   const ProcessResult r = run_process(argv, log);
   if (r.exit_code != 0)
-    return what + " failed (exit " + std::to_string(r.exit_code) + "; log " + log.string() + "): " + r.log_tail;
+    return what + " failed (exit " + std::to_string(r.exit_code) + "; log " + log.string() +
+           "): " + r.log_tail;
   write_file_atomically(dir / "stamp.json", stamp.dump(2) + "\n");
   return "";
 }
 
 std::vector<std::string> realtime_args(const Toolchain& t, const gate::Case& c) {
-  std::vector<std::string> a = {t.giq.string(), "realtime", "--scene", c.scene.string(), "--view", c.view,
-                                "--technique", c.technique, "--width", std::to_string(c.width), "--height",
-                                std::to_string(c.height)};
+  std::vector<std::string> a = {t.giq.string(),          "realtime",  "--scene",
+                                c.scene.string(),        "--view",    c.view,
+                                "--technique",           c.technique, "--width",
+                                std::to_string(c.width), "--height",  std::to_string(c.height)};
   for (const std::string& p : gate::parameter_arguments(c)) a.insert(a.end(), {"--param", p});
   if (!t.device.empty()) a.insert(a.end(), {"--device", t.device});
   return a;
@@ -67,10 +71,12 @@ std::vector<std::string> realtime_args(const Toolchain& t, const gate::Case& c) 
 
 }  // namespace
 
-std::string scene_hash(const fs::path& scene) { return scenes::load(scene).content_hash; }
+std::string scene_hash(const fs::path& scene) {
+  return scenes::load(scene).content_hash;
+}
 
-CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& config, const gate::Manifest& manifest,
-                 const fs::path& out_dir) {
+CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& config,
+                 const gate::Manifest& manifest, const fs::path& out_dir) {
   CaseRun run;
   // Absolute paths, so metrics.json and the logs stay valid wherever they are read from.
   run.dir = fs::absolute(out_dir / "cases" / c.name);
@@ -81,10 +87,12 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
     std::ofstream(log, std::ios::trunc) << "giq gate: case " << c.name << '\n';
     const std::string hash = scene_hash(c.scene);
     const gate::Freshness fresh = gate::check_golden(manifest, config.golden_dir, c, hash);
-    if (fresh.state != gate::Freshness::State::Fresh) throw InputError(c.scene.string(), "golden", fresh.reason);
+    if (fresh.state != gate::Freshness::State::Fresh)
+      throw InputError(c.scene.string(), "golden", fresh.reason);
     const fs::path golden = fs::absolute(config.golden_dir / gate::golden_key(c));
     json golden_files = json::object();
-    for (const auto& [name, h] : manifest.entries.at(gate::golden_key(c)).files) golden_files[name] = h;
+    for (const auto& [name, h] : manifest.entries.at(gate::golden_key(c)).files)
+      golden_files[name] = h;
     const std::string binary_hash = gate::file_hash(t.giq);
 
     // Technique images: frames A..B are the measured frames after A warm-up frames.
@@ -92,7 +100,8 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
     const fs::path tech = run.dir / "technique";
     rt.insert(rt.end(), {"--warmup", std::to_string(c.first_frame), "--frames",
                          std::to_string(c.last_frame - c.first_frame + 1), "--out", tech.string()});
-    std::string problem = step(rt, tech, log, "giq realtime", {{"argv", rt}, {"giq", binary_hash}}, t.rerender);
+    std::string problem =
+        step(rt, tech, log, "giq realtime", {{"argv", rt}, {"giq", binary_hash}}, t.rerender);
     if (!problem.empty()) throw InputError("", "realtime", problem);
     fs::path timings = tech / "timings.json";
     if (c.needs_timing()) {
@@ -100,26 +109,32 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
       const fs::path timing = run.dir / "timing";
       tm.insert(tm.end(), {"--no-images", "--warmup", std::to_string(c.timing.warmup), "--frames",
                            std::to_string(c.timing.frames), "--out", timing.string()});
-      problem = step(tm, timing, log, "giq realtime (timing)", {{"argv", tm}, {"giq", binary_hash}}, t.rerender);
+      problem = step(tm, timing, log, "giq realtime (timing)", {{"argv", tm}, {"giq", binary_hash}},
+                     t.rerender);
       if (!problem.empty()) throw InputError("", "realtime", problem);
       timings = timing / "timings.json";
     }
     for (int f = c.first_frame; f <= c.last_frame; ++f)
       if (!fs::exists(tech / gate::golden_frame_name(f)))
-        throw InputError((tech / gate::golden_frame_name(f)).string(), "", "giq realtime did not write this frame");
+        throw InputError((tech / gate::golden_frame_name(f)).string(), "",
+                         "giq realtime did not write this frame");
 
     const fs::path score = run.dir / "score";
     std::vector<std::string> sc = {t.giq.string(), "score"};
     if (c.sequence())
-      sc.insert(sc.end(), {"--ref", (golden / "frame_%04d.exr").string(), "--test", (tech / "frame_%04d.exr").string(),
-                           "--frames", frames_arg(c.first_frame, c.last_frame)});
+      sc.insert(sc.end(), {"--ref", (golden / "frame_%04d.exr").string(), "--test",
+                           (tech / "frame_%04d.exr").string(), "--frames",
+                           frames_arg(c.first_frame, c.last_frame)});
     else
-      sc.insert(sc.end(), {"--ref", (golden / gate::golden_frame_name(c.first_frame)).string(), "--test",
-                           (tech / gate::golden_frame_name(c.first_frame)).string()});
-    sc.insert(sc.end(), {"--layer", c.layer, "--scene", c.scene.string(), "--timings", (tech / "timings.json").string(),
-                         "--out", score.string()});
+      sc.insert(sc.end(), {"--ref", (golden / gate::golden_frame_name(c.first_frame)).string(),
+                           "--test", (tech / gate::golden_frame_name(c.first_frame)).string()});
+    sc.insert(sc.end(), {"--layer", c.layer, "--scene", c.scene.string(), "--timings",
+                         (tech / "timings.json").string(), "--out", score.string()});
     problem = step(sc, score, log, "giq score",
-                   {{"argv", sc}, {"giq", binary_hash}, {"golden", golden_files}, {"technique", read_json(tech / "stamp.json")}},
+                   {{"argv", sc},
+                    {"giq", binary_hash},
+                    {"golden", golden_files},
+                    {"technique", read_json(tech / "stamp.json")}},
                    t.rerender);
     if (!problem.empty()) throw InputError("", "score", problem);
     run.evidence.metrics = read_json(score / "metrics.json");
@@ -131,8 +146,8 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
   return run;
 }
 
-GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Config& config, bool force,
-                        gate::Manifest& manifest, std::mutex& lock) {
+GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Config& config,
+                        bool force, gate::Manifest& manifest, std::mutex& lock) {
   GoldenRun g;
   g.key = gate::golden_key(c);
   try {
@@ -149,33 +164,44 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
     std::error_code ec;
     fs::remove_all(dir, ec);
     fs::create_directories(dir);
-    std::vector<std::string> a = {t.giq.string(), "reference", "--scene", c.scene.string(), "--view", c.view, "--frames",
-                                  frames_arg(c.first_frame, c.last_frame), "--width", std::to_string(c.width), "--height",
-                                  std::to_string(c.height), "--seed", std::to_string(c.golden.seed)};
-    if (c.golden.spp) a.insert(a.end(), {"--spp", std::to_string(*c.golden.spp)});
-    else a.insert(a.end(), {"--rel-error", std::to_string(*c.golden.rel_error)});
+    std::vector<std::string> a = {t.giq.string(), "reference",
+                                  "--scene",      c.scene.string(),
+                                  "--view",       c.view,
+                                  "--frames",     frames_arg(c.first_frame, c.last_frame),
+                                  "--width",      std::to_string(c.width),
+                                  "--height",     std::to_string(c.height),
+                                  "--seed",       std::to_string(c.golden.seed)};
+    if (c.golden.spp)
+      a.insert(a.end(), {"--spp", std::to_string(*c.golden.spp)});
+    else
+      a.insert(a.end(), {"--rel-error", std::to_string(*c.golden.rel_error)});
     a.insert(a.end(), {"--out", (dir / "frame_####.exr").string()});
     const fs::path log = config.golden_dir / (g.key + ".log");
     std::ofstream(log, std::ios::trunc) << "giq golden update: " << g.key << '\n';
     const ProcessResult r = run_process(a, log);
     if (r.exit_code != 0)
-      throw InputError(c.scene.string(), "golden", "giq reference failed (exit " + std::to_string(r.exit_code) + "; log " +
-                                                      log.string() + "): " + r.log_tail);
+      throw InputError(c.scene.string(), "golden",
+                       "giq reference failed (exit " + std::to_string(r.exit_code) + "; log " +
+                           log.string() + "): " + r.log_tail);
     fs::remove(log, ec);
     gate::GoldenEntry e;
-    e.scene = fs::absolute(c.scene).lexically_relative(fs::absolute(config.file).parent_path()).generic_string();
+    e.scene = fs::absolute(c.scene)
+                  .lexically_relative(fs::absolute(config.file).parent_path())
+                  .generic_string();
     e.scene_hash = hash;
     e.settings = gate::golden_settings(c);
     e.render_seconds = r.seconds;
     e.giq_version = giq::version();
     for (int f = c.first_frame; f <= c.last_frame; ++f) {
       const fs::path p = dir / gate::golden_frame_name(f);
-      if (!fs::exists(p)) throw InputError(p.string(), "", "giq reference did not write this frame");
+      if (!fs::exists(p))
+        throw InputError(p.string(), "", "giq reference did not write this frame");
       e.files[p.filename().string()] = gate::file_hash(p);
       // The achieved spp (minimum over pixels and frames) and the renderer's version come from
       // the EXR header that giq reference writes.
       const image::Image img = image::read_image(p);
-      if (auto it = img.metadata.find("giq.version"); it != img.metadata.end()) e.giq_version = it->second;
+      if (auto it = img.metadata.find("giq.version"); it != img.metadata.end())
+        e.giq_version = it->second;
       if (auto it = img.metadata.find("giq.spp"); it != img.metadata.end()) {
         const uint32_t spp = uint32_t(std::stoul(it->second));
         e.spp = e.spp ? std::min(*e.spp, spp) : spp;

@@ -48,8 +48,8 @@ struct GoldenRun {
 // Renders the golden of `c` when it is missing or stale (always with `force`) and records it
 // in `manifest` (guarded by `lock`; the manifest file is rewritten after each golden so an
 // interrupted update keeps what it finished).
-GoldenRun update_golden(const Toolchain& tools, const gate::Case& c, const gate::Config& config, bool force,
-                        gate::Manifest& manifest, std::mutex& lock);
+GoldenRun update_golden(const Toolchain& tools, const gate::Case& c, const gate::Config& config,
+                        bool force, gate::Manifest& manifest, std::mutex& lock);
 
 // scenes::Scene::content_hash of the case's scene (throws InputError for a bad scene).
 std::string scene_hash(const std::filesystem::path& scene);

@@ -33,8 +33,8 @@ std::string data_uri(const std::string& mime, const std::string& bytes) {
 // goes through a temporary file.
 std::string png_uri(const image::Image& img, const std::string& layer, float exposure) {
   static int counter = 0;
-  const fs::path tmp = fs::temp_directory_path() / ("giq_report_" + std::to_string(::getpid()) + "_" +
-                                                    std::to_string(counter++) + ".png");
+  const fs::path tmp = fs::temp_directory_path() / ("giq_report_" + std::to_string(::getpid()) +
+                                                    "_" + std::to_string(counter++) + ".png");
   image::PngOptions o;
   o.layer = layer;
   o.exposure = exposure;
@@ -70,20 +70,25 @@ std::string value_text(const json& m) {
   } else {
     s = "n/a";
   }
-  if (m.is_object() && m.value("unresolved", false)) s += " (unresolved: below the reference's noise)";
+  if (m.is_object() && m.value("unresolved", false))
+    s += " (unresolved: below the reference's noise)";
   return s;
 }
 
 void add_metric_rows(Comparison& c, const json& m, const std::string& prefix) {
-  for (const char* k : {"relmse", "mse", "mae", "smape", "psnr", "ssim", "mse_debiased", "noise_floor"})
+  for (const char* k :
+       {"relmse", "mse", "mae", "smape", "psnr", "ssim", "mse_debiased", "noise_floor"})
     if (m.contains(k)) c.metrics.emplace_back(prefix + k, value_text(m[k]));
   if (m.contains("flip")) {
     for (const char* k : {"mean", "weighted_median", "max"})
-      if (m["flip"].contains(k)) c.metrics.emplace_back(prefix + "flip " + k, value_text(m["flip"][k]));
+      if (m["flip"].contains(k))
+        c.metrics.emplace_back(prefix + "flip " + k, value_text(m["flip"][k]));
   }
   if (m.contains("leak"))
     for (const char* region : {"declared", "automatic"})
-      if (m["leak"].contains(region)) c.metrics.emplace_back(prefix + "leak (" + region + ")", value_text(m["leak"][region]["leak"]));
+      if (m["leak"].contains(region))
+        c.metrics.emplace_back(prefix + "leak (" + region + ")",
+                               value_text(m["leak"][region]["leak"]));
 }
 
 void add_maps(Comparison& c, const json& maps, const fs::path& dir) {
@@ -96,8 +101,8 @@ void add_maps(Comparison& c, const json& maps, const fs::path& dir) {
     p.data_uri = data_uri("image/png", slurp(png));
     ColourScale s;
     s.colormap = m.value("colormap", "magma");
-    if (m.contains("range") && m["range"].is_array() && m["range"].size() == 2 && m["range"][0].is_number() &&
-        m["range"][1].is_number())
+    if (m.contains("range") && m["range"].is_array() && m["range"].size() == 2 &&
+        m["range"][0].is_number() && m["range"][1].is_number())
       s.lo = m["range"][0], s.hi = m["range"][1];
     s.unit = m.value("unit", "");
     s.rule = m.value("range_rule", "");
@@ -123,18 +128,30 @@ Comparison comparison(const fs::path& file, const fs::path& root, int max_frames
   const bool sequence = j.contains("sequence") && in.contains("frames");
   int last = 0;
   if (sequence) c.first_frame = in["frames"][0], last = in["frames"][1];
-  auto ref_path = [&](int f) { return locate(ref.find('%') != std::string::npos ? frame_file(ref, f) : ref, dir); };
-  auto test_path = [&](int f) { return locate(test.find('%') != std::string::npos ? frame_file(test, f) : test, dir); };
+  auto ref_path = [&](int f) {
+    return locate(ref.find('%') != std::string::npos ? frame_file(ref, f) : ref, dir);
+  };
+  auto test_path = [&](int f) {
+    return locate(test.find('%') != std::string::npos ? frame_file(test, f) : test, dir);
+  };
 
   const image::Image r = image::read_image(ref_path(last));
   const image::Image t = image::read_image(test_path(last));
   c.scene = in.value("scene", "");
   if (c.scene.empty() && r.metadata.count("giq.scene")) c.scene = r.metadata.at("giq.scene");
-  if (c.scene.empty() && j.contains("inputs") && j["inputs"].contains("scene")) c.scene = j["inputs"]["scene"];
+  if (c.scene.empty() && j.contains("inputs") && j["inputs"].contains("scene"))
+    c.scene = j["inputs"]["scene"];
   if (c.scene.empty()) c.scene = "(scene not recorded)";
-  c.technique = t.metadata.count("giq.technique") ? t.metadata.at("giq.technique") : test_path(last).parent_path().filename().string();
-  c.panes.push_back({"reference" + std::string(sequence ? " (frame " + std::to_string(last) + ")" : ""), png_uri(r, layer, exposure), {}});
-  c.panes.push_back({c.technique + (sequence ? " (frame " + std::to_string(last) + ")" : ""), png_uri(t, layer, exposure), {}});
+  c.technique = t.metadata.count("giq.technique")
+                    ? t.metadata.at("giq.technique")
+                    : test_path(last).parent_path().filename().string();
+  c.panes.push_back(
+      {"reference" + std::string(sequence ? " (frame " + std::to_string(last) + ")" : ""),
+       png_uri(r, layer, exposure),
+       {}});
+  c.panes.push_back({c.technique + (sequence ? " (frame " + std::to_string(last) + ")" : ""),
+                     png_uri(t, layer, exposure),
+                     {}});
 
   if (sequence) {
     const int n = last - c.first_frame + 1;
@@ -144,10 +161,12 @@ Comparison comparison(const fs::path& file, const fs::path& root, int max_frames
       c.technique_frames.push_back(png_uri(image::read_image(test_path(f)), layer, exposure));
     }
     const json& q = j["sequence"];
-    for (const char* k : {"flicker", "temporal_flip", "bias2", "variance", "lag90_frames", "lag90_ms"})
+    for (const char* k :
+         {"flicker", "temporal_flip", "bias2", "variance", "lag90_frames", "lag90_ms"})
       if (q.contains(k)) c.metrics.emplace_back(k, value_text(q[k]));
     if (j.contains("last_frame")) {
-      if (j["last_frame"].contains("metrics")) add_metric_rows(c, j["last_frame"]["metrics"], "last frame: ");
+      if (j["last_frame"].contains("metrics"))
+        add_metric_rows(c, j["last_frame"]["metrics"], "last frame: ");
       if (j["last_frame"].contains("maps")) add_maps(c, j["last_frame"]["maps"], dir);
     }
   } else if (j.contains("metrics")) {
@@ -160,17 +179,21 @@ Comparison comparison(const fs::path& file, const fs::path& root, int max_frames
 }  // namespace
 
 ReportInputs scan_report_inputs(const fs::path& dir, int max_frames) {
-  if (!fs::is_directory(dir)) throw InputError(dir.string(), "DIR", "not a folder; expected giq gate, score or sweep outputs");
+  if (!fs::is_directory(dir))
+    throw InputError(dir.string(), "DIR",
+                     "not a folder; expected giq gate, score or sweep outputs");
   ReportInputs r;
   r.dir = dir;
   std::vector<fs::path> files;
-  for (const auto& e : fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied))
+  for (const auto& e :
+       fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied))
     if (e.is_regular_file()) files.push_back(e.path());
   std::sort(files.begin(), files.end());
   // The scores of a sweep's settings are summarised by its table and plot, not shown one by one.
   std::vector<fs::path> sweep_dirs;
   for (const fs::path& f : files)
-    if (f.filename() == "sweep.json" || f.filename() == "convergence.json") sweep_dirs.push_back(f.parent_path());
+    if (f.filename() == "sweep.json" || f.filename() == "convergence.json")
+      sweep_dirs.push_back(f.parent_path());
   auto in_sweep = [&](const fs::path& f) {
     return std::any_of(sweep_dirs.begin(), sweep_dirs.end(), [&](const fs::path& d) {
       const std::string rel = fs::relative(f, d).generic_string();
@@ -189,7 +212,8 @@ ReportInputs scan_report_inputs(const fs::path& dir, int max_frames) {
       } else if (name == "sweep.json") {
         r.sweeps.push_back({fs::relative(f, dir).generic_string(), json::parse(slurp(f))});
       } else if (f.extension() == ".svg") {
-        r.plots.push_back({fs::relative(f, dir).generic_string(), data_uri("image/svg+xml", slurp(f)), {}});
+        r.plots.push_back(
+            {fs::relative(f, dir).generic_string(), data_uri("image/svg+xml", slurp(f)), {}});
       }
     } catch (const std::exception& e) {
       r.warnings.push_back(fs::relative(f, dir).generic_string() + ": " + e.what());
@@ -200,7 +224,8 @@ ReportInputs scan_report_inputs(const fs::path& dir, int max_frames) {
   if (r.comparisons.empty() && !r.gate && r.sweeps.empty() && r.plots.empty())
     throw InputError(dir.string(), "DIR",
                      "holds no metrics.json, gate.json, sweep.json or plot" +
-                         (r.warnings.empty() ? std::string() : " that could be read (" + r.warnings.front() + ")"));
+                         (r.warnings.empty() ? std::string()
+                                             : " that could be read (" + r.warnings.front() + ")"));
   return r;
 }
 

@@ -29,7 +29,7 @@ struct Comparison {
   std::string technique;  // from the technique's EXR header (giq.technique), else its folder
   std::string label;      // gate case name or the score folder
   std::string layer;
-  std::string source;     // metrics.json, relative to DIR
+  std::string source;          // metrics.json, relative to DIR
   std::vector<Picture> panes;  // reference, technique (same exposure)
   std::vector<Picture> maps;   // error maps with their colour scales
   std::vector<std::string> reference_frames, technique_frames;  // flip-book (sequences)
@@ -47,7 +47,7 @@ struct ReportInputs {
   std::vector<Comparison> comparisons;
   std::optional<nlohmann::json> gate;
   std::vector<Sweep> sweeps;
-  std::vector<Picture> plots;  // *.svg written by giq sweep
+  std::vector<Picture> plots;         // *.svg written by giq sweep
   std::vector<std::string> warnings;  // files that could not be read, shown on the page
 };
 

@@ -81,39 +81,50 @@ std::string num(double v) {
 
 std::string hex(double r, double g, double b) {
   char buf[8];
-  std::snprintf(buf, sizeof buf, "#%02x%02x%02x", int(std::lround(r * 255)), int(std::lround(g * 255)), int(std::lround(b * 255)));
+  std::snprintf(buf, sizeof buf, "#%02x%02x%02x", int(std::lround(r * 255)),
+                int(std::lround(g * 255)), int(std::lround(b * 255)));
   return buf;
 }
 
-double encode_srgb(double l) { return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055; }
-double decode_srgb(double e) { return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4); }
+double encode_srgb(double l) {
+  return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
+}
+double decode_srgb(double e) {
+  return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
+}
 
 std::string figure(const Picture& p, const std::string& extra_imgs = "") {
   std::ostringstream s;
   s << "<figure><div class=\"view\">";
-  if (extra_imgs.empty()) s << "<img alt=\"" << html_escape(p.title) << "\" src=\"" << p.data_uri << "\">";
-  else s << extra_imgs;
+  if (extra_imgs.empty())
+    s << "<img alt=\"" << html_escape(p.title) << "\" src=\"" << p.data_uri << "\">";
+  else
+    s << extra_imgs;
   s << "</div>";
   if (p.scale) {
-    s << "<div class=\"scale\" style=\"background:linear-gradient(to right," << colormap_gradient(p.scale->colormap)
-      << ")\"></div><div class=\"scale-labels\"><span>" << num(p.scale->lo) << "</span><span>"
-      << html_escape(p.scale->unit) << "</span><span>" << num(p.scale->hi) << "</span></div>";
+    s << "<div class=\"scale\" style=\"background:linear-gradient(to right,"
+      << colormap_gradient(p.scale->colormap) << ")\"></div><div class=\"scale-labels\"><span>"
+      << num(p.scale->lo) << "</span><span>" << html_escape(p.scale->unit) << "</span><span>"
+      << num(p.scale->hi) << "</span></div>";
   }
   s << "<figcaption>" << html_escape(p.title);
-  if (p.scale && !p.scale->rule.empty()) s << "<br><span class=\"hint\">range: " << html_escape(p.scale->rule) << "</span>";
+  if (p.scale && !p.scale->rule.empty())
+    s << "<br><span class=\"hint\">range: " << html_escape(p.scale->rule) << "</span>";
   s << "</figcaption></figure>\n";
   return s.str();
 }
 
 void gate_section(std::ostringstream& h, const json& g) {
-  h << "<h2>Gate</h2>\n<p>" << (g.value("passed", false) ? "passed" : "<strong>FAILED</strong>") << " &mdash; config "
-    << html_escape(g.value("config", "")) << "</p>\n<table><tr><th>case</th><th>metric</th><th>value</th><th>bound</th>"
+  h << "<h2>Gate</h2>\n<p>" << (g.value("passed", false) ? "passed" : "<strong>FAILED</strong>")
+    << " &mdash; config " << html_escape(g.value("config", ""))
+    << "</p>\n<table><tr><th>case</th><th>metric</th><th>value</th><th>bound</th>"
     << "<th>status</th><th>note</th></tr>\n";
   for (const json& o : g.value("outcomes", json::array())) {
     const std::string status = o.value("status", "");
-    const bool known = status == "PASS" || status == "WARN" || status == "FAIL" || status == "UNRESOLVED" || status == "SKIP";
-    h << "<tr class=\"" << (known ? status : "") << "\"><td>" << html_escape(o.value("case", "")) << "</td><td>"
-      << html_escape(o.value("metric", "")) << "</td><td class=\"num\">"
+    const bool known = status == "PASS" || status == "WARN" || status == "FAIL" ||
+                       status == "UNRESOLVED" || status == "SKIP";
+    h << "<tr class=\"" << (known ? status : "") << "\"><td>" << html_escape(o.value("case", ""))
+      << "</td><td>" << html_escape(o.value("metric", "")) << "</td><td class=\"num\">"
       << (o.contains("value") && o["value"].is_number() ? num(o["value"]) : "-") << "</td><td>"
       << html_escape(o.value("bound", "")) << "</td><td>" << html_escape(status) << "</td><td>"
       << html_escape(o.value("message", "")) << "</td></tr>\n";
@@ -122,9 +133,11 @@ void gate_section(std::ostringstream& h, const json& g) {
 }
 
 void comparison_section(std::ostringstream& h, const Comparison& c) {
-  h << "<div class=\"comparison\"><h3>" << html_escape(c.technique) << " &mdash; " << html_escape(c.label) << "</h3>\n"
+  h << "<div class=\"comparison\"><h3>" << html_escape(c.technique) << " &mdash; "
+    << html_escape(c.label) << "</h3>\n"
     << "<p class=\"meta\">layer " << html_escape(c.layer) << " &middot; " << html_escape(c.source)
-    << " &middot; <span class=\"hint\">wheel: zoom, drag: pan, double-click: reset (all images together)</span></p>\n";
+    << " &middot; <span class=\"hint\">wheel: zoom, drag: pan, double-click: reset (all images "
+       "together)</span></p>\n";
   h << "<div class=\"row sync\">\n";
   for (const Picture& p : c.panes) h << figure(p);
   for (const Picture& p : c.maps) h << figure(p);
@@ -134,18 +147,24 @@ void comparison_section(std::ostringstream& h, const Comparison& c) {
     auto frames = [&](const std::vector<std::string>& uris, const std::string& who) {
       std::string s;
       for (size_t i = 0; i < uris.size(); ++i)
-        s += "<img alt=\"" + html_escape(who) + " frame " + std::to_string(i) + "\" src=\"" + uris[i] + "\">";
+        s += "<img alt=\"" + html_escape(who) + " frame " + std::to_string(i) + "\" src=\"" +
+             uris[i] + "\">";
       return s;
     };
-    h << "<div class=\"flipbook\" data-first=\"" << c.first_frame << "\" data-step=\"1\"><h4>Sequence (flicker)</h4>"
-      << "<div class=\"controls\"><button type=\"button\">play / pause</button> <input type=\"range\" min=\"0\" max=\""
-      << n - 1 << "\" value=\"" << n - 1 << "\"> <span class=\"frame-label\"></span></div><div class=\"row sync\">\n"
+    h << "<div class=\"flipbook\" data-first=\"" << c.first_frame
+      << "\" data-step=\"1\"><h4>Sequence (flicker)</h4>"
+      << "<div class=\"controls\"><button type=\"button\">play / pause</button> <input "
+         "type=\"range\" min=\"0\" max=\""
+      << n - 1 << "\" value=\"" << n - 1
+      << "\"> <span class=\"frame-label\"></span></div><div class=\"row sync\">\n"
       << figure({"reference", "", {}}, frames(c.reference_frames, "reference"))
       << figure({c.technique, "", {}}, frames(c.technique_frames, c.technique)) << "</div></div>\n";
   }
   if (!c.metrics.empty()) {
     h << "<table><tr><th>metric</th><th>value</th></tr>\n";
-    for (const auto& [k, v] : c.metrics) h << "<tr><td>" << html_escape(k) << "</td><td class=\"num\">" << html_escape(v) << "</td></tr>\n";
+    for (const auto& [k, v] : c.metrics)
+      h << "<tr><td>" << html_escape(k) << "</td><td class=\"num\">" << html_escape(v)
+        << "</td></tr>\n";
     h << "</table>\n";
   }
   h << "</div>\n";
@@ -155,14 +174,18 @@ void sweep_section(std::ostringstream& h, const Sweep& s) {
   const std::vector<gate::SweepRow> rows = gate::sweep_rows(s.data, s.source);
   const std::string metric = s.data.value("error_metric", "flip_mean");
   const std::string svg = gate::sweep_svg(rows, metric, true, "error vs GPU time: " + s.source);
-  h << "<h3>" << html_escape(s.source) << "</h3>\n<img class=\"plot\" alt=\"sweep plot\" src=\"data:image/svg+xml;base64,"
-    << gate::base64(svg) << "\">\n<table><tr><th>technique</th><th>setting</th><th>default</th><th>GPU ms</th><th>"
+  h << "<h3>" << html_escape(s.source)
+    << "</h3>\n<img class=\"plot\" alt=\"sweep plot\" src=\"data:image/svg+xml;base64,"
+    << gate::base64(svg)
+    << "\">\n<table><tr><th>technique</th><th>setting</th><th>default</th><th>GPU ms</th><th>"
     << html_escape(metric) << "</th><th>Pareto front</th></tr>\n";
   for (const auto& r : rows) {
     const auto it = r.metrics.find(metric);
-    h << "<tr><td>" << html_escape(r.technique) << "</td><td>" << html_escape(gate::setting_label(r.parameters))
-      << "</td><td>" << (r.is_default ? "yes" : "") << "</td><td class=\"num\">" << (r.gpu_ms ? num(*r.gpu_ms) : "-")
-      << "</td><td class=\"num\">" << (it != r.metrics.end() && it->second ? num(*it->second) : html_escape(r.error))
+    h << "<tr><td>" << html_escape(r.technique) << "</td><td>"
+      << html_escape(gate::setting_label(r.parameters)) << "</td><td>"
+      << (r.is_default ? "yes" : "") << "</td><td class=\"num\">"
+      << (r.gpu_ms ? num(*r.gpu_ms) : "-") << "</td><td class=\"num\">"
+      << (it != r.metrics.end() && it->second ? num(*it->second) : html_escape(r.error))
       << "</td><td>" << (r.on_front ? "yes" : "") << "</td></tr>\n";
   }
   h << "</table>\n";
@@ -174,7 +197,8 @@ std::string colormap_gradient(const std::string& colormap) {
   if (colormap == "blue-white-red") {
     // Each half interpolates in linear light between white and the end colour (as giq score's
     // diverging map does); nine stops per half keep the CSS (sRGB) interpolation close.
-    const double blue[3] = {59 / 255.0, 76 / 255.0, 192 / 255.0}, red[3] = {180 / 255.0, 4 / 255.0, 38 / 255.0};
+    const double blue[3] = {59 / 255.0, 76 / 255.0, 192 / 255.0},
+                 red[3] = {180 / 255.0, 4 / 255.0, 38 / 255.0};
     std::string s;
     for (int i = -8; i <= 8; ++i) {
       const double t = std::abs(i) / 8.0;
@@ -191,10 +215,12 @@ std::string colormap_gradient(const std::string& colormap) {
 
 std::string report_html(const ReportInputs& in, const std::string& title) {
   std::ostringstream h;
-  h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" << html_escape(title)
-    << "</title>\n<style>" << kStyle << "</style></head><body>\n<h1>" << html_escape(title) << "</h1>\n<p class=\"meta\">"
-    << html_escape(in.dir.string()) << " &middot; giq " << html_escape(giq::version()) << "</p>\n";
-  for (const std::string& w : in.warnings) h << "<p class=\"warning\">not shown: " << html_escape(w) << "</p>\n";
+  h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>"
+    << html_escape(title) << "</title>\n<style>" << kStyle << "</style></head><body>\n<h1>"
+    << html_escape(title) << "</h1>\n<p class=\"meta\">" << html_escape(in.dir.string())
+    << " &middot; giq " << html_escape(giq::version()) << "</p>\n";
+  for (const std::string& w : in.warnings)
+    h << "<p class=\"warning\">not shown: " << html_escape(w) << "</p>\n";
   if (in.gate) gate_section(h, *in.gate);
   std::string scene;
   for (const Comparison& c : in.comparisons) {
@@ -204,8 +230,8 @@ std::string report_html(const ReportInputs& in, const std::string& title) {
   if (!in.sweeps.empty() || !in.plots.empty()) h << "<h2>Speed and accuracy</h2>\n";
   for (const Sweep& s : in.sweeps) sweep_section(h, s);
   for (const Picture& p : in.plots)
-    h << "<h3>" << html_escape(p.title) << "</h3>\n<img class=\"plot\" alt=\"" << html_escape(p.title) << "\" src=\""
-      << p.data_uri << "\">\n";
+    h << "<h3>" << html_escape(p.title) << "</h3>\n<img class=\"plot\" alt=\""
+      << html_escape(p.title) << "\" src=\"" << p.data_uri << "\">\n";
   h << "<script>" << kScript << "</script>\n</body></html>\n";
   return h.str();
 }

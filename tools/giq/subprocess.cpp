@@ -25,8 +25,11 @@ namespace fs = std::filesystem;
 std::string command_line(const std::vector<std::string>& argv) {
   std::string s;
   for (const std::string& a : argv) {
-    const bool plain = !a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=:,%#+") ==
-                                         std::string::npos;
+    const bool plain =
+        !a.empty() &&
+        a.find_first_not_of(
+            "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=:,%#+") ==
+            std::string::npos;
     if (!s.empty()) s += ' ';
     if (plain) {
       s += a;
@@ -46,7 +49,9 @@ ProcessResult run_process(const std::vector<std::string>& argv, const fs::path& 
     log << "$ " << command_line(argv) << '\n';
   }
   const int fd = ::open(log_file.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0) throw InputError(log_file.string(), "", std::string("cannot open the log: ") + std::strerror(errno));
+  if (fd < 0)
+    throw InputError(log_file.string(), "",
+                     std::string("cannot open the log: ") + std::strerror(errno));
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
@@ -60,13 +65,16 @@ ProcessResult run_process(const std::vector<std::string>& argv, const fs::path& 
   const int rc = posix_spawn(&pid, argv[0].c_str(), &actions, nullptr, args.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   ::close(fd);
-  if (rc != 0) throw InputError(argv[0], "", std::string("cannot run the program: ") + std::strerror(rc));
+  if (rc != 0)
+    throw InputError(argv[0], "", std::string("cannot run the program: ") + std::strerror(rc));
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   ProcessResult r;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
+  r.exit_code = WIFEXITED(status)     ? WEXITSTATUS(status)
+                : WIFSIGNALED(status) ? 128 + WTERMSIG(status)
+                                      : -1;
   // The last few lines of the log, the part that says why a command failed.
   std::ifstream in(log_file);
   std::vector<std::string> lines;
@@ -90,6 +98,8 @@ void parallel_for(size_t count, int jobs, const std::function<void(size_t)>& tas
   for (auto& t : threads) t.join();
 }
 
-fs::path self_executable() { return fs::read_symlink("/proc/self/exe"); }
+fs::path self_executable() {
+  return fs::read_symlink("/proc/self/exe");
+}
 
 }  // namespace giq::cli

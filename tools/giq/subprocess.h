@@ -11,14 +11,15 @@
 namespace giq::cli {
 
 struct ProcessResult {
-  int exit_code = -1;      // the child's exit status; 128 + N when killed by signal N
-  double seconds = 0.0;    // wall time
-  std::string log_tail;    // the last lines of its output, for messages
+  int exit_code = -1;    // the child's exit status; 128 + N when killed by signal N
+  double seconds = 0.0;  // wall time
+  std::string log_tail;  // the last lines of its output, for messages
 };
 
 // Runs argv[0] (a path) with arguments, stdout and stderr appended to `log_file`. Throws
 // InputError when the program cannot be started.
-ProcessResult run_process(const std::vector<std::string>& argv, const std::filesystem::path& log_file);
+ProcessResult run_process(const std::vector<std::string>& argv,
+                          const std::filesystem::path& log_file);
 
 // A shell-quoted command line, for logs and messages.
 std::string command_line(const std::vector<std::string>& argv);

@@ -14,7 +14,8 @@ namespace {
 double parse_number(const std::string& s, const std::string& field) {
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end != '\0' || !std::isfinite(v)) throw InputError("", field, "'" + s + "' is not a number");
+  if (s.empty() || *end != '\0' || !std::isfinite(v))
+    throw InputError("", field, "'" + s + "' is not a number");
   return v;
 }
 
@@ -36,18 +37,21 @@ std::vector<TechniqueParameters> parse_technique_list(const std::string& listing
     double lo = 0, hi = 0;
     if (std::sscanf(line.c_str() + p, "--param %255[^=]=%63s [%lf, %lf]", name, def, &lo, &hi) != 4)
       throw InputError("giq realtime --list", out.back().name,
-                       "cannot read the parameter line '" + line + "'; expected --param NAME=DEFAULT [MIN, MAX]");
+                       "cannot read the parameter line '" + line +
+                           "'; expected --param NAME=DEFAULT [MIN, MAX]");
     info.name = name;
     info.default_value = parse_number(def, "giq realtime --list");
     info.min_value = lo, info.max_value = hi;
     const size_t close = line.find(']', p);
-    info.integer = line.compare(close + 1, 9, " integer ") == 0 || line.compare(close + 1, 8, " integer") == 0;
+    info.integer =
+        line.compare(close + 1, 9, " integer ") == 0 || line.compare(close + 1, 8, " integer") == 0;
     out.back().parameters.push_back(info);
   }
   return out;
 }
 
-std::vector<Setting> plan_settings(const TechniqueParameters& t, const std::vector<std::string>& grid, int auto_steps,
+std::vector<Setting> plan_settings(const TechniqueParameters& t,
+                                   const std::vector<std::string>& grid, int auto_steps,
                                    int max_settings) {
   std::map<std::string, std::vector<double>> axes;
   auto find = [&](const std::string& n) -> const ParameterInfo* {
@@ -57,7 +61,8 @@ std::vector<Setting> plan_settings(const TechniqueParameters& t, const std::vect
   };
   for (const std::string& g : grid) {
     const size_t eq = g.find('=');
-    if (eq == std::string::npos || eq == 0) throw InputError("", "--grid", "'" + g + "' is not param=a,b,c");
+    if (eq == std::string::npos || eq == 0)
+      throw InputError("", "--grid", "'" + g + "' is not param=a,b,c");
     std::string name = g.substr(0, eq);
     const size_t dot = name.find('.');
     if (dot != std::string::npos) {
@@ -67,7 +72,9 @@ std::vector<Setting> plan_settings(const TechniqueParameters& t, const std::vect
     const ParameterInfo* p = find(name);
     if (!p) {
       if (dot != std::string::npos)
-        throw InputError("", "--grid", "technique " + t.name + " has no parameter '" + name + "' (giq realtime --list)");
+        throw InputError(
+            "", "--grid",
+            "technique " + t.name + " has no parameter '" + name + "' (giq realtime --list)");
       continue;  // a bare axis applies to the techniques that declare it
     }
     std::vector<double> values;
@@ -75,8 +82,10 @@ std::vector<Setting> plan_settings(const TechniqueParameters& t, const std::vect
     for (std::string v; std::getline(ss, v, ',');) {
       const double x = parse_number(v, "--grid " + name);
       if (x < p->min_value || x > p->max_value)
-        throw InputError("", "--grid", name + "=" + v + " is outside its declared range [" + std::to_string(p->min_value) +
-                                           ", " + std::to_string(p->max_value) + "]");
+        throw InputError("", "--grid",
+                         name + "=" + v + " is outside its declared range [" +
+                             std::to_string(p->min_value) + ", " + std::to_string(p->max_value) +
+                             "]");
       values.push_back(p->integer ? std::round(x) : x);
     }
     if (values.empty()) throw InputError("", "--grid", "'" + g + "' lists no values");
@@ -89,7 +98,8 @@ std::vector<Setting> plan_settings(const TechniqueParameters& t, const std::vect
       const bool geometric = p.min_value > 0.0 && p.max_value / p.min_value >= 10.0;
       for (int k = 0; k < auto_steps; ++k) {
         const double f = auto_steps == 1 ? 0.5 : double(k) / (auto_steps - 1);
-        double x = geometric ? p.min_value * std::pow(p.max_value / p.min_value, f) : p.min_value + f * (p.max_value - p.min_value);
+        double x = geometric ? p.min_value * std::pow(p.max_value / p.min_value, f)
+                             : p.min_value + f * (p.max_value - p.min_value);
         if (p.integer) x = std::round(x);
         if (std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
       }
@@ -106,8 +116,9 @@ std::vector<Setting> plan_settings(const TechniqueParameters& t, const std::vect
       }
     out = next;
     if (int(out.size()) > max_settings)
-      throw InputError("", "--grid", "technique " + t.name + " would run " + std::to_string(out.size()) +
-                                         "+ settings, more than --max-settings " + std::to_string(max_settings));
+      throw InputError("", "--grid",
+                       "technique " + t.name + " would run " + std::to_string(out.size()) +
+                           "+ settings, more than --max-settings " + std::to_string(max_settings));
   }
   // The all-defaults setting, over the same parameters, so every technique shows its default.
   Setting defaults;

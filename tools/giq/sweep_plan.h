@@ -32,8 +32,9 @@ using Setting = std::vector<std::pair<std::string, double>>;  // sorted by name
 // range is positive and spans a factor of 10 or more, else evenly spaced; integers rounded).
 // The cartesian product of the axes, plus the all-defaults setting. Throws InputError for an
 // axis naming no declared parameter, a value outside its range, or more than `max_settings`.
-std::vector<Setting> plan_settings(const TechniqueParameters& technique, const std::vector<std::string>& grid,
-                                   int auto_steps, int max_settings);
+std::vector<Setting> plan_settings(const TechniqueParameters& technique,
+                                   const std::vector<std::string>& grid, int auto_steps,
+                                   int max_settings);
 
 bool is_default(const TechniqueParameters& technique, const Setting& s);
 

@@ -18,8 +18,9 @@ namespace fs = std::filesystem;
 // ordered_json keeps the file's order, so cases and bounds are reported in the order written.
 using json = nlohmann::ordered_json;
 
-const std::set<std::string> kCaseKeys = {"name",   "scene",      "view",   "technique", "parameters", "frames",
-                                         "layer",  "resolution", "golden", "timing",    "bounds"};
+const std::set<std::string> kCaseKeys = {"name",       "scene",  "view",  "technique",
+                                         "parameters", "frames", "layer", "resolution",
+                                         "golden",     "timing", "bounds"};
 
 class Parser {
  public:
@@ -34,7 +35,8 @@ class Parser {
     return s.size() > 60 ? s.substr(0, 57) + "..." : s;
   }
 
-  void only_keys(const json& obj, const std::set<std::string>& keys, const std::string& field) const {
+  void only_keys(const json& obj, const std::set<std::string>& keys,
+                 const std::string& field) const {
     for (const auto& [k, v] : obj.items())
       if (!keys.count(k)) {
         std::string list;
@@ -49,18 +51,21 @@ class Parser {
   }
 
   std::string string(const json& v, const std::string& field) const {
-    if (!v.is_string() || v.get<std::string>().empty()) fail(field, show(v) + " is not a non-empty string");
+    if (!v.is_string() || v.get<std::string>().empty())
+      fail(field, show(v) + " is not a non-empty string");
     return v.get<std::string>();
   }
 
   double number(const json& v, const std::string& field) const {
-    if (!v.is_number() || !std::isfinite(v.get<double>())) fail(field, show(v) + " is not a finite number");
+    if (!v.is_number() || !std::isfinite(v.get<double>()))
+      fail(field, show(v) + " is not a finite number");
     return v.get<double>();
   }
 
   int integer(const json& v, const std::string& field, int lo, int hi) const {
     if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
-      fail(field, show(v) + " is not an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+      fail(field, show(v) + " is not an integer in [" + std::to_string(lo) + ", " +
+                      std::to_string(hi) + "]");
     return int(v.get<long long>());
   }
 
@@ -76,7 +81,8 @@ class Parser {
       const std::string s = v.get<std::string>();
       const int n = std::sscanf(s.c_str(), "%d:%d%c", &a, &b, &tail);
       if (n == 2 && a >= 0 && a <= b) return {a, b};
-      if (n == 1 && s.find(':') == std::string::npos && a >= 0 && s.find_first_not_of("0123456789") == std::string::npos)
+      if (n == 1 && s.find(':') == std::string::npos && a >= 0 &&
+          s.find_first_not_of("0123456789") == std::string::npos)
         return {a, a};
     }
     fail(field, show(v) + " is not a frame number or a range \"A:B\" with 0 <= A <= B");
@@ -96,7 +102,8 @@ class Parser {
         c.technique = string(v, f);
       } else if (key == "parameters") {
         c.parameters.clear();
-        for (const auto& [pk, pv] : object(v, f).items()) c.parameters.emplace_back(pk, number(pv, f + "." + pk));
+        for (const auto& [pk, pv] : object(v, f).items())
+          c.parameters.emplace_back(pk, number(pv, f + "." + pk));
       } else if (key == "frames") {
         std::tie(c.first_frame, c.last_frame) = frames(v, f);
       } else if (key == "layer") {
@@ -114,9 +121,12 @@ class Parser {
       } else if (key == "bounds") {
         for (const auto& [metric, b] : object(v, f).items()) {
           Bound bound = this->bound(metric, b, f + "." + metric);
-          auto it = std::find_if(c.bounds.begin(), c.bounds.end(), [&](const Bound& x) { return x.metric == metric; });
-          if (it != c.bounds.end()) *it = bound;
-          else c.bounds.push_back(bound);
+          auto it = std::find_if(c.bounds.begin(), c.bounds.end(),
+                                 [&](const Bound& x) { return x.metric == metric; });
+          if (it != c.bounds.end())
+            *it = bound;
+          else
+            c.bounds.push_back(bound);
         }
       } else {
         std::string list;
@@ -132,7 +142,8 @@ class Parser {
     if (v.contains("spp")) g.spp = uint32_t(integer(v["spp"], f + ".spp", 1, 1 << 30));
     if (v.contains("rel_error")) {
       const double e = number(v["rel_error"], f + ".rel_error");
-      if (!(e > 0.0 && e < 1.0)) fail(f + ".rel_error", show(v["rel_error"]) + " is not a fraction in (0, 1)");
+      if (!(e > 0.0 && e < 1.0))
+        fail(f + ".rel_error", show(v["rel_error"]) + " is not a fraction in (0, 1)");
       g.rel_error = e;
     }
     if (g.spp && g.rel_error) fail(f, "give spp or rel_error, not both");
@@ -152,30 +163,38 @@ class Parser {
       if (v.contains("device")) b.device = string(v["device"], f + ".device");
       if (v.contains("better")) {
         const std::string d = v["better"].is_string() ? v["better"].get<std::string>() : "";
-        if (d == "lower") b.better = Better::Lower;
-        else if (d == "higher") b.better = Better::Higher;
-        else fail(f + ".better", show(v["better"]) + " is not \"lower\" or \"higher\"");
+        if (d == "lower")
+          b.better = Better::Lower;
+        else if (d == "higher")
+          b.better = Better::Higher;
+        else
+          fail(f + ".better", show(v["better"]) + " is not \"lower\" or \"higher\"");
       }
     }
     if (!b.fail && !b.warn) fail(f, "a bound needs a fail level, a warn level or both");
     if (b.fail && b.warn) {
       const bool ordered = b.better == Better::Lower ? *b.warn <= *b.fail : *b.warn >= *b.fail;
       if (!ordered)
-        fail(f + ".warn", std::to_string(*b.warn) + " is beyond the fail level " + std::to_string(*b.fail) +
+        fail(f + ".warn", std::to_string(*b.warn) + " is beyond the fail level " +
+                              std::to_string(*b.fail) +
                               "; the warn level must be stricter than the fail level");
     }
     if (metric == "gpu_ms" && b.device.empty())
-      fail(f + ".device", "a gpu_ms bound must name the device it was measured on (part of timings.json device.name)");
+      fail(f + ".device",
+           "a gpu_ms bound must name the device it was measured on (part of timings.json "
+           "device.name)");
     return b;
   }
 
   void finish(Case& c, const std::string& at) const {
     if (c.name.empty()) fail(at + ".name", "missing; every case needs a unique name");
     if (c.scene.empty()) fail(at + ".scene", "missing; expected a .gltf/.glb path");
-    if (c.technique.empty()) fail(at + ".technique", "missing; expected a technique name (giq realtime --list)");
+    if (c.technique.empty())
+      fail(at + ".technique", "missing; expected a technique name (giq realtime --list)");
     if (c.view.empty()) c.view = "0";
     if (!c.golden.spp && !c.golden.rel_error) c.golden.spp = 256;
-    if (c.bounds.empty()) fail(at + ".bounds", "missing or empty; a case must bound at least one metric");
+    if (c.bounds.empty())
+      fail(at + ".bounds", "missing or empty; a case must bound at least one metric");
     std::sort(c.parameters.begin(), c.parameters.end());
   }
 
@@ -186,7 +205,8 @@ class Parser {
 }  // namespace
 
 bool Case::needs_timing() const {
-  return std::any_of(bounds.begin(), bounds.end(), [](const Bound& b) { return b.metric == "gpu_ms"; });
+  return std::any_of(bounds.begin(), bounds.end(),
+                     [](const Bound& b) { return b.metric == "gpu_ms"; });
 }
 
 Better default_direction(const std::string& metric) {
@@ -205,8 +225,9 @@ Config parse_config(const std::string& text, const fs::path& file) {
   p.object(root, "(top level)");
   p.only_keys(root, {"version", "golden_dir", "defaults", "cases"}, "");
   if (!root.contains("version") || root["version"] != 1)
-    p.fail("version", (root.contains("version") ? Parser::show(root["version"]) : std::string("missing")) +
-                          "; expected 1");
+    p.fail("version",
+           (root.contains("version") ? Parser::show(root["version"]) : std::string("missing")) +
+               "; expected 1");
   Config config;
   config.file = file;
   config.golden_dir = file.parent_path() / "refs";
@@ -217,7 +238,8 @@ Config parse_config(const std::string& text, const fs::path& file) {
   Case defaults;
   if (root.contains("defaults")) {
     const json& d = p.object(root["defaults"], "defaults");
-    if (d.contains("name")) p.fail("defaults.name", "a name belongs to one case, not to the defaults");
+    if (d.contains("name"))
+      p.fail("defaults.name", "a name belongs to one case, not to the defaults");
     p.apply(defaults, d, "defaults");
   }
   if (!root.contains("cases") || !root["cases"].is_array() || root["cases"].empty())
@@ -228,10 +250,13 @@ Config parse_config(const std::string& text, const fs::path& file) {
     Case c = defaults;
     p.apply(c, p.object(root["cases"][i], at), at);
     p.finish(c, at);
-    if (!names.insert(c.name).second) p.fail(at + ".name", "'" + c.name + "' is used by an earlier case; names must be unique");
+    if (!names.insert(c.name).second)
+      p.fail(at + ".name", "'" + c.name + "' is used by an earlier case; names must be unique");
     for (char ch : c.name)
       if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' || ch == '.'))
-        p.fail(at + ".name", "'" + c.name + "' may only hold letters, digits, '-', '_' and '.' (it names folders)");
+        p.fail(
+            at + ".name",
+            "'" + c.name + "' may only hold letters, digits, '-', '_' and '.' (it names folders)");
     config.cases.push_back(std::move(c));
   }
   return config;

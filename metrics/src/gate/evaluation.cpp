@@ -28,11 +28,16 @@ bool beyond(const Bound& b, double value, double level) {
 
 const char* to_string(Status s) {
   switch (s) {
-    case Status::Pass: return "PASS";
-    case Status::Warn: return "WARN";
-    case Status::Fail: return "FAIL";
-    case Status::Unresolved: return "UNRESOLVED";
-    case Status::Skip: return "SKIP";
+    case Status::Pass:
+      return "PASS";
+    case Status::Warn:
+      return "WARN";
+    case Status::Fail:
+      return "FAIL";
+    case Status::Unresolved:
+      return "UNRESOLVED";
+    case Status::Skip:
+      return "SKIP";
   }
   return "?";
 }
@@ -41,7 +46,8 @@ std::string describe(const Bound& b) {
   const char* op = b.better == Better::Lower ? "<= " : ">= ";
   std::string s;
   if (b.fail) s = op + num(*b.fail);
-  if (b.warn) s += s.empty() ? std::string("warn ") + op + num(*b.warn) : " (warn " + num(*b.warn) + ")";
+  if (b.warn)
+    s += s.empty() ? std::string("warn ") + op + num(*b.warn) : " (warn " + num(*b.warn) + ")";
   if (!b.device.empty()) s += " on '" + b.device + "'";
   return s;
 }
@@ -66,7 +72,8 @@ std::vector<Outcome> evaluate(const Case& c, const Evidence& ev) {
     }
     if (!b.device.empty()) {
       if (!ev.timings) {
-        fail("the bound is for device '" + b.device + "' but there is no timings.json naming the device");
+        fail("the bound is for device '" + b.device +
+             "' but there is no timings.json naming the device");
         continue;
       }
       if (lower(ft.device).find(lower(b.device)) == std::string::npos) {
@@ -98,7 +105,8 @@ std::vector<Outcome> evaluate(const Case& c, const Evidence& ev) {
       }
       m = *found;
       if (!m.value) {
-        fail("the metric is undefined for this case" + (m.note.empty() ? std::string() : ": " + m.note));
+        fail("the metric is undefined for this case" +
+             (m.note.empty() ? std::string() : ": " + m.note));
         continue;
       }
     }
@@ -110,11 +118,14 @@ std::vector<Outcome> evaluate(const Case& c, const Evidence& ev) {
       o.status = Status::Unresolved;
       if (over_fail) {
         o.fails_gate = true;
-        o.message = "beyond the fail level, but below the golden's noise resolution: the golden's noise may account "
-                    "for it; render the golden with more samples (giq golden update)";
+        o.message =
+            "beyond the fail level, but below the golden's noise resolution: the golden's noise "
+            "may account "
+            "for it; render the golden with more samples (giq golden update)";
       } else {
         o.message = std::string(over_warn ? "beyond the warn level and " : "") +
-                    "within the bound, but below the golden's noise resolution: the golden cannot measure an error "
+                    "within the bound, but below the golden's noise resolution: the golden cannot "
+                    "measure an error "
                     "this small";
       }
     } else if (over_fail) {
@@ -133,7 +144,10 @@ std::vector<Outcome> evaluate(const Case& c, const Evidence& ev) {
 }
 
 int exit_code(const std::vector<Outcome>& outcomes) {
-  return std::any_of(outcomes.begin(), outcomes.end(), [](const Outcome& o) { return o.fails_gate; }) ? 1 : 0;
+  return std::any_of(outcomes.begin(), outcomes.end(),
+                     [](const Outcome& o) { return o.fails_gate; })
+             ? 1
+             : 0;
 }
 
 }  // namespace giq::gate

@@ -17,15 +17,17 @@ using nlohmann::json;
 
 std::string sanitize(const std::string& s) {
   std::string out;
-  for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_' ? c : '_';
+  for (char c : s)
+    out +=
+        std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_' ? c : '_';
   return out;
 }
 
 }  // namespace
 
 std::string golden_key(const Case& c) {
-  return sanitize(c.scene.stem().string() + "_" + c.view + "_f" + std::to_string(c.first_frame) + "-" +
-                  std::to_string(c.last_frame));
+  return sanitize(c.scene.stem().string() + "_" + c.view + "_f" + std::to_string(c.first_frame) +
+                  "-" + std::to_string(c.last_frame));
 }
 
 json golden_settings(const Case& c) {
@@ -51,7 +53,8 @@ Manifest read_manifest(const fs::path& file) {
   json j;
   try {
     in >> j;
-    if (j.at("version") != 1) throw InputError(file.string(), "version", j["version"].dump() + "; expected 1");
+    if (j.at("version") != 1)
+      throw InputError(file.string(), "version", j["version"].dump() + "; expected 1");
     for (const auto& [key, e] : j.at("goldens").items()) {
       GoldenEntry g;
       g.scene = e.at("scene").get<std::string>();
@@ -82,9 +85,10 @@ void write_manifest(const fs::path& file, const Manifest& m) {
                     {"giq_version", g.giq_version},
                     {"files", files}};
   }
-  const json j = {{"version", 1},
-                  {"note", "written by giq golden update; a golden that disagrees with this file is stale"},
-                  {"goldens", goldens}};
+  const json j = {
+      {"version", 1},
+      {"note", "written by giq golden update; a golden that disagrees with this file is stale"},
+      {"goldens", goldens}};
   write_file_atomically(file, j.dump(2) + "\n");
 }
 
@@ -100,25 +104,27 @@ std::string file_hash(const fs::path& file) {
   return h.hex();
 }
 
-Freshness check_golden(const Manifest& manifest, const fs::path& golden_dir, const Case& c, const std::string& scene_hash) {
+Freshness check_golden(const Manifest& manifest, const fs::path& golden_dir, const Case& c,
+                       const std::string& scene_hash) {
   const std::string key = golden_key(c);
   Freshness f;
   const auto it = manifest.entries.find(key);
   if (it == manifest.entries.end()) {
-    f.reason = "golden " + key + " is missing from " + (golden_dir / "manifest.json").string() + "; run giq golden update";
+    f.reason = "golden " + key + " is missing from " + (golden_dir / "manifest.json").string() +
+               "; run giq golden update";
     return f;
   }
   const GoldenEntry& g = it->second;
   f.state = Freshness::State::Stale;
   if (g.scene_hash != scene_hash) {
-    f.reason = "golden " + key + " is stale: the scene changed (hash " + g.scene_hash + " in the manifest, " + scene_hash +
-               " now); run giq golden update";
+    f.reason = "golden " + key + " is stale: the scene changed (hash " + g.scene_hash +
+               " in the manifest, " + scene_hash + " now); run giq golden update";
     return f;
   }
   const json want = golden_settings(c);
   if (g.settings != want) {
-    f.reason = "golden " + key + " is stale: rendered with " + g.settings.dump() + ", the config asks for " + want.dump() +
-               "; run giq golden update";
+    f.reason = "golden " + key + " is stale: rendered with " + g.settings.dump() +
+               ", the config asks for " + want.dump() + "; run giq golden update";
     return f;
   }
   for (int frame = c.first_frame; frame <= c.last_frame; ++frame) {
@@ -131,7 +137,8 @@ Freshness check_golden(const Manifest& manifest, const fs::path& golden_dir, con
       return f;
     }
     if (file_hash(p) != h->second) {
-      f.reason = "golden file " + p.string() + " was modified after giq golden update wrote it (hash " + file_hash(p) +
+      f.reason = "golden file " + p.string() +
+                 " was modified after giq golden update wrote it (hash " + file_hash(p) +
                  ", manifest " + h->second + "); run giq golden update";
       return f;
     }
@@ -149,7 +156,8 @@ void check_golden_conflicts(const Config& config) {
       throw InputError(config.file.string(), "cases." + c.name,
                        "shares golden " + it->first + " with case " + it->second->name +
                            " but asks for other settings (" + golden_settings(c).dump() + " vs " +
-                           golden_settings(*it->second).dump() + "); give both the same resolution and golden settings");
+                           golden_settings(*it->second).dump() +
+                           "); give both the same resolution and golden settings");
   }
 }
 

@@ -26,18 +26,21 @@ struct Counts {
   int tests = 0, failures = 0, skipped = 0;
   void add(const Outcome& o) {
     ++tests;
-    if (o.fails_gate) ++failures;
-    else if (o.status == Status::Skip || o.status == Status::Unresolved) ++skipped;
+    if (o.fails_gate)
+      ++failures;
+    else if (o.status == Status::Skip || o.status == Status::Unresolved)
+      ++skipped;
   }
   std::string attributes() const {
-    return "tests=\"" + std::to_string(tests) + "\" failures=\"" + std::to_string(failures) + "\" errors=\"0\" skipped=\"" +
-           std::to_string(skipped) + "\"";
+    return "tests=\"" + std::to_string(tests) + "\" failures=\"" + std::to_string(failures) +
+           "\" errors=\"0\" skipped=\"" + std::to_string(skipped) + "\"";
   }
 };
 
 }  // namespace
 
-std::string junit_xml(const std::vector<Outcome>& outcomes, const std::vector<std::pair<std::string, double>>& seconds_per_case) {
+std::string junit_xml(const std::vector<Outcome>& outcomes,
+                      const std::vector<std::pair<std::string, double>>& seconds_per_case) {
   // Cases in first-seen order.
   std::vector<std::string> order;
   std::map<std::string, std::vector<const Outcome*>> by_case;
@@ -55,20 +58,23 @@ std::string junit_xml(const std::vector<Outcome>& outcomes, const std::vector<st
 
   std::ostringstream x;
   x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  x << "<testsuites name=\"giq gate\" " << total.attributes() << " time=\"" << seconds(total_time) << "\">\n";
+  x << "<testsuites name=\"giq gate\" " << total.attributes() << " time=\"" << seconds(total_time)
+    << "\">\n";
   for (const auto& name : order) {
     Counts c;
     for (const Outcome* o : by_case[name]) c.add(*o);
     const double t = time.count(name) ? time[name] : 0.0;
-    x << "  <testsuite name=\"" << xml_escape(name) << "\" " << c.attributes() << " time=\"" << seconds(t) << "\">\n";
+    x << "  <testsuite name=\"" << xml_escape(name) << "\" " << c.attributes() << " time=\""
+      << seconds(t) << "\">\n";
     for (const Outcome* o : by_case[name]) {
-      x << "    <testcase classname=\"giq.gate." << xml_escape(name) << "\" name=\"" << xml_escape(o->metric)
-        << "\" time=\"0\">\n";
-      const std::string detail = std::string(to_string(o->status)) + ": " + o->metric + " = " + value_text(*o) +
-                                 ", bound " + o->bound + (o->message.empty() ? "" : "; " + o->message);
+      x << "    <testcase classname=\"giq.gate." << xml_escape(name) << "\" name=\""
+        << xml_escape(o->metric) << "\" time=\"0\">\n";
+      const std::string detail = std::string(to_string(o->status)) + ": " + o->metric + " = " +
+                                 value_text(*o) + ", bound " + o->bound +
+                                 (o->message.empty() ? "" : "; " + o->message);
       if (o->fails_gate) {
-        x << "      <failure message=\"" << xml_escape(detail) << "\" type=\"" << to_string(o->status) << "\">"
-          << xml_escape(detail) << "</failure>\n";
+        x << "      <failure message=\"" << xml_escape(detail) << "\" type=\""
+          << to_string(o->status) << "\">" << xml_escape(detail) << "</failure>\n";
       } else if (o->status == Status::Skip || o->status == Status::Unresolved) {
         x << "      <skipped message=\"" << xml_escape(detail) << "\"/>\n";
       } else {

@@ -14,7 +14,8 @@ const json* walk(const json& root, const std::string& dotted) {
   size_t start = 0;
   while (start <= dotted.size()) {
     const size_t dot = dotted.find('.', start);
-    const std::string key = dotted.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    const std::string key =
+        dotted.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
     if (!j->is_object() || !j->contains(key)) return nullptr;
     j = &(*j)[key];
     if (dot == std::string::npos) break;
@@ -30,19 +31,27 @@ std::optional<MetricValue> as_value(const json& j, const std::string& path) {
   const json* v = &j;
   if (j.is_object()) {
     if (!j.contains("value")) {
-      if (j.contains("value_frames")) v = &j["value_frames"];
-      else return std::nullopt;
+      if (j.contains("value_frames"))
+        v = &j["value_frames"];
+      else
+        return std::nullopt;
     } else {
       v = &j["value"];
     }
     m.unresolved = j.value("unresolved", false);
-    if (j.contains("note") && j["note"].is_string()) m.note = j["note"];
-    else if (j.contains("reason") && j["reason"].is_string()) m.note = j["reason"];
+    if (j.contains("note") && j["note"].is_string())
+      m.note = j["note"];
+    else if (j.contains("reason") && j["reason"].is_string())
+      m.note = j["reason"];
   }
-  if (v->is_number()) m.value = v->get<double>();
-  else if (v->is_string() && *v == "inf") m.value = std::numeric_limits<double>::infinity();
-  else if (v->is_string() && *v == "-inf") m.value = -std::numeric_limits<double>::infinity();
-  else if (!v->is_null()) return std::nullopt;
+  if (v->is_number())
+    m.value = v->get<double>();
+  else if (v->is_string() && *v == "inf")
+    m.value = std::numeric_limits<double>::infinity();
+  else if (v->is_string() && *v == "-inf")
+    m.value = -std::numeric_limits<double>::infinity();
+  else if (!v->is_null())
+    return std::nullopt;
   return m;
 }
 
@@ -80,8 +89,10 @@ FrameTime frame_time(const json& timings) {
       break;
     }
   }
-  if (const json* d = walk(timings, "device.name"); d && d->is_string()) t.device = *d;
-  else if (const json* d2 = walk(timings, "device"); d2 && d2->is_string()) t.device = *d2;
+  if (const json* d = walk(timings, "device.name"); d && d->is_string())
+    t.device = *d;
+  else if (const json* d2 = walk(timings, "device"); d2 && d2->is_string())
+    t.device = *d2;
   return t;
 }
 

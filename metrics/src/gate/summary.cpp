@@ -18,11 +18,16 @@ std::string value_text(const Outcome& o) {
 std::string md_cell(const std::string& s) {
   std::string out;
   for (char c : s) {
-    if (c == '|') out += "\\|";
-    else if (c == '\n' || c == '\r') out += ' ';
-    else if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else out += c;
+    if (c == '|')
+      out += "\\|";
+    else if (c == '\n' || c == '\r')
+      out += ' ';
+    else if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else
+      out += c;
   }
   return out;
 }
@@ -30,10 +35,14 @@ std::string md_cell(const std::string& s) {
 int rank(const Outcome& o) {
   if (o.fails_gate) return 0;
   switch (o.status) {
-    case Status::Unresolved: return 1;
-    case Status::Warn: return 2;
-    case Status::Skip: return 3;
-    default: return 4;
+    case Status::Unresolved:
+      return 1;
+    case Status::Warn:
+      return 2;
+    case Status::Skip:
+      return 3;
+    default:
+      return 4;
   }
 }
 
@@ -43,9 +52,9 @@ std::string count_line(const std::vector<Outcome>& outcomes) {
   int n[5] = {0, 0, 0, 0, 0};
   for (const Outcome& o : outcomes) ++n[int(o.status)];
   std::ostringstream s;
-  s << outcomes.size() << " checks: " << n[int(Status::Pass)] << " PASS, " << n[int(Status::Warn)] << " WARN, "
-    << n[int(Status::Fail)] << " FAIL, " << n[int(Status::Unresolved)] << " UNRESOLVED, " << n[int(Status::Skip)]
-    << " SKIP";
+  s << outcomes.size() << " checks: " << n[int(Status::Pass)] << " PASS, " << n[int(Status::Warn)]
+    << " WARN, " << n[int(Status::Fail)] << " FAIL, " << n[int(Status::Unresolved)]
+    << " UNRESOLVED, " << n[int(Status::Skip)] << " SKIP";
   return s.str();
 }
 
@@ -58,11 +67,11 @@ std::string format_table(const std::vector<Outcome>& outcomes) {
     wb = std::max(wb, o.bound.size());
   }
   std::ostringstream s;
-  auto line = [&](const std::string& c, const std::string& m, const std::string& v, const std::string& b,
-                  const std::string& st, const std::string& msg) {
+  auto line = [&](const std::string& c, const std::string& m, const std::string& v,
+                  const std::string& b, const std::string& st, const std::string& msg) {
     char buf[1024];
-    std::snprintf(buf, sizeof buf, "%-*s  %-*s  %*s  %-*s  %-10s", int(wc), c.c_str(), int(wm), m.c_str(), int(wv),
-                  v.c_str(), int(wb), b.c_str(), st.c_str());
+    std::snprintf(buf, sizeof buf, "%-*s  %-*s  %*s  %-*s  %-10s", int(wc), c.c_str(), int(wm),
+                  m.c_str(), int(wv), v.c_str(), int(wb), b.c_str(), st.c_str());
     s << buf;
     if (!msg.empty()) s << "  " << msg;
     s << '\n';
@@ -77,15 +86,16 @@ std::string format_table(const std::vector<Outcome>& outcomes) {
 std::string markdown_summary(const std::vector<Outcome>& outcomes) {
   std::vector<const Outcome*> sorted;
   for (const Outcome& o : outcomes) sorted.push_back(&o);
-  std::stable_sort(sorted.begin(), sorted.end(), [](const Outcome* a, const Outcome* b) { return rank(*a) < rank(*b); });
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const Outcome* a, const Outcome* b) { return rank(*a) < rank(*b); });
   const bool failed = exit_code(outcomes) != 0;
   std::ostringstream s;
   s << "# giq gate: " << (failed ? "FAILED" : "passed") << "\n\n" << count_line(outcomes) << "\n\n";
   s << "| case | metric | value | bound | status | note |\n|---|---|---:|---|---|---|\n";
   for (const Outcome* o : sorted)
-    s << "| " << md_cell(o->case_name) << " | " << md_cell(o->metric) << " | " << value_text(*o) << " | "
-      << md_cell(o->bound) << " | " << (o->fails_gate ? "**" : "") << to_string(o->status) << (o->fails_gate ? "**" : "")
-      << " | " << md_cell(o->message) << " |\n";
+    s << "| " << md_cell(o->case_name) << " | " << md_cell(o->metric) << " | " << value_text(*o)
+      << " | " << md_cell(o->bound) << " | " << (o->fails_gate ? "**" : "") << to_string(o->status)
+      << (o->fails_gate ? "**" : "") << " | " << md_cell(o->message) << " |\n";
   return s.str();
 }
 

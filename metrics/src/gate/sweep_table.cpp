@@ -28,7 +28,9 @@ std::string csv_field(const std::string& s) {
   return q + "\"";
 }
 
-json opt(const std::optional<double>& v) { return v && std::isfinite(*v) ? json(*v) : json(nullptr); }
+json opt(const std::optional<double>& v) {
+  return v && std::isfinite(*v) ? json(*v) : json(nullptr);
+}
 
 }  // namespace
 
@@ -43,20 +45,22 @@ void mark_front(std::vector<SweepRow>& rows, const std::string& error_metric) {
   for (const SweepRow& r : rows) {
     const auto it = r.metrics.find(error_metric);
     const double nan = std::nan("");
-    pts.push_back({r.gpu_ms.value_or(nan), it != r.metrics.end() && it->second ? *it->second : nan});
+    pts.push_back(
+        {r.gpu_ms.value_or(nan), it != r.metrics.end() && it->second ? *it->second : nan});
   }
   const std::vector<bool> on = pareto_front(pts);
   for (size_t i = 0; i < rows.size(); ++i) rows[i].on_front = on[i];
 }
 
-std::string sweep_csv(const std::vector<SweepRow>& rows, const std::vector<std::string>& metric_names) {
+std::string sweep_csv(const std::vector<SweepRow>& rows,
+                      const std::vector<std::string>& metric_names) {
   std::ostringstream s;
   s << "technique,parameters,default,gpu_ms";
   for (const auto& m : metric_names) s << ',' << csv_field(m);
   s << ",pareto_front,error\n";
   for (const SweepRow& r : rows) {
-    s << csv_field(r.technique) << ',' << csv_field(setting_label(r.parameters)) << ',' << (r.is_default ? 1 : 0) << ','
-      << (r.gpu_ms ? num(*r.gpu_ms) : "");
+    s << csv_field(r.technique) << ',' << csv_field(setting_label(r.parameters)) << ','
+      << (r.is_default ? 1 : 0) << ',' << (r.gpu_ms ? num(*r.gpu_ms) : "");
     for (const auto& m : metric_names) {
       const auto it = r.metrics.find(m);
       s << ',' << (it != r.metrics.end() && it->second ? num(*it->second) : "");
@@ -66,8 +70,10 @@ std::string sweep_csv(const std::vector<SweepRow>& rows, const std::vector<std::
   return s.str();
 }
 
-json sweep_json(const std::vector<SweepRow>& rows, const std::string& error_metric, const json& run) {
-  json out = {{"version", 1}, {"error_metric", error_metric}, {"run", run}, {"rows", json::array()}};
+json sweep_json(const std::vector<SweepRow>& rows, const std::string& error_metric,
+                const json& run) {
+  json out = {
+      {"version", 1}, {"error_metric", error_metric}, {"run", run}, {"rows", json::array()}};
   for (const SweepRow& r : rows) {
     json params = json::object(), metrics = json::object();
     for (const auto& [k, v] : r.parameters) params[k] = v;
@@ -86,7 +92,8 @@ std::vector<SweepRow> sweep_rows(const json& sweep, const std::string& file) {
     for (const json& j : sweep.at("rows")) {
       SweepRow r;
       r.technique = j.at("technique").get<std::string>();
-      for (const auto& [k, v] : j.at("parameters").items()) r.parameters.emplace_back(k, v.get<double>());
+      for (const auto& [k, v] : j.at("parameters").items())
+        r.parameters.emplace_back(k, v.get<double>());
       r.is_default = j.value("default", false);
       if (j.contains("gpu_ms") && j["gpu_ms"].is_number()) r.gpu_ms = j["gpu_ms"].get<double>();
       for (const auto& [k, v] : j.at("metrics").items())
@@ -101,8 +108,8 @@ std::vector<SweepRow> sweep_rows(const json& sweep, const std::string& file) {
   return rows;
 }
 
-std::string sweep_svg(const std::vector<SweepRow>& rows, const std::string& error_metric, bool log_axes,
-                      const std::string& title) {
+std::string sweep_svg(const std::vector<SweepRow>& rows, const std::string& error_metric,
+                      bool log_axes, const std::string& title) {
   std::vector<PlotSeries> series;
   PlotOptions o;
   o.title = title;
@@ -112,7 +119,8 @@ std::string sweep_svg(const std::vector<SweepRow>& rows, const std::string& erro
   for (const SweepRow& r : rows) {
     const auto it = r.metrics.find(error_metric);
     if (!r.gpu_ms || it == r.metrics.end() || !it->second) continue;
-    auto s = std::find_if(series.begin(), series.end(), [&](const PlotSeries& x) { return x.name == r.technique; });
+    auto s = std::find_if(series.begin(), series.end(),
+                          [&](const PlotSeries& x) { return x.name == r.technique; });
     if (s == series.end()) {
       series.push_back({r.technique, {}, false});
       s = series.end() - 1;

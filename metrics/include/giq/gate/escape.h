@@ -12,7 +12,9 @@ namespace giq::gate {
 // except tab, newline, carriage return) are replaced by U+FFFD, so the output always parses.
 // HTML5 accepts the same escapes in text and in quoted attribute values.
 std::string xml_escape(std::string_view text);
-inline std::string html_escape(std::string_view text) { return xml_escape(text); }
+inline std::string html_escape(std::string_view text) {
+  return xml_escape(text);
+}
 
 // RFC 4648 section 4 base64 with padding.
 std::string base64(std::string_view bytes);

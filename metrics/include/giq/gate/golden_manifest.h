@@ -20,9 +20,9 @@
 namespace giq::gate {
 
 struct GoldenEntry {
-  std::string scene;       // as the config names it, relative to the config's folder
-  std::string scene_hash;  // scenes::Scene::content_hash (the glTF and every file it uses)
-  nlohmann::json settings; // golden_settings(case)
+  std::string scene;            // as the config names it, relative to the config's folder
+  std::string scene_hash;       // scenes::Scene::content_hash (the glTF and every file it uses)
+  nlohmann::json settings;      // golden_settings(case)
   std::optional<uint32_t> spp;  // achieved (the minimum over pixels), when known
   double render_seconds = 0.0;
   std::string giq_version;
@@ -55,8 +55,8 @@ struct Freshness {
 
 // Compares the manifest's entry for the case with the scene's current hash, the case's
 // settings and the files on disk.
-Freshness check_golden(const Manifest& manifest, const std::filesystem::path& golden_dir, const Case& c,
-                       const std::string& scene_hash);
+Freshness check_golden(const Manifest& manifest, const std::filesystem::path& golden_dir,
+                       const Case& c, const std::string& scene_hash);
 
 // Throws InputError when two cases share a golden key but ask for different settings (the
 // one golden could not serve both).

@@ -14,6 +14,7 @@
 namespace giq::gate {
 
 // `seconds_per_case`: wall time per case name (rendering and scoring), 0 where unknown.
-std::string junit_xml(const std::vector<Outcome>& outcomes, const std::vector<std::pair<std::string, double>>& seconds_per_case);
+std::string junit_xml(const std::vector<Outcome>& outcomes,
+                      const std::vector<std::pair<std::string, double>>& seconds_per_case);
 
 }  // namespace giq::gate

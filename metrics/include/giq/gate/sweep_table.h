@@ -26,14 +26,16 @@ struct SweepRow {
 // Marks on_front over rows that have gpu_ms and the error metric (see pareto.h).
 void mark_front(std::vector<SweepRow>& rows, const std::string& error_metric);
 
-std::string sweep_csv(const std::vector<SweepRow>& rows, const std::vector<std::string>& metric_names);
-nlohmann::json sweep_json(const std::vector<SweepRow>& rows, const std::string& error_metric, const nlohmann::json& run);
+std::string sweep_csv(const std::vector<SweepRow>& rows,
+                      const std::vector<std::string>& metric_names);
+nlohmann::json sweep_json(const std::vector<SweepRow>& rows, const std::string& error_metric,
+                          const nlohmann::json& run);
 // Throws InputError(file, ...) on a malformed sweep.json.
 std::vector<SweepRow> sweep_rows(const nlohmann::json& sweep, const std::string& file);
 
 // Error against GPU ms, one series per technique, defaults ringed, the front drawn.
-std::string sweep_svg(const std::vector<SweepRow>& rows, const std::string& error_metric, bool log_axes,
-                      const std::string& title);
+std::string sweep_svg(const std::vector<SweepRow>& rows, const std::string& error_metric,
+                      bool log_axes, const std::string& title);
 
 // "name=value name=value", values with up to 10 significant digits.
 std::string setting_label(const std::vector<std::pair<std::string, double>>& parameters);
