@@ -1,4 +1,10 @@
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
 #include <gtest/gtest.h>
+#include <half.h>
 #include <unistd.h>
 
 #include <bit>
@@ -171,4 +177,32 @@ TEST(Exr, MissingAndGarbageFilesAreInputErrors) {
   }
   { std::ofstream(d / "empty.exr", std::ios::binary); }
   EXPECT_THROW(giq::image::read_image(d / "empty.exr"), giq::InputError);
+}
+
+TEST(Exr, UintAndHalfChannelsWrittenByOtherToolsReadAsFloat) {
+  // A file as another renderer might write it: objectId as UINT, colour as HALF.
+  fs::path d = fresh_dir("uint");
+  const int w = 3, h = 2;
+  Imf::Header header(w, h);
+  header.channels().insert("objectId", Imf::Channel(Imf::UINT));
+  header.channels().insert("R", Imf::Channel(Imf::HALF));
+  header.insert("giq:view", Imf::StringAttribute("front"));
+  std::vector<uint32_t> ids = {0, 1, 7, 65536, 16777216, 4000000000u};
+  std::vector<Imath::half> r = {Imath::half(0.5f), Imath::half(1.0f), Imath::half(-2.0f),
+                                Imath::half(0.099975586f), Imath::half(65504.0f), Imath::half(0.0f)};
+  Imf::FrameBuffer fb;
+  fb.insert("objectId", Imf::Slice(Imf::UINT, (char*)ids.data(), sizeof(uint32_t), sizeof(uint32_t) * w));
+  fb.insert("R", Imf::Slice(Imf::HALF, (char*)r.data(), sizeof(Imath::half), sizeof(Imath::half) * w));
+  {
+    Imf::OutputFile out((d / "u.exr").c_str(), header);
+    out.setFrameBuffer(fb);
+    out.writePixels(h);
+  }
+  const Image img = giq::image::read_image(d / "u.exr");
+  // Integers up to 2^24 are exact in float; 4e9 rounds to the nearest float.
+  for (size_t i = 0; i < ids.size(); ++i) {
+    EXPECT_EQ(img.channel("objectId")[i], float(ids[i])) << i;
+    EXPECT_EQ(img.channel("R")[i], float(r[i])) << i;
+  }
+  EXPECT_EQ(img.metadata.at("giq:view"), "front");
 }

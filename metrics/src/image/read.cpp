@@ -11,6 +11,20 @@
 namespace giq::image {
 namespace fs = std::filesystem;
 
+namespace {
+
+// OpenEXR files start with 0x76 0x2f 0x31 0x01 (OpenEXR file layout, "Magic Number").
+bool exr_magic(const unsigned char m[4]) { return m[0] == 0x76 && m[1] == 0x2f && m[2] == 0x31 && m[3] == 0x01; }
+
+}  // namespace
+
+bool is_exr_file(const fs::path& path) {
+  unsigned char magic[4] = {0, 0, 0, 0};
+  std::ifstream in(path, std::ios::binary);
+  in.read(reinterpret_cast<char*>(magic), 4);
+  return in.gcount() == 4 && exr_magic(magic);
+}
+
 Image read_image(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path.string(), "", "no such file");
@@ -22,8 +36,7 @@ Image read_image(const fs::path& path) {
     in.read(reinterpret_cast<char*>(magic), 4);
     if (in.gcount() < 4) throw InputError(path.string(), "", "file too short to be an image");
   }
-  // OpenEXR files start with 0x76 0x2f 0x31 0x01 (OpenEXR file layout, "Magic Number").
-  if (magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01) return read_exr(path);
+  if (exr_magic(magic)) return read_exr(path);
 #ifdef GIQ_WITH_OIIO
   return read_with_oiio(path);
 #else

@@ -24,6 +24,10 @@ struct ExrOptions {
 // Throws InputError (file, what was wrong) for a missing, unreadable or corrupt file.
 Image read_image(const std::filesystem::path& path);
 
+// True when the file starts with the OpenEXR magic number (linear HDR data), false for any
+// other or an unreadable file.
+bool is_exr_file(const std::filesystem::path& path);
+
 void write_exr(const Image& image, const std::filesystem::path& path, const ExrOptions& options = {});
 
 struct PngOptions {

@@ -1,0 +1,51 @@
+#pragma once
+// Scoring a technique against the reference: every metric of docs/metrics.md, the maps and the
+// strip, and metrics.json, in which every value carries the name of its definition and its
+// inputs. `giq score` is a thin layer over this.
+//
+// Single image: per-image errors, noise floor, SSIM, FLIP (HDR-FLIP for EXR inputs, LDR-FLIP
+// otherwise), leaking; maps abs/relative/signed/FLIP/leak (EXR + PNG) and strip.png.
+// Sequence (frames A..B): bias^2/variance, flicker, temporal_flip and lag90 over the frames,
+// cheap per-frame errors, and the full single-image score of the last frame (with its maps)
+// plus the temporal std-dev map. Frames are read one at a time: at most two reference and two
+// technique frames are resident.
+
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace giq::metrics {
+
+struct ScoreRequest {
+  // Image files, or printf-style patterns with one %d / %0Nd for sequences. A reference without
+  // a pattern stands for every frame (static scene and camera).
+  std::string reference;
+  std::string test;
+  std::optional<std::pair<int, int>> frames;  // A..B inclusive, for patterns
+  std::string layer;                          // "" = beauty
+  std::filesystem::path out_dir;              // metrics.json, maps, strip
+  // Leak regions declared by the scene (objectId values) and where they came from.
+  std::vector<uint32_t> leak_object_ids;
+  std::string scene;
+  std::optional<double> frame_ms;  // technique frame time (timings.json frame_ms.median)
+  std::string timings;             // the timings file it came from
+  std::optional<int> step_frame;   // lag: the frame of the step change (default: detected)
+  bool write_maps = true;
+};
+
+// Runs everything, writes <out_dir>/metrics.json (atomically) and returns its content.
+// Throws InputError for bad input (missing file or layer, size or channel mismatch).
+nlohmann::json score(const ScoreRequest& request);
+
+// A fixed-width table of the headline values of a metrics.json, for humans.
+std::string format_table(const nlohmann::json& metrics);
+
+// The file of frame `frame` of a pattern ("ref_%04d.exr", 7 -> "ref_0007.exr"). Throws
+// InputError when the pattern has a conversion other than one %d / %0Nd (or "%%").
+std::string frame_path(const std::string& pattern, int frame);
+bool is_pattern(const std::string& path);
+
+}  // namespace giq::metrics

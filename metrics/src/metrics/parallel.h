@@ -1,0 +1,37 @@
+#pragma once
+// Internal: deterministic parallel reductions. Rows are cut into fixed chunks whatever the
+// thread count, each chunk is summed in double, and the chunk sums are added in order, so a
+// metric gives the same bits on 1 or 64 threads (TBB's parallel_reduce splits by load).
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <vector>
+
+namespace giq::metrics::detail {
+
+constexpr int kRowsPerChunk = 16;
+
+// body(y0, y1, Acc& acc) accumulates rows [y0, y1) into acc; Acc needs operator+=.
+template <class Acc, class Body>
+Acc reduce_rows(int height, const Body& body) {
+  const int chunks = (height + kRowsPerChunk - 1) / kRowsPerChunk;
+  std::vector<Acc> partial(size_t(std::max(chunks, 0)));
+  tbb::parallel_for(tbb::blocked_range<int>(0, chunks), [&](const tbb::blocked_range<int>& r) {
+    for (int k = r.begin(); k != r.end(); ++k)
+      body(k * kRowsPerChunk, std::min(height, (k + 1) * kRowsPerChunk), partial[size_t(k)]);
+  });
+  Acc total{};
+  for (const auto& p : partial) total += p;
+  return total;
+}
+
+// body(y0, y1) processes rows [y0, y1).
+template <class Body>
+void for_rows(int height, const Body& body) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, height, kRowsPerChunk),
+                    [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
+}
+
+}  // namespace giq::metrics::detail

@@ -1,0 +1,161 @@
+#include "giq/metrics/score.h"
+
+#include <cctype>
+#include <cstdio>
+#include <iomanip>
+#include <sstream>
+
+#include "giq/base/atomic_file.h"
+#include "giq/base/error.h"
+#include "giq/base/version.h"
+#include "giq/image/io.h"
+#include "score_image.h"
+
+namespace giq::metrics {
+namespace {
+
+using nlohmann::json;
+
+// Position and width of the one %d / %0Nd conversion, or npos. "%%" is a literal percent.
+struct Conversion {
+  size_t begin = std::string::npos, end = 0;
+  int width = 0;
+  bool zero = false;
+};
+
+Conversion parse_pattern(const std::string& p) {
+  Conversion c;
+  for (size_t i = 0; i < p.size(); ++i) {
+    if (p[i] != '%') continue;
+    if (i + 1 < p.size() && p[i + 1] == '%') {
+      ++i;
+      continue;
+    }
+    size_t j = i + 1;
+    Conversion here;
+    here.begin = i;
+    if (j < p.size() && p[j] == '0') here.zero = true, ++j;
+    while (j < p.size() && std::isdigit(static_cast<unsigned char>(p[j])) && here.width < 100)
+      here.width = here.width * 10 + (p[j] - '0'), ++j;
+    if (j >= p.size() || p[j] != 'd')
+      throw InputError(p, "pattern", "only %d or %0Nd (e.g. %04d) may stand for the frame number");
+    if (c.begin != std::string::npos) throw InputError(p, "pattern", "more than one frame-number conversion");
+    here.end = j + 1;
+    c = here;
+    i = j;
+  }
+  return c;
+}
+
+std::string unescape(const std::string& s) {
+  std::string out;
+  for (size_t i = 0; i < s.size(); ++i) {
+    out += s[i];
+    if (s[i] == '%' && i + 1 < s.size() && s[i + 1] == '%') ++i;
+  }
+  return out;
+}
+
+std::string cell(const json& v) {
+  if (v.is_null()) return "n/a";
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_integer() || v.is_number_unsigned()) return std::to_string(v.get<long long>());
+  if (v.is_number()) {
+    std::ostringstream s;
+    s << std::setprecision(6) << v.get<double>();
+    return s.str();
+  }
+  return v.dump();
+}
+
+void row(std::ostringstream& s, const std::string& name, const json& m) {
+  std::string value, note;
+  if (m.is_object() && m.contains("value")) {
+    value = cell(m["value"]);
+    if (m.value("unresolved", false)) note = "unresolved: reference too noisy";
+  } else {
+    value = cell(m);
+  }
+  s << "  " << std::left << std::setw(30) << name << std::setw(16) << value << note << '\n';
+}
+
+}  // namespace
+
+bool is_pattern(const std::string& path) { return parse_pattern(path).begin != std::string::npos; }
+
+std::string frame_path(const std::string& pattern, int frame) {
+  const Conversion c = parse_pattern(pattern);
+  if (c.begin == std::string::npos) return unescape(pattern);
+  std::string num = std::to_string(frame < 0 ? -frame : frame);
+  if (c.zero && int(num.size()) < c.width - (frame < 0)) num.insert(0, size_t(c.width - (frame < 0)) - num.size(), '0');
+  if (frame < 0) num.insert(0, "-");
+  if (!c.zero && int(num.size()) < c.width) num.insert(0, size_t(c.width) - num.size(), ' ');
+  return unescape(pattern.substr(0, c.begin)) + num + unescape(pattern.substr(c.end));
+}
+
+json score(const ScoreRequest& req) {
+  json result;
+  const bool sequence = req.frames.has_value() || is_pattern(req.test);
+  if (sequence) {
+    if (!req.frames) throw InputError(req.test, "--frames", "a frame pattern needs --frames A:B");
+    if (!is_pattern(req.test))
+      throw InputError(req.test, "--test", "with --frames the technique must be a pattern such as tech_%04d.exr");
+    if (req.frames->first > req.frames->second)
+      throw InputError("", "--frames",
+                       std::to_string(req.frames->first) + ":" + std::to_string(req.frames->second) +
+                           " is empty; expected A:B with A <= B");
+    result = detail::score_sequence(req);
+  } else {
+    if (is_pattern(req.reference))
+      throw InputError(req.reference, "--ref", "a reference pattern needs a technique pattern and --frames");
+    const image::Image ref = detail::read_input(req.reference);
+    const image::Image test = detail::read_input(req.test);
+    const bool hdr = image::is_exr_file(req.reference) && image::is_exr_file(req.test);
+    result = detail::score_image(ref, req.reference, test, req.test, hdr, req);
+  }
+  result["giq_version"] = giq::version();
+  result["definitions"] = "docs/metrics.md";
+  if (!req.scene.empty()) result["inputs"]["scene"] = req.scene;
+  if (req.frame_ms) result["inputs"]["frame_ms"] = *req.frame_ms, result["inputs"]["timings"] = req.timings;
+  write_file_atomically(req.out_dir / "metrics.json", result.dump(2) + "\n");
+  return result;
+}
+
+std::string format_table(const json& j) {
+  std::ostringstream s;
+  const json& in = j.at("inputs");
+  s << "giq score  " << in.value("test", "") << "  vs  " << in.value("reference", "") << "  [layer "
+    << in.value("layer", "beauty") << ", " << in.value("dynamic_range", "") << "]\n";
+  auto image_rows = [&](const json& m) {
+    for (const char* k : {"mse", "rmse", "mae", "relmse", "smape", "psnr", "noise_floor", "mse_debiased", "ssim"})
+      if (m.contains(k)) row(s, k, m[k]);
+    if (m.contains("flip")) {
+      row(s, "flip mean", m["flip"]["mean"]);
+      row(s, "flip weighted median", m["flip"]["weighted_median"]);
+      row(s, "flip max", m["flip"]["max"]);
+    }
+    if (m.contains("leak")) {
+      row(s, "leak (automatic)", m["leak"]["automatic"]["leak"]);
+      row(s, "leak_pixels (automatic)", m["leak"]["automatic"]["leak_pixels"]);
+      if (m["leak"].contains("declared")) {
+        row(s, "leak (declared)", m["leak"]["declared"]["leak"]);
+        row(s, "leak_pixels (declared)", m["leak"]["declared"]["leak_pixels"]);
+      }
+    }
+    row(s, "nonfinite_pixels", m.value("nonfinite_pixels", json(0)));
+  };
+  if (j.contains("sequence")) {
+    const json& q = j["sequence"];
+    s << " sequence (" << cell(q["frames"]) << " frames)\n";
+    for (const char* k : {"mse_seq", "bias2", "variance", "bias2_corrected", "variance_corrected", "flicker",
+                          "temporal_flip", "lag90_frames", "lag90_ms"})
+      if (q.contains(k)) row(s, k, q[k]);
+    s << " last frame\n";
+    image_rows(j["last_frame"]["metrics"]);
+  } else {
+    image_rows(j["metrics"]);
+  }
+  return s.str();
+}
+
+}  // namespace giq::metrics

@@ -1,0 +1,277 @@
+// `giq score` end to end on small synthetic EXRs written here.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "giq/image/io.h"
+#include "giq/image/srgb.h"
+#include "giq/scenes/scene.h"
+#include "synthetic.h"
+
+using namespace giq;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+CliRun giq_run(const std::string& args, const fs::path& dir) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string cmd = std::string(GIQ_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  CliRun r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  auto slurp = [](const fs::path& p) {
+    std::ifstream in(p);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+fs::path fresh_dir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("giq_score_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+const int W = 24, H = 16;
+
+// A reference-like image: beauty and indirect, variance, objectId (object 5 on the right third).
+image::Image reference() {
+  auto im = test::rgb_image(W, H, [](int x, int y, int k) { return 0.2f + 0.5f * test::hash01(x, y, k); });
+  test::add_layer(im, "indirect", [](int x, int y, int k) { return 0.1f * test::hash01(x, y, k, 3); });
+  test::add_layer(im, "variance", [](int, int, int) { return 1e-6f; });
+  float* id = im.add_channel("objectId");
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) id[im.index(x, y)] = x >= 16 ? 5.0f : 1.0f;
+  return im;
+}
+
+}  // namespace
+
+TEST(ScoreCli, SingleImageWritesMetricsMapsAndStrip) {
+  const fs::path d = fresh_dir("single");
+  image::Image ref = reference();
+  image::Image tech = test::rgb_image(W, H, [&](int x, int y, int k) { return ref.at(k == 0 ? "R" : k == 1 ? "G" : "B", x, y) + 0.1f; });
+  test::add_layer(tech, "indirect", [&](int x, int y, int k) {
+    return ref.at(k == 0 ? "indirect.R" : k == 1 ? "indirect.G" : "indirect.B", x, y);
+  });
+  tech.channel("G")[5] = std::nanf("");
+  image::write_exr(ref, d / "ref.exr");
+  image::write_exr(tech, d / "tech.exr");
+
+  const CliRun r = giq_run("score --ref " + (d / "ref.exr").string() + " --test " + (d / "tech.exr").string() +
+                            " --out " + (d / "out").string() + " --json",
+                        d);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  const json& m = j["metrics"];
+  EXPECT_EQ(m["nonfinite_pixels"], 1);
+  EXPECT_EQ(m["valid_pixels"], W * H - 1);
+  // T - R = 0.1 in float: (0.1 +- 3e-8)^2.
+  EXPECT_NEAR(m["mse"]["value"].get<double>(), 0.01, 1e-8);
+  EXPECT_EQ(m["mse"]["definition"], "mse");
+  EXPECT_EQ(m["mse"]["inputs"][0], "reference:beauty");
+  EXPECT_FALSE(m["mse"]["unresolved"].get<bool>());  // 0.01 >> 3e-6
+  EXPECT_NEAR(m["noise_floor"]["value"].get<double>(), 1e-6, 1e-12);
+  const double flip = m["flip"]["mean"]["value"].get<double>();
+  EXPECT_GT(flip, 0.0);
+  EXPECT_LT(flip, 1.0);
+  EXPECT_EQ(j["inputs"]["dynamic_range"], "hdr");
+  const fs::path out = d / "out";
+  for (const char* f : {"metrics.json", "abs_error.exr", "abs_error.png", "relative_error.exr", "relative_error.png",
+                        "signed_luminance_error.exr", "signed_luminance_error.png", "leak.exr", "leak.png",
+                        "flip.exr", "flip.png", "strip.png"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  EXPECT_EQ(json::parse(std::ifstream(out / "metrics.json")), j);
+  // The signed map's scale is in its PNG and in metrics.json.
+  const auto png = image::read_image(out / "signed_luminance_error.png");
+  EXPECT_EQ(png.metadata.at("giq:colormap"), "blue-white-red");
+  EXPECT_NEAR(std::stod(png.metadata.at("giq:range_max")), j["maps"]["signed_luminance_error"]["range"][1].get<double>(),
+              1e-6);
+  const auto strip = image::read_image(out / "strip.png");
+  EXPECT_EQ(strip.width(), 3 * W);
+  EXPECT_EQ(strip.height(), H);
+
+  // The indirect layer is identical: zero error, psnr reported as "inf", SSIM 1.
+  const CliRun ind = giq_run("score --ref " + (d / "ref.exr").string() + " --test " + (d / "tech.exr").string() +
+                              " --layer indirect --out " + (d / "out_ind").string() + " --json",
+                          d);
+  ASSERT_EQ(ind.code, 0) << ind.err;
+  const json ji = json::parse(ind.out);
+  EXPECT_EQ(ji["metrics"]["mse"]["value"], 0.0);
+  EXPECT_EQ(ji["metrics"]["psnr"]["value"], "inf");
+  EXPECT_NEAR(ji["metrics"]["ssim"]["value"].get<double>(), 1.0, 1e-12);
+  EXPECT_EQ(ji["metrics"]["flip"]["mean"]["value"], 0.0);
+  EXPECT_EQ(ji["inputs"]["variance_layer"], "variance");
+
+  // Human table on stdout without --json.
+  const CliRun table = giq_run("score --ref " + (d / "ref.exr").string() + " --test " + (d / "tech.exr").string() +
+                                " --out " + (d / "out_t").string(),
+                            d);
+  ASSERT_EQ(table.code, 0) << table.err;
+  EXPECT_NE(table.out.find("mse"), std::string::npos);
+  EXPECT_NE(table.out.find("flip mean"), std::string::npos);
+}
+
+TEST(ScoreCli, BadInputExitsTwoWithOneLine) {
+  const fs::path d = fresh_dir("bad");
+  image::Image ref = reference();
+  image::write_exr(ref, d / "ref.exr");
+  image::write_exr(test::rgb_image(W + 1, H, [](int, int, int) { return 0.5f; }), d / "wide.exr");
+  auto rgba = test::rgb_image(W, H, [](int, int, int) { return 0.5f; });
+  rgba.add_channel("A", 1.0f);
+  image::write_exr(rgba, d / "rgba.exr");
+  image::write_exr(test::rgb_image(W, H, [](int, int, int) { return 0.5f; }), d / "beauty_only.exr");
+  struct Case {
+    std::string args, must_name;
+  };
+  const std::string base = "score --ref " + (d / "ref.exr").string() + " --out " + (d / "o").string() + " --test ";
+  const Case cases[] = {
+      {base + (d / "wide.exr").string(), "wide.exr"},                                // size mismatch
+      {base + (d / "rgba.exr").string(), "rgba.exr"},                                // channel counts
+      {base + (d / "beauty_only.exr").string() + " --layer indirect", "indirect"},   // missing layer
+      {base + (d / "missing.exr").string(), "missing.exr"},                          // no such file
+      {base + (d / "ref.exr").string() + " --frames 3", "--frames"},                  // bad frames
+  };
+  for (const auto& c : cases) {
+    const CliRun r = giq_run(c.args, d);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.must_name), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+}
+
+TEST(ScoreCli, SequenceBiasFlickerAndLag) {
+  const fs::path d = fresh_dir("sequence");
+  // A light switches on at frame 3 over the left half (Y 0.1 -> 1.0); the technique follows
+  // with its error halving every frame: r_t = 0.9 * 2^-(t-3).
+  const int frames = 12, t0 = 3;
+  char name[64];
+  for (int t = 0; t < frames; ++t) {
+    auto lit = [&](int x) { return x < W / 2 && t >= t0; };
+    auto ref = test::rgb_image(W, H, [&](int x, int, int) { return lit(x) ? 1.0f : 0.1f; });
+    test::add_layer(ref, "variance", [](int, int, int) { return 1e-8f; });
+    const float lagging = t >= t0 ? 1.0f - 0.9f * std::ldexp(1.0f, -(t - t0)) : 0.1f;
+    auto tech = test::rgb_image(W, H, [&](int x, int, int) { return x < W / 2 ? lagging : 0.1f; });
+    std::snprintf(name, sizeof name, "ref_%04d.exr", t);
+    image::write_exr(ref, d / name);
+    std::snprintf(name, sizeof name, "tech_%04d.exr", t);
+    image::write_exr(tech, d / name);
+  }
+  std::ofstream(d / "timings.json") << R"({"frame_ms": {"median": 10.0, "mean": 11.0}})";
+  const CliRun r = giq_run("score --ref '" + (d / "ref_%04d.exr").string() + "' --test '" +
+                            (d / "tech_%04d.exr").string() + "' --frames 0:11 --timings " +
+                            (d / "timings.json").string() + " --out " + (d / "out").string() + " --json",
+                        d);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  const json& q = j["sequence"];
+  EXPECT_EQ(q["frames"], frames);
+  EXPECT_EQ(q["lag"]["step_frame"], t0);
+  EXPECT_EQ(q["lag"]["region_pixels"], W / 2 * H);
+  // r_inf = 0.9 (2^-6 + 2^-7 + 2^-8) / 3 = 0.0082; threshold 0.0974; 0.9 * 2^-4 = 0.056 is the
+  // first below it: 4 frames, 40 ms.
+  EXPECT_NEAR(q["lag"]["r_inf"].get<double>(), 0.9 * (0.015625 + 0.0078125 + 0.00390625) / 3.0, 1e-6);
+  EXPECT_EQ(q["lag90_frames"]["value"], 4);
+  EXPECT_NEAR(q["lag90_ms"]["value"].get<double>(), 40.0, 1e-9);
+  // Decomposition: mse_seq = bias2 + variance over the left half's errors.
+  EXPECT_NEAR(q["mse_seq"]["value"].get<double>(),
+              q["bias2"]["value"].get<double>() + q["variance"]["value"].get<double>(), 1e-12);
+  EXPECT_GT(q["flicker"]["value"].get<double>(), 0.0);
+  EXPECT_TRUE(fs::exists(d / "out" / "temporal_stddev.png"));
+  EXPECT_TRUE(fs::exists(d / "out" / "flip.exr"));  // the last frame's full score
+  EXPECT_EQ(j["per_frame"].size(), size_t(frames));
+
+  // One reference for a static scene: the technique that flickers by +-0.05 around the truth.
+  auto still = test::rgb_image(W, H, [](int, int, int) { return 0.5f; });
+  image::write_exr(still, d / "still.exr");
+  for (int t = 0; t < 4; ++t) {
+    std::snprintf(name, sizeof name, "flick_%02d.exr", t);
+    image::write_exr(test::rgb_image(W, H, [&](int, int, int) { return t % 2 ? 0.45f : 0.55f; }), d / name);
+  }
+  const CliRun s = giq_run("score --ref " + (d / "still.exr").string() + " --test '" + (d / "flick_%02d.exr").string() +
+                            "' --frames 0:3 --out " + (d / "out_still").string() + " --json",
+                        d);
+  ASSERT_EQ(s.code, 0) << s.err;
+  const json js = json::parse(s.out);
+  // e = +-0.05: bias 0, variance 0.0025, flicker = 0.05 / 0.5.
+  EXPECT_NEAR(js["sequence"]["bias2"]["value"].get<double>(), 0.0, 1e-12);
+  EXPECT_NEAR(js["sequence"]["variance"]["value"].get<double>(), 0.0025, 1e-8);
+  EXPECT_NEAR(js["sequence"]["flicker"]["value"].get<double>(), 0.1, 1e-6);
+  EXPECT_GT(js["sequence"]["temporal_flip"]["value"].get<double>(), 0.0);
+  EXPECT_TRUE(js["sequence"]["lag"]["value_frames"].is_null());
+}
+
+TEST(ScoreCli, DeclaredLeakRegionsFromTheScene) {
+  // The built-in leak scene declares room B's surfaces as leak regions; their object ids are
+  // what the reference's objectId channel holds there.
+  const scenes::Scene scene = scenes::load(fs::path(GIQ_SCENES_DIR) / "leak.gltf");
+  ASSERT_FALSE(scene.leak_object_ids.empty());
+  const float leak_id = float(scene.leak_object_ids.front());
+  const fs::path d = fresh_dir("declared");
+  // Left half: a leak-region surface, dark in the truth (0.001); right half: lit room (1.0),
+  // object id 1000 (no such object). The technique adds 0.05 on the leak surface.
+  auto ref = test::rgb_image(W, H, [](int x, int, int) { return x < W / 2 ? 0.001f : 1.0f; });
+  float* id = ref.add_channel("objectId");
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) id[ref.index(x, y)] = x < W / 2 ? leak_id : 1000.0f;
+  auto tech = test::rgb_image(W, H, [](int x, int, int) { return x < W / 2 ? 0.051f : 1.0f; });
+  image::write_exr(ref, d / "ref.exr");
+  image::write_exr(tech, d / "tech.exr");
+  const CliRun r = giq_run("score --ref " + (d / "ref.exr").string() + " --test " + (d / "tech.exr").string() +
+                               " --scene " + (fs::path(GIQ_SCENES_DIR) / "leak.gltf").string() + " --out " +
+                               (d / "out").string() + " --json",
+                           d);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json leak = json::parse(r.out)["metrics"]["leak"];
+  const double n = W / 2 * H, sum_y = n * double(0.001f) + n * 1.0;
+  // excess = 0.051 - 0.001 = 0.05 per region pixel (float luminance maths: 1e-6 relative).
+  EXPECT_EQ(leak["declared"]["pixels"], int(n));
+  EXPECT_NEAR(leak["declared"]["leak"]["value"].get<double>(), n * 0.05 / sum_y, 1e-6);
+  EXPECT_EQ(leak["declared"]["leak_pixels"]["value"], 1.0);
+  // The dark half is also the automatic region (0.001 <= 0.05 x 0.5005).
+  EXPECT_NEAR(leak["automatic"]["leak"]["value"].get<double>(), n * 0.05 / sum_y, 1e-6);
+
+  // Declared regions need the reference's objectId channel.
+  ref.remove_channel("objectId");
+  image::write_exr(ref, d / "ref_noid.exr");
+  const CliRun bad = giq_run("score --ref " + (d / "ref_noid.exr").string() + " --test " +
+                                 (d / "tech.exr").string() + " --scene " +
+                                 (fs::path(GIQ_SCENES_DIR) / "leak.gltf").string() + " --out " + (d / "o2").string(),
+                             d);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("objectId"), std::string::npos) << bad.err;
+}
+
+TEST(ScoreCli, PngPairIsScoredAsLdr) {
+  const fs::path d = fresh_dir("ldr");
+  // 8-bit codes 188 and 128 (linear 0.5029 and 0.2159 after decoding) everywhere.
+  image::write_png(test::rgb_image(W, H, [](int, int, int) { return 0.5f; }), d / "ref.png");
+  image::write_png(test::rgb_image(W, H, [](int, int, int) { return 0.2159f; }), d / "tech.png");
+  const CliRun r = giq_run("score --ref " + (d / "ref.png").string() + " --test " + (d / "tech.png").string() +
+                               " --out " + (d / "out").string() + " --json",
+                           d);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["inputs"]["dynamic_range"], "ldr");
+  const double diff = image::srgb_decode(188.0f / 255.0f) - image::srgb_decode(128.0f / 255.0f);
+  EXPECT_NEAR(j["metrics"]["mse"]["value"].get<double>(), diff * diff, 1e-6);
+  EXPECT_EQ(j["strip"]["exposure"], 0.0);
+  EXPECT_GT(j["metrics"]["flip"]["mean"]["value"].get<double>(), 0.0);
+}
