@@ -24,14 +24,22 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A scratch folder for this process, removed when the tests end.
+struct WorkDir {
+  fs::path path;
+  WorkDir() : path(fs::temp_directory_path() / ("giq_ref_cli_" + std::to_string(::getpid()))) {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~WorkDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
 fs::path work_dir() {
-  static const fs::path d = [] {
-    fs::path p = fs::temp_directory_path() / ("giq_ref_cli_" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p;
-  }();
-  return d;
+  static const WorkDir d;
+  return d.path;
 }
 
 // A floor, a back wall and a double-sided area light, with a camera, as glTF 2.0 with an
