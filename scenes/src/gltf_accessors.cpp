@@ -159,13 +159,19 @@ AccessorData read_accessor(const Context& ctx, int index, const std::string& fie
   // 2^28 elements (several GiB once expanded to doubles) is far beyond any scene giq renders.
   if (a.count > (size_t(1) << 28)) ctx.fail(where + ".count", "is " + std::to_string(a.count) + "; at most 268435456 elements are supported");
 
+  // 2^28 values in all (2 GiB as doubles) is far beyond any scene giq renders.
+  constexpr size_t kMaxValues = size_t(1) << 28;
+  ctx.values_read += a.count * size_t(comps);
+  if (ctx.values_read > kMaxValues)
+    ctx.fail(field, "reading " + where + " brings the accessor data read to more than " + std::to_string(kMaxValues) + " values; too large");
+
   AccessorData out;
   out.components = comps;
   out.count = a.count;
   if (a.bufferView < 0) {
     // No bufferView: zeros (spec 3.6.2.3), only useful under sparse substitution. Nothing in
     // the file backs the count, so it is bounded before anything is allocated.
-    if (a.count > (size_t(1) << 24)) ctx.fail(where + ".count", "is " + std::to_string(a.count) + " without a bufferView; at most 16777216 elements are supported");
+    if (a.count > (size_t(1) << 20)) ctx.fail(where + ".count", "is " + std::to_string(a.count) + " without a bufferView; at most 1048576 elements are supported");
     out.values.assign(a.count * size_t(comps), 0.0);
   } else {
     const auto [bytes, size] = view_bytes(ctx, a.bufferView, where + ".bufferView");

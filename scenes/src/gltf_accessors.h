@@ -13,6 +13,9 @@ namespace giq::scenes::gltf {
 struct Context {
   const std::string& file;
   const tinygltf::Model& model;
+  // Values read so far over all accessors: primitives may share accessors, so a small file
+  // can ask for the same large data many times; the total is bounded (read_accessor).
+  mutable size_t values_read = 0;
   [[noreturn]] void fail(const std::string& field, const std::string& message) const;
 };
 

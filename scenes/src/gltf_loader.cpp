@@ -77,10 +77,22 @@ void load_nodes(const Context& ctx, SceneSource& src) {
       src.nodes[size_t(c)].parent = int(i);
     }
   }
+  // With at most one parent per node, a cycle is a parent chain that comes back on itself.
+  // Each chain is walked once (linear time even for deep hierarchies): 0 = unvisited,
+  // 1 = on the chain being walked, 2 = known to reach a root.
+  std::vector<char> state(src.nodes.size(), 0);
+  std::vector<int> chain;
   for (size_t i = 0; i < src.nodes.size(); ++i) {
+    chain.clear();
     int k = int(i);
-    for (size_t steps = 0; k >= 0; ++steps, k = src.nodes[size_t(k)].parent)
-      if (steps > src.nodes.size()) ctx.fail(index_path("nodes", i) + ".children", "node " + std::to_string(i) + " is its own ancestor; the node hierarchy must not have cycles");
+    while (k >= 0 && state[size_t(k)] == 0) {
+      state[size_t(k)] = 1;
+      chain.push_back(k);
+      k = src.nodes[size_t(k)].parent;
+    }
+    if (k >= 0 && state[size_t(k)] == 1)
+      ctx.fail(index_path("nodes", size_t(k)) + ".children", "node " + std::to_string(k) + " is its own ancestor; the node hierarchy must not have cycles");
+    for (int c : chain) state[size_t(c)] = 2;
   }
   // The displayed scene: `scene`, else the first one, else every root node.
   int scene = m.defaultScene >= 0 ? m.defaultScene : (m.scenes.empty() ? -1 : 0);
@@ -100,22 +112,24 @@ void load_nodes(const Context& ctx, SceneSource& src) {
   }
 }
 
-std::vector<glm::uvec3> triangulate(const Context& ctx, int mode, const std::vector<uint32_t>& idx, const std::string& w) {
+// `w` is the primitive's path; `source` the field whose count is triangulated (indices, or
+// POSITION for a non-indexed primitive).
+std::vector<glm::uvec3> triangulate(const Context& ctx, int mode, const std::vector<uint32_t>& idx, const std::string& w, const std::string& source) {
   std::vector<glm::uvec3> t;
   const size_t n = idx.size();
   switch (mode) {
     case TINYGLTF_MODE_TRIANGLES:
-      if (n % 3 != 0) ctx.fail(w + ".indices", "count " + std::to_string(n) + " is not a multiple of 3 for TRIANGLES");
+      if (n % 3 != 0) ctx.fail(w + source, "count " + std::to_string(n) + " is not a multiple of 3 for TRIANGLES");
       for (size_t i = 0; i + 2 < n; i += 3) t.emplace_back(idx[i], idx[i + 1], idx[i + 2]);
       break;
     case TINYGLTF_MODE_TRIANGLE_STRIP:
       // glTF 2.0 spec, 3.7.2.1: triangle i is {v_i, v_(i+(1+i%2)), v_(i+(2-i%2))}.
-      if (n < 3) ctx.fail(w + ".indices", "count " + std::to_string(n) + "; a TRIANGLE_STRIP needs at least 3");
+      if (n < 3) ctx.fail(w + source, "count " + std::to_string(n) + "; a TRIANGLE_STRIP needs at least 3");
       for (size_t i = 0; i + 2 < n; ++i) t.emplace_back(idx[i], idx[i + 1 + i % 2], idx[i + 2 - i % 2]);
       break;
     case TINYGLTF_MODE_TRIANGLE_FAN:
       // glTF 2.0 spec, 3.7.2.1: triangle i is {v_(i+1), v_(i+2), v_0}.
-      if (n < 3) ctx.fail(w + ".indices", "count " + std::to_string(n) + "; a TRIANGLE_FAN needs at least 3");
+      if (n < 3) ctx.fail(w + source, "count " + std::to_string(n) + "; a TRIANGLE_FAN needs at least 3");
       for (size_t i = 0; i + 2 < n; ++i) t.emplace_back(idx[i + 1], idx[i + 2], idx[0]);
       break;
     default:
@@ -171,7 +185,7 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
   } else {
     for (size_t i = 0; i < n; ++i) idx.push_back(uint32_t(i));
   }
-  out.triangles = triangulate(ctx, p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode, idx, w);
+  out.triangles = triangulate(ctx, p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode, idx, w, p.indices >= 0 ? ".indices" : ".attributes.POSITION");
   if (p.material >= 0) {
     if (size_t(p.material) >= ctx.model.materials.size())
       ctx.fail(w + ".material", "is " + std::to_string(p.material) + "; the file has " + std::to_string(ctx.model.materials.size()) + " materials");
@@ -320,6 +334,7 @@ Scene load(const std::filesystem::path& path) {
   s.leak_regions = extras.leak_regions;
   s.leak_object_ids = extras.leak_object_ids;
 
+  check_instanced_size(*src);
   // The local frame: centre of the t = 0 bounds, in double (see Scene::origin).
   const std::vector<glm::dmat4> world = world_transforms(*src, s.sequence.animation, 0.0);
   glm::dvec3 lo, hi;

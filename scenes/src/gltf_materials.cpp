@@ -90,6 +90,11 @@ class TextureTable {
     if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide || int64_t(w) * h > kMaxImageTexels)
       ctx_.fail(where, std::to_string(w) + "x" + std::to_string(h) + " image; expected sides of 1 to " + std::to_string(kMaxImageSide) +
                            " pixels and at most " + std::to_string(kMaxImageTexels) + " pixels in all");
+    // Small compressed files can decode to gigabytes; the whole scene's textures are bounded
+    // like each one.
+    total_texels_ += int64_t(w) * h;
+    if (total_texels_ > 2 * kMaxImageTexels)
+      ctx_.fail(where, "the scene's textures decode to more than " + std::to_string(2 * kMaxImageTexels) + " texels in all; too large");
     auto texels = std::make_shared<std::vector<glm::vec4>>(size_t(w) * size_t(h));
     auto convert = [&](auto* pixels, float max) {
       for (size_t i = 0; i < texels->size(); ++i) {
@@ -121,6 +126,7 @@ class TextureTable {
   std::vector<Texture>& out_;
   std::map<std::tuple<int, int, bool>, int> index_;
   std::map<std::pair<int, bool>, Decoded> texels_;
+  int64_t total_texels_ = 0;
 };
 
 // Checks the parts of a textureInfo giq cannot honour (glTF 2.0 spec, 5.22 "Texture Info").

@@ -124,6 +124,19 @@ void emit_mesh(const PrimitiveSource& p, const glm::dmat4& M, glm::dvec3 origin,
 
 }  // namespace
 
+void check_instanced_size(const SceneSource& src) {
+  // Instancing multiplies geometry: a small file can name a mesh from many nodes. 2^27
+  // triangles (several GiB posed) is far beyond what giq renders, so it is refused up front.
+  constexpr size_t kMaxTriangles = size_t(1) << 27;
+  size_t instanced = 0;
+  for (int i : preorder(src)) {
+    if (src.nodes[size_t(i)].mesh < 0) continue;
+    for (const auto& p : src.meshes[size_t(src.nodes[size_t(i)].mesh)]) instanced += p.triangles.size();
+    if (instanced > kMaxTriangles)
+      throw InputError(src.file, "nodes[" + std::to_string(i) + "].mesh", "the scene instances more than " + std::to_string(kMaxTriangles) + " triangles; too large");
+  }
+}
+
 void world_bounds(const SceneSource& src, const std::vector<glm::dmat4>& world, glm::dvec3& lo, glm::dvec3& hi) {
   lo = glm::dvec3(INFINITY), hi = glm::dvec3(-INFINITY);
   for (int i : preorder(src)) {

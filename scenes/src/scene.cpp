@@ -19,12 +19,12 @@ double luminance(glm::vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.
 // at each sub-triangle's centroid. Exact for textures linear over the triangle, and for
 // nearest-filtered texels whose edges fall on the subdivision; converging to the area
 // average as k grows otherwise.
-glm::vec3 mean_emission(const Mesh& m, const glm::uvec3& t, const Texture& tex) {
+glm::vec3 mean_emission(const Mesh& m, const glm::uvec3& t, const Texture& tex, int max_half_k) {
   if (m.uvs.empty()) return glm::vec3(tex.sample(glm::vec2(0.0f)));
   const glm::vec2 a = m.uvs[t.x], b = m.uvs[t.y], c = m.uvs[t.z];
   const glm::vec2 size(float(tex.width), float(tex.height));
   const float edge = std::max({glm::length((b - a) * size), glm::length((c - b) * size), glm::length((a - c) * size)});
-  const int k = 2 * std::clamp(int(std::ceil(0.5f * (std::isfinite(edge) ? edge : 1.0f))), 1, 32);
+  const int k = 2 * std::clamp(int(std::ceil(0.5f * (std::isfinite(edge) ? edge : 1.0f))), 1, max_half_k);
   glm::dvec3 sum(0.0);
   int count = 0;
   // Sub-triangles of a k-subdivision: "upward" (i, j) and "downward" ones, in barycentric
@@ -76,6 +76,9 @@ void Scene::derive() {
     features.one_sided |= !mat.double_sided;
     if (!mat.is_emissive()) continue;
     const Texture* tex = mat.emissive_texture >= 0 && size_t(mat.emissive_texture) < textures.size() ? &textures[size_t(mat.emissive_texture)] : nullptr;
+    // k^2 <= 2^24 / triangles samples per triangle, so averaging stays bounded (about 2^24
+    // lookups per mesh) however many large triangles a mesh has.
+    const int max_half_k = std::clamp(int(std::sqrt(double(1 << 22) / double(m.triangles.size()))), 1, 32);
     for (uint32_t ti = 0; ti < m.triangles.size(); ++ti) {
       const glm::uvec3 t = m.triangles[ti];
       if (t.x >= m.positions.size() || t.y >= m.positions.size() || t.z >= m.positions.size()) continue;
@@ -84,7 +87,7 @@ void Scene::derive() {
       e.mesh = mi;
       e.triangle = ti;
       e.area = 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
-      e.radiance = tex ? mat.emissive * mean_emission(m, t, *tex) : mat.emissive;
+      e.radiance = tex ? mat.emissive * mean_emission(m, t, *tex, max_half_k) : mat.emissive;
       if (!(e.radiance.r > 0.0f || e.radiance.g > 0.0f || e.radiance.b > 0.0f) || !(e.area > 0.0f)) continue;
       // A Lambertian emitter of radiance L and area A emits pi * A * L (per side).
       e.power = float(std::numbers::pi * e.area * luminance(e.radiance) * (mat.double_sided ? 2.0 : 1.0));

@@ -79,6 +79,9 @@ glm::dvec4 evaluate(const ChannelSource& channel, double t);
 // World transform of every node at time t with animation `animation` playing (-1: rest pose).
 std::vector<glm::dmat4> world_transforms(const SceneSource& src, int animation, double t);
 
+// Throws InputError when the scene instances more triangles than giq can hold.
+void check_instanced_size(const SceneSource& src);
+
 // World-space bounds (double) of every instantiated mesh vertex; lo > hi when there is none.
 void world_bounds(const SceneSource& src, const std::vector<glm::dmat4>& world, glm::dvec3& lo, glm::dvec3& hi);
 

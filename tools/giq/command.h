@@ -9,5 +9,8 @@ namespace giq::cli {
 
 void add_scene_command(CLI::App& app, int& exit_code);
 void add_score_command(CLI::App& app, int& exit_code);
+#ifdef GIQ_WITH_REFERENCE
+void add_reference_command(CLI::App& app, int& exit_code);
+#endif
 
 }  // namespace giq::cli

@@ -19,6 +19,9 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   giq::cli::add_scene_command(app, exit_code);
   giq::cli::add_score_command(app, exit_code);
+#ifdef GIQ_WITH_REFERENCE
+  giq::cli::add_reference_command(app, exit_code);
+#endif
 
   try {
     app.parse(argc, argv);

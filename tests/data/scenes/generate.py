@@ -335,6 +335,20 @@ def hostile():
         del d["accessors"][0]["bufferView"]
         d["accessors"][0]["count"] = 4000000000
     case("huge_count.gltf", "accessors[0].count", minimal(a=huge_zeros))
+    def instancing_bomb(d, g):
+        # A sparse accessor over 2^20 - 1 implicit zeros: 349525 (degenerate) triangles from a few
+        # bytes, instanced by 400 nodes.
+        g2 = Gltf()
+        sp = {"count": 1, "indices": {"bufferView": g2.view(struct.pack("<H", 1)), "componentType": USHORT},
+              "values": {"bufferView": g2.view(struct.pack("<3f", 1, 0, 0))}}
+        d["accessors"] = [{"componentType": FLOAT, "count": (1 << 20) - 1, "type": "VEC3", "sparse": sp}]
+        d["bufferViews"] = g2.doc["bufferViews"]
+        d["buffers"] = [{"byteLength": len(g2.bin), "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(g2.bin)).decode()}]
+        d["meshes"] = [{"primitives": [{"attributes": {"POSITION": 0}}]}]
+        d["nodes"] = [{"mesh": 0} for _ in range(400)]
+        d["scenes"] = [{"nodes": list(range(400))}]
+    per_node = ((1 << 20) - 1) // 3
+    case("instancing_bomb.gltf", "nodes[%d].mesh" % ((1 << 27) // per_node), minimal(a=instancing_bomb))
     case("wrong_component_type.gltf", "accessors[0].componentType", minimal(a=setp(("accessors", 0, "componentType"), USHORT)))
     case("wrong_type.gltf", "accessors[0].type", minimal(a=setp(("accessors", 0, "type"), "VEC2")))
     case("index_wrong_type.gltf", "accessors[1].componentType", minimal(a=setp(("accessors", 1, "componentType"), FLOAT)))

@@ -15,7 +15,9 @@
 namespace giq::metrics {
 
 struct FlipOptions {
-  double pixels_per_degree = 67.0;  // 0.7 m from a 0.7 m wide 4K monitor (the papers' default)
+  // 0.7 m from a 0.7 m wide 4K monitor (the papers' default): 0.7 m * (3840 px / 0.7 m) * pi / 180
+  // = 67.0206 pixels per degree, the value NVIDIA's implementation uses by default.
+  double pixels_per_degree = 67.02064327658226;
   // HDR only: exposure range in stops; when unset, chosen from the reference as HDR-FLIP does.
   std::optional<float> start_exposure;
   std::optional<float> stop_exposure;

@@ -1,0 +1,209 @@
+// Benchmarks of the reference path tracer, printed as Markdown tables:
+//  1. throughput on each built-in scene: camera paths (samples) per second and rays per
+//     second, with the integrator specialised on the scene's features and with the generic
+//     variant (every feature compiled in), and the saving;
+//  2. time to error: seconds until the relative mse against a long render falls below a
+//     target (relMSE = mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01), with
+//     the long render's own variance subtracted);
+//  3. scaling with triangle count: a Cornell-like box holding a sphere of 10k to 1M triangles.
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "giq/reference/renderer.h"
+#include "giq/scenes/scene.h"
+
+namespace {
+
+namespace ref = giq::reference;
+namespace sc = giq::scenes;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+struct Throughput {
+  double samples_per_s = 0.0, rays_per_s = 0.0;
+};
+
+// Renders passes until `seconds` have passed; rate over the whole run.
+Throughput measure(const sc::Scene& s, const sc::Camera& cam, ref::RenderSettings rs, double seconds) {
+  ref::Renderer r(s, cam, rs);
+  ref::Film f = r.make_film();
+  ref::RenderStats stats;
+  const Clock::time_point t0 = Clock::now();
+  uint32_t spp = 0;
+  while (seconds_since(t0) < seconds) r.render(f, ++spp, nullptr, &stats);
+  const double t = seconds_since(t0);
+  return {double(stats.samples) / t, double(stats.rays) / t};
+}
+
+double rel_mse(const ref::Film& f, const ref::Film& reference, double reference_var_term) {
+  double sum = 0.0;
+  for (size_t i = 0; i < f.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double r = reference.pixels[i].mean[c], d = f.pixels[i].mean[c] - r;
+      sum += d * d / (r * r + 0.01);
+    }
+  return sum / double(f.pixels.size() * 3) - reference_var_term;
+}
+
+// Seconds for an independent render to reach `target` relMSE against `reference`,
+// interpolated in log-log between the spp counts bracketing it; -1 if not reached by max_spp.
+double time_to_error(const sc::Scene& s, const sc::Camera& cam, ref::RenderSettings rs, const ref::Film& reference,
+                     double target, uint32_t max_spp, uint32_t& spp_reached) {
+  double var_term = 0.0;
+  for (const auto& p : reference.pixels)
+    for (int c = 0; c < 3; ++c) var_term += p.variance_of_mean(c) / (p.mean[c] * p.mean[c] + 0.01);
+  var_term /= double(reference.pixels.size() * 3);
+  rs.seed = reference.pixels.empty() ? 0 : 12345;
+  ref::Renderer r(s, cam, rs);
+  ref::Film f = r.make_film();
+  const Clock::time_point t0 = Clock::now();
+  double prev_t = 0.0, prev_e = 0.0;
+  for (uint32_t spp = 1; spp <= max_spp; spp *= 2) {
+    r.render(f, spp);
+    const double t = seconds_since(t0), e = rel_mse(f, reference, var_term);
+    if (e <= target) {
+      spp_reached = spp;
+      if (prev_t <= 0.0 || prev_e <= e) return t;
+      const double a = std::log(prev_e / target) / std::log(prev_e / e);
+      return std::exp(std::log(prev_t) + a * (std::log(t) - std::log(prev_t)));
+    }
+    prev_t = t, prev_e = e;
+  }
+  spp_reached = 0;
+  return -1.0;
+}
+
+// A Cornell-like box (Lambert walls, one ceiling light) with a sphere of about n triangles.
+sc::Scene tessellated(size_t n) {
+  sc::Scene s;
+  const auto diffuse = [](glm::vec3 c, glm::vec3 e = glm::vec3(0.0f)) {
+    sc::Material m;
+    m.base_color = glm::vec4(c, 1.0f);
+    m.metallic = 0.0f;
+    m.specular = 0.0f;
+    m.emissive = e;
+    return m;
+  };
+  s.materials = {diffuse(glm::vec3(0.73f)), diffuse({0.63f, 0.065f, 0.05f}), diffuse({0.14f, 0.45f, 0.09f}),
+                 diffuse(glm::vec3(0.0f), {17.0f, 12.0f, 4.0f})};
+  const auto quad = [&](int m, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
+    sc::Mesh mesh;
+    mesh.material = m;
+    mesh.object_id = uint32_t(s.meshes.size() + 1);
+    mesh.positions = {a, b, c, d};
+    const glm::vec3 nn = glm::normalize(glm::cross(b - a, c - a));
+    mesh.normals = {nn, nn, nn, nn};
+    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    s.meshes.push_back(mesh);
+  };
+  quad(0, {-1, -1, 1}, {1, -1, 1}, {1, -1, -1}, {-1, -1, -1});
+  quad(0, {-1, 1, -1}, {1, 1, -1}, {1, 1, 1}, {-1, 1, 1});
+  quad(0, {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1});
+  quad(1, {-1, -1, 1}, {-1, -1, -1}, {-1, 1, -1}, {-1, 1, 1});
+  quad(2, {1, -1, -1}, {1, -1, 1}, {1, 1, 1}, {1, 1, -1});
+  quad(3, {-0.25f, 0.99f, -0.25f}, {0.25f, 0.99f, -0.25f}, {0.25f, 0.99f, 0.25f}, {-0.25f, 0.99f, 0.25f});
+  // UV sphere: rings x segments x 2 triangles ~ n.
+  const int seg = std::max(8, int(std::sqrt(double(n))));
+  const int rings = std::max(4, int(n / (2 * size_t(seg))));
+  sc::Mesh sphere;
+  sphere.material = 0;
+  sphere.object_id = 99;
+  const glm::vec3 c(0.1f, -0.5f, 0.0f);
+  for (int i = 0; i <= rings; ++i)
+    for (int j = 0; j <= seg; ++j) {
+      const float th = 3.14159265f * float(i) / float(rings), ph = 6.2831853f * float(j) / float(seg);
+      const glm::vec3 nrm(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
+      sphere.positions.push_back(c + 0.45f * nrm);
+      sphere.normals.push_back(nrm);
+    }
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < seg; ++j) {
+      const uint32_t a = uint32_t(i * (seg + 1) + j), b = a + uint32_t(seg + 1);
+      if (i != 0) sphere.triangles.push_back({a, a + 1, b});
+      if (i != rings - 1) sphere.triangles.push_back({a + 1, b + 1, b});
+    }
+  s.meshes.push_back(sphere);
+  sc::View v;
+  v.name = "front";
+  v.camera = sc::Camera::look_at({0, 0, 3.4f}, {0, 0, 0}, {0, 1, 0}, 0.7f);
+  s.views.push_back(v);
+  s.derive();
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Benchmarks of the reference path tracer (Markdown on stdout)", "giq-bench-reference"};
+  std::string scenes_dir = "scenes";
+  int size = 512, threads = 0;
+  double seconds = 5.0, target = 1e-3;
+  uint32_t ref_spp = 4096, max_spp = 4096;
+  std::vector<size_t> triangles = {10000, 100000, 1000000};
+  app.add_option("--scenes", scenes_dir, "Folder of the built-in scenes")->capture_default_str();
+  app.add_option("--size", size, "Image width and height")->capture_default_str();
+  app.add_option("--threads", threads, "Threads (0 = all cores)")->capture_default_str();
+  app.add_option("--seconds", seconds, "Seconds per throughput measurement")->capture_default_str();
+  app.add_option("--ref-spp", ref_spp, "Samples per pixel of the long renders")->capture_default_str();
+  app.add_option("--target", target, "relMSE target of the time-to-error measurement")->capture_default_str();
+  app.add_option("--max-spp", max_spp, "Give up time-to-error beyond this spp")->capture_default_str();
+  app.add_option("--triangles", triangles, "Triangle counts of the scaling test")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  ref::RenderSettings rs;
+  rs.width = rs.height = size;
+  rs.threads = threads;
+  std::printf("Machine: %u hardware threads; image %dx%d; threads %s\n\n", std::thread::hardware_concurrency(), size, size,
+              threads == 0 ? "all" : std::to_string(threads).c_str());
+  std::printf("| scene | features (mask) | Msamples/s | Mrays/s | generic Msamples/s | specialisation saving | time to relMSE %.0e | spp |\n",
+              target);
+  std::printf("|---|---|---|---|---|---|---|---|\n");
+  for (const char* name : {"cornell", "leak", "sunroom", "movinglight"}) {
+    const std::filesystem::path path = std::filesystem::path(scenes_dir) / (std::string(name) + ".gltf");
+    const sc::Scene s = sc::load(path);
+    const sc::Camera cam = s.views.at(0).camera;
+    const Throughput spec = measure(s, cam, rs, seconds);
+    ref::RenderSettings generic = rs;
+    generic.all_features = true;
+    const Throughput gen = measure(s, cam, generic, seconds);
+    const ref::Renderer probe(s, cam, rs);
+    ref::RenderSettings long_rs = rs;
+    long_rs.seed = 777;
+    const ref::Renderer long_r(s, cam, long_rs);
+    ref::Film reference = long_r.make_film();
+    long_r.render(reference, ref_spp);
+    uint32_t spp_reached = 0;
+    const double tte = time_to_error(s, cam, rs, reference, target, max_spp, spp_reached);
+    std::string feats;
+    for (const auto& f : s.features.names()) feats += (feats.empty() ? "" : ", ") + f;
+    char tte_text[32];
+    if (tte >= 0.0)
+      std::snprintf(tte_text, sizeof tte_text, "%.2f s", tte);
+    else
+      std::snprintf(tte_text, sizeof tte_text, "not within %u spp", max_spp);
+    std::printf("| %s | %s (%u) | %.3f | %.3f | %.3f | %.1f %% | %s | %u |\n", name, feats.c_str(), probe.feature_mask(),
+                spec.samples_per_s / 1e6, spec.rays_per_s / 1e6, gen.samples_per_s / 1e6,
+                100.0 * (1.0 - gen.samples_per_s / spec.samples_per_s), tte_text, spp_reached);
+    std::fflush(stdout);
+  }
+  std::printf("\n| triangles | BVH build s | Msamples/s | Mrays/s |\n|---|---|---|---|\n");
+  for (size_t n : triangles) {
+    const sc::Scene s = tessellated(n);
+    const Clock::time_point t0 = Clock::now();
+    const ref::Renderer r(s, s.views[0].camera, rs);
+    const double build = seconds_since(t0);
+    const Throughput t = measure(s, s.views[0].camera, rs, seconds);
+    std::printf("| %zu | %.3f | %.3f | %.3f |\n", s.stats.triangles, build, t.samples_per_s / 1e6, t.rays_per_s / 1e6);
+    std::fflush(stdout);
+  }
+  return 0;
+}

@@ -1,0 +1,84 @@
+#pragma once
+// The reference path tracer: renders samples of a Scene seen through a Camera into a Film.
+//
+// Light transport: unidirectional path tracing with next-event estimation and multiple
+// importance sampling (Veach 1997, thesis, chapter 9; power heuristic), Russian roulette
+// after the third bounce, specialised at compile time on the scene's FeatureSet. See
+// docs/reference.md for the units, the layers and what the tests prove.
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+
+#include "giq/reference/film.h"
+#include "giq/scenes/camera.h"
+#include "giq/scenes/scene.h"
+
+namespace giq::reference {
+
+// Which estimators light a vertex. Mis is the renderer; the other two exist so tests can
+// show that all three converge to the same image.
+enum class Estimator {
+  Mis,        // light sampling and BSDF sampling, power heuristic
+  LightOnly,  // area lights and the environment by light sampling only
+  BsdfOnly,   // area lights and the environment by BSDF sampling only
+};               // (punctual lights are always light-sampled: BSDF sampling cannot hit them)
+
+struct RenderSettings {
+  int width = 256;
+  int height = 256;
+  uint64_t seed = 0;
+  // Scattering events per path: 0 = emission seen directly, 1 = direct lighting, ... Russian
+  // roulette ends most paths long before the default.
+  int max_bounces = 64;
+  Estimator estimator = Estimator::Mis;
+  int threads = 0;  // 0 = all hardware threads; never changes the image
+  // Run the integrator variant with every feature compiled in instead of the scene's own
+  // (for benchmarks: the cost of not specialising). Never changes the image.
+  bool all_features = false;
+};
+
+struct RenderStats {
+  uint64_t rays = 0;     // camera, bounce and shadow rays traced
+  uint64_t samples = 0;  // camera paths
+};
+
+class Renderer {
+ public:
+  // camera: in the scene's local frame (Scene::views, or scenes::Camera::look_at). Throws
+  // InputError for settings out of range.
+  Renderer(const scenes::Scene& scene, const scenes::Camera& camera, const RenderSettings& settings);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  const RenderSettings& settings() const;
+  Film make_film() const;
+
+  // Fills the first-hit layers (albedo, N, Z, objectId) from each pixel centre's ray.
+  void render_aux(Film& film) const;
+
+  // Adds samples until every pixel has `target_spp`. Work is split in tiles; when `cancel`
+  // becomes true, tiles not yet started are skipped (their pixels keep fewer samples; the
+  // film stays valid and can be completed later). Returns false when cancelled.
+  bool render(Film& film, uint32_t target_spp, const std::atomic<bool>* cancel = nullptr, RenderStats* stats = nullptr) const;
+
+  // The sample value of one pixel for one sample index, as render() accumulates it
+  // (for tests of determinism and of single pixels).
+  struct Sample {
+    float beauty[3];
+    float direct[3];
+    uint32_t rays;  // traced for this sample
+  };
+  Sample trace(int x, int y, uint32_t sample_index) const;
+
+  // The instantiation the integrator runs, as feature bits (1 specular, 2 textures,
+  // 4 punctual lights, 8 emissive triangles, 16 environment).
+  unsigned feature_mask() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace giq::reference

@@ -1,0 +1,125 @@
+#pragma once
+// Sampling helpers of the reference path tracer: a counter-based random number generator and
+// the warps from the unit square to the domains the integrator samples. All pure functions.
+//
+// Determinism: a random number is a function of (pixel, sample index, dimension, seed) only,
+// never of a generator's state, so a pixel renders the same whatever thread runs it, in
+// whatever order, and a render resumed after sample n continues exactly as if uninterrupted.
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+#include <cstdint>
+
+namespace giq::reference {
+
+inline constexpr float kPi = 3.14159265358979323846f;
+inline constexpr float kInvPi = 0.318309886183790671538f;
+
+// MurmurHash3's 64-bit finaliser (Appleby, "fmix64"): every input bit affects every output bit.
+constexpr uint64_t mix64(uint64_t k) {
+  k ^= k >> 33;
+  k *= 0xff51afd7ed558ccdull;
+  k ^= k >> 33;
+  k *= 0xc4ceb9fe1a85ec53ull;
+  k ^= k >> 33;
+  return k;
+}
+
+// A float in [0, 1) from the top 24 bits of a hash (exactly representable, never 1).
+constexpr float to_unit_float(uint64_t h) { return float(h >> 40) * 0x1p-24f; }
+
+// The random number for (pixel, sample, dimension, seed): two rounds of mixing over the packed
+// 128-bit key, so neighbouring keys give uncorrelated values.
+constexpr float sample_1d(uint32_t pixel, uint32_t sample, uint32_t dimension, uint64_t seed) {
+  const uint64_t a = (uint64_t(pixel) << 32) | sample;
+  const uint64_t b = (uint64_t(dimension) << 32) ^ seed;
+  return to_unit_float(mix64(mix64(a ^ 0x9e3779b97f4a7c15ull) ^ mix64(b + 0x632be59bd9b4e019ull)));
+}
+
+// The random numbers of one camera path. Dimensions are allocated by the integrator in a
+// fixed layout (SampleDimensions below), so sample n of a pixel is always the same path.
+class PathSampler {
+ public:
+  PathSampler(uint32_t pixel, uint32_t sample, uint64_t seed) : pixel_(pixel), sample_(sample), seed_(seed) {}
+  float get(uint32_t dimension) const { return sample_1d(pixel_, sample_, dimension, seed_); }
+  glm::vec2 get2(uint32_t dimension) const { return {get(dimension), get(dimension + 1)}; }
+
+ private:
+  uint32_t pixel_, sample_;
+  uint64_t seed_;
+};
+
+// Dimension layout: 2 for the pixel jitter, then a fixed block per bounce.
+struct SampleDimensions {
+  static constexpr uint32_t kPixel = 0;
+  static constexpr uint32_t kPerBounce = 8;
+  static constexpr uint32_t kLightPick = 0, kLightPoint = 1;  // 1 + 2
+  static constexpr uint32_t kLobe = 3, kDirection = 4;        // 1 + 2
+  static constexpr uint32_t kRoulette = 6, kLightAlias = 7;
+  static constexpr uint32_t bounce(int depth, uint32_t which) { return 2 + uint32_t(depth) * kPerBounce + which; }
+};
+
+// --- warps -----------------------------------------------------------------------------------
+
+// Cosine-weighted hemisphere about +z via Malley's method on the concentric disk
+// (Shirley & Chiu 1997, "A Low Distortion Map Between Disk and Square"). pdf = cos(theta) / pi.
+inline glm::vec2 square_to_concentric_disk(glm::vec2 u) {
+  const glm::vec2 o = 2.0f * u - 1.0f;
+  if (o.x == 0.0f && o.y == 0.0f) return {0.0f, 0.0f};
+  float r, theta;
+  if (std::abs(o.x) > std::abs(o.y)) {
+    r = o.x, theta = (kPi / 4.0f) * (o.y / o.x);
+  } else {
+    r = o.y, theta = kPi / 2.0f - (kPi / 4.0f) * (o.x / o.y);
+  }
+  return r * glm::vec2(std::cos(theta), std::sin(theta));
+}
+inline glm::vec3 square_to_cosine_hemisphere(glm::vec2 u) {
+  const glm::vec2 d = square_to_concentric_disk(u);
+  return {d.x, d.y, std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y))};
+}
+inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0.0f ? cos_theta * kInvPi : 0.0f; }
+
+// Uniform direction on the unit sphere (pbrt-v4, "Sampling the unit sphere"). pdf = 1 / (4 pi).
+inline glm::vec3 square_to_uniform_sphere(glm::vec2 u) {
+  const float z = 1.0f - 2.0f * u.x;
+  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+  const float phi = 2.0f * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPi);
+
+// Uniform point on a triangle as barycentrics (b1, b2) of vertices 1 and 2
+// (Osada et al. 2002, "Shape Distributions", eq. 1). pdf = 1 / area.
+inline glm::vec2 square_to_triangle_barycentrics(glm::vec2 u) {
+  const float s = std::sqrt(u.x);
+  return {s * (1.0f - u.y), s * u.y};
+}
+
+// Veach's power heuristic with beta = 2 (Veach 1997, thesis, eq. 9.13), in the ratio form
+// 1 / (1 + (b/a)^2) so that huge or infinite pdfs, whose squares overflow, and zero pdfs
+// give the limit weights instead of NaN.
+inline float power_heuristic(float pdf_a, float pdf_b) {
+  if (!(pdf_a > 0.0f)) return 0.0f;
+  if (!(pdf_b > 0.0f)) return 1.0f;
+  if (std::isinf(pdf_a)) return std::isinf(pdf_b) ? 0.5f : 1.0f;
+  const float r = pdf_b / pdf_a;
+  return 1.0f / (1.0f + r * r);
+}
+
+// Orthonormal basis around a unit normal without branches on the normal's direction
+// (Duff et al. 2017, "Building an Orthonormal Basis, Revisited", JCGT 6(1), listing 3).
+struct Frame {
+  glm::vec3 t, b, n;
+  static Frame from_normal(glm::vec3 n) {
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    const float bb = n.x * n.y * a;
+    return {{1.0f + sign * n.x * n.x * a, sign * bb, -sign * n.x}, {bb, sign + n.y * n.y * a, -n.y}, n};
+  }
+  glm::vec3 to_local(glm::vec3 v) const { return {glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)}; }
+  glm::vec3 to_world(glm::vec3 v) const { return t * v.x + b * v.y + n * v.z; }
+};
+
+}  // namespace giq::reference

@@ -1,0 +1,52 @@
+#pragma once
+// The scene's triangles in an Embree 3 BVH: one triangle geometry per Mesh (geometry ID =
+// mesh index), robust traversal, and alpha-mask cut-outs as Embree filter functions, attached
+// only to the meshes whose material asks for them.
+//
+// Positions are copied into the renderer's frame, the scene's local frame shifted by the
+// centre of its bounds: small coordinates keep the ray-offset and intersection errors
+// proportional to the scene's size wherever the scene was built.
+
+#include <embree3/rtcore.h>
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "giq/scenes/scene.h"
+
+namespace giq::reference {
+
+struct Hit {
+  float t = std::numeric_limits<float>::infinity();
+  uint32_t mesh = RTC_INVALID_GEOMETRY_ID;
+  uint32_t triangle = 0;
+  float b1 = 0.0f, b2 = 0.0f;  // barycentrics of vertices 1 and 2
+  bool valid() const { return mesh != RTC_INVALID_GEOMETRY_ID; }
+};
+
+class EmbreeScene {
+ public:
+  // alpha_mask: whether to install the cut-out filters (the scene's FeatureSet says).
+  EmbreeScene(const scenes::Scene& scene, glm::vec3 centre, bool alpha_mask);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  Hit intersect(glm::vec3 origin, glm::vec3 dir, float tfar = std::numeric_limits<float>::infinity()) const;
+  bool occluded(glm::vec3 origin, glm::vec3 dir, float tfar) const;
+
+  // Per mesh, vertex positions in the renderer's frame.
+  const std::vector<std::vector<glm::vec3>>& positions() const { return positions_; }
+
+  struct AlphaMask;  // what a filter function needs to look up a texel's coverage
+
+ private:
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  std::vector<std::vector<glm::vec3>> positions_;
+  std::vector<AlphaMask*> masks_;
+};
+
+}  // namespace giq::reference

@@ -1,0 +1,62 @@
+#include "lights.h"
+
+#include <cmath>
+
+namespace giq::reference {
+namespace {
+
+double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+}  // namespace
+
+LightSampler::LightSampler(const scenes::Scene& scene, const std::vector<std::vector<glm::vec3>>& positions,
+                           glm::vec3 centre, float scene_radius)
+    : scene_(scene), positions_(positions), centre_(centre) {
+  std::vector<double> weights;
+  triangle_entry_.resize(scene.meshes.size());
+  const double pi = 3.14159265358979323846;
+  // Power estimates (pbrt-v4, the lights' Phi() methods): they only steer the pick
+  // probabilities, so a rough estimate costs variance, never bias.
+  for (size_t i = 0; i < scene.emissive_triangles.size(); ++i) {
+    const scenes::EmissiveTriangle& t = scene.emissive_triangles[i];
+    if (!(t.power > 0.0f)) continue;
+    std::vector<int32_t>& map = triangle_entry_[t.mesh];
+    if (map.empty()) map.assign(scene.meshes[t.mesh].triangles.size(), -1);
+    map[t.triangle] = int32_t(entries_.size());
+    entries_.push_back({LightKind::Triangle, uint32_t(i)});
+    weights.push_back(t.power);
+  }
+  const double r2 = double(scene_radius) * double(scene_radius);
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const scenes::Light& l = scene.lights[i];
+    const double y = luminance(l.radiant());
+    double phi = 0.0;
+    LightKind kind = LightKind::Point;
+    switch (l.type) {
+      case scenes::LightType::Point:
+        phi = 4.0 * pi * y;
+        break;
+      case scenes::LightType::Spot:
+        // Solid angle of the cone halfway between the inner and outer angles.
+        phi = 2.0 * pi * (1.0 - std::cos(0.5 * (double(l.inner_cone) + double(l.outer_cone)))) * y;
+        kind = LightKind::Spot;
+        break;
+      case scenes::LightType::Directional:
+        phi = pi * r2 * y;  // irradiance over the scene's cross-section
+        kind = LightKind::Directional;
+        break;
+    }
+    if (!(phi > 0.0) || !std::isfinite(phi)) continue;
+    entries_.push_back({kind, uint32_t(i)});
+    weights.push_back(phi);
+  }
+  const double env = luminance(scene.environment);
+  if (env > 0.0 && std::isfinite(env)) {
+    environment_entry_ = int32_t(entries_.size());
+    entries_.push_back({LightKind::Environment, 0});
+    weights.push_back(4.0 * pi * pi * r2 * env);  // pbrt-v4 UniformInfiniteLight::Phi
+  }
+  if (!weights.empty()) table_ = AliasTable(weights);
+}
+
+}  // namespace giq::reference

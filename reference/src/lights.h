@@ -1,0 +1,164 @@
+#pragma once
+// The scene's lights as one discrete distribution for next-event estimation: emissive
+// triangles (area lights, sampled uniformly by area), KHR_lights_punctual lights and the
+// constant environment, each picked with probability proportional to an estimate of its power
+// (pbrt-v4, "Light Sampling": PowerLightSampler). Positions are in the renderer's frame (the
+// scene's local frame shifted by `centre`).
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "feature_mask.h"
+#include "giq/reference/alias_table.h"
+#include "giq/reference/sampling.h"
+#include "giq/scenes/scene.h"
+
+namespace giq::reference {
+
+enum class LightKind : uint8_t { Triangle, Point, Spot, Directional, Environment };
+
+struct LightSample {
+  glm::vec3 wi{0.0f};      // unit, from the shading point towards the light
+  float distance = 0.0f;   // to the light point (infinite lights: +inf)
+  glm::vec3 radiance{0.0f};  // arriving along -wi (delta lights: intensity / d^2, times windows)
+  float pdf = 0.0f;        // solid angle, pick probability included; for delta lights the pick
+                           // probability alone
+  bool delta = false;      // punctual: cannot be hit by BSDF sampling
+  bool area = false;       // emissive triangle: the shadow ray ends at `point`
+  glm::vec3 point{0.0f};   // on the triangle
+  glm::vec3 normal{0.0f};  // triangle's geometric normal, facing the shading point
+  LightKind kind = LightKind::Point;
+};
+
+class LightSampler {
+ public:
+  // positions: the meshes' vertex positions in the renderer's frame (as EmbreeScene has them).
+  LightSampler(const scenes::Scene& scene, const std::vector<std::vector<glm::vec3>>& positions,
+               glm::vec3 centre, float scene_radius);
+
+  bool empty() const { return table_.empty(); }
+
+  // One light sample towards the point p. u_pick, u_alias pick the light; u places it.
+  // Returns a sample with pdf 0 when the light does not face p.
+  template <unsigned F>
+  LightSample sample(glm::vec3 p, float u_pick, float u_alias, glm::vec2 u) const;
+
+  // Probability of picking the emissive triangle (mesh, triangle) / the environment.
+  float triangle_pmf(uint32_t mesh, uint32_t triangle) const {
+    const int32_t e = triangle_entry_[mesh].empty() ? -1 : triangle_entry_[mesh][triangle];
+    return e < 0 ? 0.0f : table_.pmf(size_t(e));
+  }
+  float environment_pmf() const { return environment_entry_ < 0 ? 0.0f : table_.pmf(size_t(environment_entry_)); }
+
+ private:
+  struct Entry {
+    LightKind kind;
+    uint32_t index;  // emissive triangle index or punctual light index
+  };
+  const scenes::Scene& scene_;
+  const std::vector<std::vector<glm::vec3>>& positions_;
+  glm::vec3 centre_;
+  std::vector<Entry> entries_;
+  AliasTable table_;
+  std::vector<std::vector<int32_t>> triangle_entry_;  // per mesh: triangle -> entry, or empty
+  int32_t environment_entry_ = -1;
+};
+
+// Radiance emitted by a point of an emissive material (KHR_materials_emissive_strength is
+// already folded into Material::emissive), with its emissive texture when textures are on.
+template <unsigned F>
+glm::vec3 emitted_radiance(const scenes::Scene& scene, const scenes::Material& m, glm::vec2 uv) {
+  glm::vec3 e = m.emissive;
+  if constexpr (has(F, kTextures)) {
+    if (m.emissive_texture >= 0) e *= glm::vec3(scene.textures[size_t(m.emissive_texture)].sample(uv));
+  }
+  return e;
+}
+
+// Texture coordinate of barycentrics (b1, b2) on a triangle; zero when the mesh has no UVs.
+inline glm::vec2 interpolate_uv(const scenes::Mesh& mesh, const glm::uvec3& tri, float b1, float b2) {
+  if (mesh.uvs.empty()) return glm::vec2(0.0f);
+  return (1.0f - b1 - b2) * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];
+}
+
+template <unsigned F>
+LightSample LightSampler::sample(glm::vec3 p, float u_pick, float u_alias, glm::vec2 u) const {
+  LightSample s;
+  const AliasTable::Pick pick = table_.sample(u_pick, u_alias);
+  const Entry& e = entries_[pick.index];
+  s.kind = e.kind;
+  if constexpr (has(F, kEmissive)) {
+    if (e.kind == LightKind::Triangle) {
+      const scenes::EmissiveTriangle& et = scene_.emissive_triangles[e.index];
+      const scenes::Mesh& mesh = scene_.meshes[et.mesh];
+      const glm::uvec3 tri = mesh.triangles[et.triangle];
+      const std::vector<glm::vec3>& pos = positions_[et.mesh];
+      const glm::vec3 p0 = pos[tri.x], p1 = pos[tri.y], p2 = pos[tri.z];
+      const glm::vec2 b = square_to_triangle_barycentrics(u);
+      s.point = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
+      const glm::vec3 c = glm::cross(p1 - p0, p2 - p0);
+      const float area = 0.5f * glm::length(c);
+      glm::vec3 n = c / (2.0f * area);
+      const glm::vec3 d = s.point - p;
+      const float d2 = glm::dot(d, d);
+      if (!(d2 > 0.0f) || !(area > 0.0f)) return s;
+      s.distance = std::sqrt(d2);
+      s.wi = d / s.distance;
+      float cos_l = -glm::dot(n, s.wi);
+      const scenes::Material& mat = scene_.materials[size_t(mesh.material)];
+      if (cos_l <= 0.0f) {
+        if (!mat.double_sided) return s;  // glTF: a one-sided emitter emits from its front only
+        cos_l = -cos_l, n = -n;
+      }
+      s.normal = n;
+      s.area = true;
+      s.radiance = emitted_radiance<F>(scene_, mat, interpolate_uv(mesh, tri, b.x, b.y));
+      // Area measure to solid angle: dA = d^2 / cos(theta_l) dw (pbrt-v4, eq. 4.9). At grazing
+      // angles the density can overflow; such a sample carries no light, so it is dropped.
+      s.pdf = pick.pmf * d2 / (area * cos_l);
+      if (!std::isfinite(s.pdf)) s.pdf = 0.0f;
+      return s;
+    }
+  }
+  if constexpr (has(F, kEnvironment)) {
+    if (e.kind == LightKind::Environment) {
+      s.wi = square_to_uniform_sphere(u);
+      s.distance = std::numeric_limits<float>::infinity();
+      s.radiance = scene_.environment;
+      s.pdf = pick.pmf * kUniformSpherePdf;
+      return s;
+    }
+  }
+  if constexpr (has(F, kPunctual)) {
+    const scenes::Light& l = scene_.lights[e.index];
+    s.delta = true;
+    s.pdf = pick.pmf;
+    if (e.kind == LightKind::Directional) {
+      // KHR_lights_punctual: intensity is illuminance (here irradiance) on a facing surface.
+      s.wi = -l.direction;
+      s.distance = std::numeric_limits<float>::infinity();
+      s.radiance = l.radiant();
+      return s;
+    }
+    const glm::vec3 d = (l.position - centre_) - p;
+    const float d2 = glm::dot(d, d);
+    if (!(d2 > 0.0f)) {
+      s.pdf = 0.0f;
+      return s;
+    }
+    s.distance = std::sqrt(d2);
+    s.wi = d / s.distance;
+    // Inverse-square law with glTF's range window (KHR_lights_punctual, "Range Property").
+    float scale = scenes::range_window(s.distance, l.range) / d2;
+    if (e.kind == LightKind::Spot) scale *= scenes::spot_attenuation(glm::dot(l.direction, -s.wi), l.inner_cone, l.outer_cone);
+    s.radiance = l.radiant() * scale;
+    return s;
+  }
+  s.pdf = 0.0f;
+  return s;
+}
+
+}  // namespace giq::reference

@@ -1,0 +1,30 @@
+#pragma once
+// Everything the integrator reads for one render: the scene, its BVH and lights in the
+// renderer's frame, the camera and the settings. Built once per Renderer, then shared
+// read-only by all threads.
+
+#include <glm/glm.hpp>
+
+#include "embree_scene.h"
+#include "giq/reference/renderer.h"
+#include "lights.h"
+
+namespace giq::reference {
+
+struct RenderContext {
+  RenderContext(const scenes::Scene& s, const scenes::Camera& cam, const RenderSettings& rs, glm::vec3 c, float e,
+                float radius)
+      : scene(s), settings(rs), camera(cam), centre(c), extent(e), eye(cam.position - c),
+        bvh(s, c, s.features.alpha_mask), lights(s, bvh.positions(), c, radius) {}
+
+  const scenes::Scene& scene;
+  RenderSettings settings;
+  scenes::Camera camera;
+  glm::vec3 centre;  // the scene's local frame minus this is the renderer's frame
+  float extent;      // largest side of the scene's bounds: the scale of ray offsets
+  glm::vec3 eye;     // camera position in the renderer's frame
+  EmbreeScene bvh;
+  LightSampler lights;
+};
+
+}  // namespace giq::reference

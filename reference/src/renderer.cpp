@@ -1,0 +1,164 @@
+#include "giq/reference/renderer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "giq/base/error.h"
+#include "path_integrator.h"
+
+namespace giq::reference {
+namespace {
+
+constexpr int kTile = 16;
+
+// The work of one tile, instantiated per feature mask: render() picks the instantiation once
+// and every pixel of every pass runs the specialised code.
+struct Kernels {
+  RenderStats (*render_tile)(const RenderContext&, Film&, int x0, int y0, uint32_t target_spp);
+  PixelAux (*aux)(const RenderContext&, int x, int y);
+  Renderer::Sample (*trace)(const RenderContext&, int x, int y, uint32_t sample);
+};
+
+template <unsigned F>
+RenderStats render_tile(const RenderContext& ctx, Film& film, int x0, int y0, uint32_t target_spp) {
+  const PathIntegrator<F> integrator(ctx);
+  RenderStats stats;
+  const int x1 = std::min(x0 + kTile, film.width), y1 = std::min(y0 + kTile, film.height);
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      PixelAccumulator& acc = film.pixels[size_t(y) * size_t(film.width) + size_t(x)];
+      while (acc.samples < target_spp) {
+        Renderer::Sample s = integrator.trace(x, y, acc.samples);
+        stats.rays += s.rays;
+        ++stats.samples;
+        bool finite = true;
+        for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(s.beauty[k]) && std::isfinite(s.direct[k]);
+        if (!finite) {
+          // A non-finite sample is discarded as a zero-valued one, so every pixel keeps the
+          // same sample count; it is counted and reported.
+          ++acc.nonfinite;
+          for (int k = 0; k < 3; ++k) s.beauty[k] = s.direct[k] = 0.0f;
+        }
+        acc.add(s.beauty, s.direct);
+      }
+    }
+  }
+  return stats;
+}
+
+template <unsigned F>
+constexpr Kernels kernels_for() {
+  return {&render_tile<F>, [](const RenderContext& c, int x, int y) { return PathIntegrator<F>(c).aux(x, y); },
+          [](const RenderContext& c, int x, int y, uint32_t i) { return PathIntegrator<F>(c).trace(x, y, i); }};
+}
+
+template <size_t... I>
+constexpr std::array<Kernels, sizeof...(I)> make_kernel_table(std::index_sequence<I...>) {
+  return {kernels_for<unsigned(I)>()...};
+}
+
+constexpr auto kKernels = make_kernel_table(std::make_index_sequence<(1u << kFeatureCount)>{});
+
+void validate(const RenderSettings& s) {
+  if (s.width < 1 || s.width > 65536) throw InputError("", "--width", "width " + std::to_string(s.width) + " is out of range; expected 1 to 65536");
+  if (s.height < 1 || s.height > 65536)
+    throw InputError("", "--height", "height " + std::to_string(s.height) + " is out of range; expected 1 to 65536");
+  if (s.max_bounces < 0 || s.max_bounces > 100000)
+    throw InputError("", "--max-bounces", "max bounces " + std::to_string(s.max_bounces) + " is out of range; expected 0 to 100000");
+  if (s.threads < 0) throw InputError("", "--threads", "threads " + std::to_string(s.threads) + " must be >= 0 (0 = all cores)");
+}
+
+glm::vec3 bounds_centre(const scenes::Scene& scene) {
+  if (scene.bounds.empty()) return glm::vec3(0.0f);
+  return 0.5f * (scene.bounds.lo + scene.bounds.hi);
+}
+
+float bounds_extent(const scenes::Scene& scene) {
+  const glm::vec3 e = scene.bounds.extent();
+  const float m = std::max(e.x, std::max(e.y, e.z));
+  return m > 0.0f && std::isfinite(m) ? m : 1.0f;
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  Impl(const scenes::Scene& scene, const scenes::Camera& camera, const RenderSettings& settings)
+      : ctx(scene, camera, settings, bounds_centre(scene), bounds_extent(scene),
+            std::max(1e-30f, 0.5f * glm::length(scene.bounds.extent()))),
+        mask(settings.all_features ? (1u << kFeatureCount) - 1 : reference::feature_mask(scene.features)),
+        kernels(kKernels[mask]) {}
+  RenderContext ctx;
+  unsigned mask;
+  Kernels kernels;
+
+  template <class Fn>
+  void run(Fn&& fn) const {
+    if (ctx.settings.threads > 0) {
+      tbb::task_arena arena(ctx.settings.threads);
+      arena.execute(fn);
+    } else {
+      fn();
+    }
+  }
+};
+
+Renderer::Renderer(const scenes::Scene& scene, const scenes::Camera& camera, const RenderSettings& settings) {
+  validate(settings);
+  impl_ = std::make_unique<Impl>(scene, camera, settings);
+}
+
+Renderer::~Renderer() = default;
+
+const RenderSettings& Renderer::settings() const { return impl_->ctx.settings; }
+unsigned Renderer::feature_mask() const { return impl_->mask; }
+Film Renderer::make_film() const { return Film(impl_->ctx.settings.width, impl_->ctx.settings.height); }
+
+void Renderer::render_aux(Film& film) const {
+  const RenderContext& ctx = impl_->ctx;
+  impl_->run([&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, film.height), [&](const tbb::blocked_range<int>& rows) {
+      for (int y = rows.begin(); y < rows.end(); ++y)
+        for (int x = 0; x < film.width; ++x) film.aux[size_t(y) * size_t(film.width) + size_t(x)] = impl_->kernels.aux(ctx, x, y);
+    });
+  });
+}
+
+bool Renderer::render(Film& film, uint32_t target_spp, const std::atomic<bool>* cancel, RenderStats* stats) const {
+  const RenderContext& ctx = impl_->ctx;
+  const int tiles_x = (film.width + kTile - 1) / kTile, tiles_y = (film.height + kTile - 1) / kTile;
+  std::atomic<bool> skipped{false};
+  std::atomic<uint64_t> rays{0}, samples{0};
+  impl_->run([&] {
+    // Pixels are independent and each accumulates its samples in index order, so the
+    // schedule cannot change a bit of the result.
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, tiles_x * tiles_y, 1),
+        [&](const tbb::blocked_range<int>& r) {
+          for (int t = r.begin(); t < r.end(); ++t) {
+            if (cancel != nullptr && cancel->load(std::memory_order_relaxed)) {
+              skipped = true;
+              continue;
+            }
+            const RenderStats s = impl_->kernels.render_tile(ctx, film, (t % tiles_x) * kTile, (t / tiles_x) * kTile, target_spp);
+            rays.fetch_add(s.rays, std::memory_order_relaxed);
+            samples.fetch_add(s.samples, std::memory_order_relaxed);
+          }
+        },
+        tbb::simple_partitioner());
+  });
+  if (stats != nullptr) stats->rays += rays, stats->samples += samples;
+  return !skipped;
+}
+
+Renderer::Sample Renderer::trace(int x, int y, uint32_t sample_index) const {
+  return impl_->kernels.trace(impl_->ctx, x, y, sample_index);
+}
+
+}  // namespace giq::reference

@@ -1,0 +1,190 @@
+// End to end: `giq reference` on a small glTF file. The written EXR has every layer with
+// beauty = direct + indirect, its files are byte-identical across thread counts and after a
+// SIGKILL followed by --resume, and bad input exits with code 2.
+
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "giq/image/io.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path work_dir() {
+  static const fs::path d = [] {
+    fs::path p = fs::temp_directory_path() / ("giq_ref_cli_" + std::to_string(::getpid()));
+    fs::remove_all(p);
+    fs::create_directories(p);
+    return p;
+  }();
+  return d;
+}
+
+// A floor, a back wall and a double-sided area light, with a camera, as glTF 2.0 with an
+// external buffer.
+fs::path write_scene() {
+  const fs::path dir = work_dir();
+  const float pos[] = {-2, 0, 2, 2, 0, 2, 2, 0, -2, -2, 0, -2,      // floor, facing +y
+                       -2, 0, -2, 2, 0, -2, 2, 3, -2, -2, 3, -2,    // back wall, facing +z
+                       -0.5f, 2, -0.5f, 0.5f, 2, -0.5f, 0.5f, 2, 0.5f, -0.5f, 2, 0.5f};  // light
+  const uint16_t idx[] = {0, 1, 2, 0, 2, 3};
+  std::ofstream bin(dir / "scene.bin", std::ios::binary);
+  bin.write(reinterpret_cast<const char*>(pos), sizeof pos);
+  bin.write(reinterpret_cast<const char*>(idx), sizeof idx);
+  bin.close();
+  std::ostringstream j;
+  j << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1,2,3]}],
+  "nodes":[{"mesh":0,"name":"floor"},{"mesh":1,"name":"wall"},{"mesh":2,"name":"light"},
+           {"camera":0,"name":"cam","translation":[0.3,1.2,3.5]}],
+  "cameras":[{"type":"perspective","perspective":{"yfov":0.9,"znear":0.01}}],
+  "materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0.7,0.6,0.5,1],"metallicFactor":0,"roughnessFactor":0.4}},
+               {"pbrMetallicRoughness":{"baseColorFactor":[0.3,0.5,0.7,1],"metallicFactor":0}},
+               {"emissiveFactor":[1,0.9,0.8],"doubleSided":true,"pbrMetallicRoughness":{"baseColorFactor":[0,0,0,1],"metallicFactor":0}}],
+  "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":3,"material":0}]},
+            {"primitives":[{"attributes":{"POSITION":1},"indices":3,"material":1}]},
+            {"primitives":[{"attributes":{"POSITION":2},"indices":3,"material":2}]}],
+  "buffers":[{"byteLength":)" << sizeof pos + sizeof idx << R"(,"uri":"scene.bin"}],
+  "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":144},{"buffer":0,"byteOffset":144,"byteLength":12}],
+  "accessors":[
+    {"bufferView":0,"byteOffset":0,"componentType":5126,"count":4,"type":"VEC3","min":[-2,0,-2],"max":[2,0,2]},
+    {"bufferView":0,"byteOffset":48,"componentType":5126,"count":4,"type":"VEC3","min":[-2,0,-2],"max":[2,3,-2]},
+    {"bufferView":0,"byteOffset":96,"componentType":5126,"count":4,"type":"VEC3","min":[-0.5,2,-0.5],"max":[0.5,2,0.5]},
+    {"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}]})";
+  std::ofstream(dir / "scene.gltf") << j.str();
+  return dir / "scene.gltf";
+}
+
+// Runs giq with the arguments; returns its pid (wait for it with finish()).
+pid_t start(const std::vector<std::string>& args) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    std::vector<char*> argv;
+    std::string bin = GIQ_BINARY;
+    argv.push_back(bin.data());
+    std::vector<std::string> copy = args;
+    for (std::string& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    ::dup2(null, 2);
+    ::execv(bin.c_str(), argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+int finish(pid_t pid) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+int giq(const std::vector<std::string>& args) { return finish(start(args)); }
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<std::string> render_args(const fs::path& scene, const fs::path& out, int spp, int threads) {
+  return {"reference", "--scene", scene.string(), "--spp", std::to_string(spp), "--width", "32", "--height", "24",
+          "--threads", std::to_string(threads), "--out", out.string()};
+}
+
+TEST(ReferenceCli, WritesEveryLayerWithBeautyEqualToDirectPlusIndirect) {
+  const fs::path scene = write_scene(), out = work_dir() / "layers.exr";
+  ASSERT_EQ(giq(render_args(scene, out, 16, 2)), 0);
+  const giq::image::Image img = giq::image::read_image(out);
+  for (const char* c : {"R", "G", "B", "direct.R", "direct.G", "direct.B", "indirect.R", "indirect.G", "indirect.B", "albedo.R",
+                        "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "objectId", "variance.R", "variance.G", "variance.B", "spp"})
+    EXPECT_TRUE(img.has_channel(c)) << c;
+  double indirect = 0.0;
+  for (const char* l : {"R", "G", "B"}) {
+    const float* b = img.channel(l);
+    const float* d = img.channel(std::string("direct.") + l);
+    const float* i = img.channel(std::string("indirect.") + l);
+    for (size_t k = 0; k < img.pixel_count(); ++k) {
+      ASSERT_TRUE(std::isfinite(b[k]));
+      // Exactly, in float arithmetic.
+      ASSERT_EQ(d[k] + i[k], b[k]) << l << " pixel " << k;
+      ASSERT_GE(i[k], 0.0f);
+      indirect += i[k];
+    }
+  }
+  EXPECT_GT(indirect, 0.0);  // the wall lights the floor: there is indirect light
+  for (size_t k = 0; k < img.pixel_count(); ++k) EXPECT_EQ(img.channel("spp")[k], 16.0f);
+  for (const char* key : {"giq.version", "giq.sceneHash", "giq.view", "giq.frame", "giq.spp", "giq.seed", "giq.settings",
+                          "giq.nonFiniteSamples", "giq.camera"})
+    EXPECT_TRUE(img.metadata.count(key)) << key;
+  EXPECT_EQ(img.metadata.at("giq.spp"), "16");
+  EXPECT_EQ(img.metadata.at("giq.nonFiniteSamples"), "0");
+  EXPECT_EQ(img.metadata.at("giq.view"), "cam");
+}
+
+TEST(ReferenceCli, FilesAreByteIdenticalAcrossThreadsAndAfterKillAndResume) {
+  const fs::path scene = write_scene();
+  const fs::path a = work_dir() / "a.exr", b = work_dir() / "b.exr", c = work_dir() / "c.exr";
+  const int spp = 1500;
+  ASSERT_EQ(giq(render_args(scene, a, spp, 1)), 0);
+  ASSERT_EQ(giq(render_args(scene, b, spp, 2)), 0);
+  EXPECT_EQ(slurp(a), slurp(b));
+
+  // SIGKILL partway, then resume: the result must be the uninterrupted file.
+  std::vector<std::string> args = render_args(scene, c, spp, 2);
+  args.insert(args.end(), {"--checkpoint-interval", "0.05"});
+  const pid_t pid = start(args);
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  ::kill(pid, SIGKILL);
+  const int killed = finish(pid);
+  args.push_back("--resume");
+  ASSERT_EQ(giq(args), 0);
+  EXPECT_EQ(slurp(a), slurp(c)) << (killed == 0 ? "(the render finished before the kill)" : "");
+  EXPECT_FALSE(fs::exists(c.string() + ".checkpoint"));
+
+  // SIGINT: the command saves a checkpoint and exits with 130; --resume completes it.
+  fs::remove(c);
+  args.pop_back();
+  const pid_t pid2 = start(args);
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  ::kill(pid2, SIGINT);
+  const int interrupted = finish(pid2);
+  if (interrupted == 130) {
+    EXPECT_TRUE(fs::exists(c.string() + ".checkpoint"));
+    EXPECT_FALSE(fs::exists(c));
+  } else {
+    EXPECT_EQ(interrupted, 0) << "neither interrupted nor finished";
+  }
+  args.push_back("--resume");
+  ASSERT_EQ(giq(args), 0);
+  EXPECT_EQ(slurp(a), slurp(c));
+}
+
+TEST(ReferenceCli, BadInputExitsWithTwo) {
+  const fs::path scene = write_scene(), out = work_dir() / "bad.exr";
+  std::vector<std::string> args = render_args(scene, out, 4, 1);
+  args.insert(args.end(), {"--view", "nosuchview"});
+  EXPECT_EQ(giq(args), 2);
+  EXPECT_EQ(giq({"reference", "--scene", scene.string(), "--out", out.string()}), 2);  // no stopping criterion
+  EXPECT_EQ(giq({"reference", "--scene", scene.string(), "--spp", "4", "--camera", "eye=1,2", "target=0,0,0", "--out",
+                 out.string()}),
+            2);
+  EXPECT_EQ(giq({"reference", "--scene", scene.string(), "--spp", "4", "--width", "0", "--out", out.string()}), 2);
+  EXPECT_EQ(giq({"reference", "--scene", (work_dir() / "missing.gltf").string(), "--spp", "4", "--out", out.string()}), 2);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace

@@ -1,0 +1,91 @@
+// Convergence: an unbiased Monte Carlo estimator's mean squared error falls as 1/spp, a
+// slope of -1 on a log-log plot. Measured on a Cornell-like box against a long render; the
+// long render's own variance (known from its accumulators) is subtracted from each mse, since
+// the two renders are independent: E[(a - b)^2] = mse(a) + var(b).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "giq/reference/renderer.h"
+#include "scene_builder.h"
+
+namespace giq::reference {
+namespace {
+
+TEST(Convergence, MseFallsAsOneOverSpp) {
+  const scenes::Scene s = test::cornell();
+  RenderSettings rs;
+  rs.width = rs.height = 24;
+  rs.seed = 1;
+  Renderer ref_renderer(s, s.views[0].camera, rs);
+  Film ref = ref_renderer.make_film();
+  ref_renderer.render(ref, 1024);
+  double ref_var = 0.0;
+  for (const PixelAccumulator& p : ref.pixels)
+    for (int c = 0; c < 3; ++c) ref_var += p.variance_of_mean(c);
+  ref_var /= double(ref.pixels.size() * 3);
+
+  rs.seed = 2;
+  Renderer r(s, s.views[0].camera, rs);
+  Film f = r.make_film();
+  std::vector<double> xs, ys;
+  for (uint32_t spp : {4u, 8u, 16u, 32u, 64u}) {
+    r.render(f, spp);
+    double mse = 0.0;
+    for (size_t i = 0; i < f.pixels.size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        const double d = f.pixels[i].mean[c] - ref.pixels[i].mean[c];
+        mse += d * d;
+      }
+    mse = mse / double(f.pixels.size() * 3) - ref_var;
+    ASSERT_GT(mse, 0.0);
+    xs.push_back(std::log(double(spp)));
+    ys.push_back(std::log(mse));
+  }
+  // Least-squares slope.
+  double mx = 0, my = 0;
+  for (size_t i = 0; i < xs.size(); ++i) mx += xs[i] / xs.size(), my += ys[i] / ys.size();
+  double sxy = 0, sxx = 0;
+  for (size_t i = 0; i < xs.size(); ++i) sxy += (xs[i] - mx) * (ys[i] - my), sxx += (xs[i] - mx) * (xs[i] - mx);
+  const double slope = sxy / sxx;
+  EXPECT_NEAR(slope, -1.0, 0.1);
+  EXPECT_EQ(f.nonfinite_samples(), 0u);
+  EXPECT_EQ(ref.nonfinite_samples(), 0u);
+}
+
+}  // namespace
+}  // namespace giq::reference
+
+namespace giq::reference {
+namespace {
+
+TEST(Convergence, DefaultBounceLimitCutsLessEnergyThanTheNoise) {
+  // The same paths (same random numbers) with the default limit and with practically none:
+  // they differ only by the energy of paths longer than the default, which must be far below
+  // the image's own standard error.
+  const scenes::Scene s = test::cornell();
+  RenderSettings rs;
+  rs.width = rs.height = 16;
+  Renderer limited(s, s.views[0].camera, rs);
+  ASSERT_EQ(rs.max_bounces, 64);
+  rs.max_bounces = 100000;
+  Renderer unlimited(s, s.views[0].camera, rs);
+  Film a = limited.make_film(), b = unlimited.make_film();
+  limited.render(a, 64);
+  unlimited.render(b, 64);
+  double mean_a = 0.0, mean_b = 0.0, var = 0.0;
+  const double n = double(a.pixels.size() * 3);
+  for (size_t i = 0; i < a.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      mean_a += a.pixels[i].mean[c] / n;
+      mean_b += b.pixels[i].mean[c] / n;
+      var += a.pixels[i].variance_of_mean(c) / (n * n);
+    }
+  EXPECT_GE(mean_b, mean_a);
+  EXPECT_LT(mean_b - mean_a, 0.01 * std::sqrt(var));
+}
+
+}  // namespace
+}  // namespace giq::reference

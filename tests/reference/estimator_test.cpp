@@ -1,0 +1,65 @@
+// Unbiasedness: light sampling alone, BSDF sampling alone and their MIS combination are three
+// estimators of the same integral; their renders must agree within their standard errors.
+
+#include <gtest/gtest.h>
+
+#include "giq/reference/renderer.h"
+#include "scene_builder.h"
+
+namespace giq::reference {
+namespace {
+
+// A glossy and a diffuse block on a floor, under a large area light and a dim environment,
+// so every estimator has finite variance and MIS has both strategies to weigh.
+scenes::Scene glossy_scene() {
+  scenes::Scene s;
+  const int floor = test::add_material(s, test::diffuse({0.6f, 0.6f, 0.5f}));
+  scenes::Material metal;
+  metal.base_color = {0.9f, 0.7f, 0.4f, 1.0f};
+  metal.metallic = 1.0f;
+  metal.roughness = 0.45f;
+  const int gloss = test::add_material(s, metal);
+  scenes::Material plastic = test::diffuse({0.2f, 0.4f, 0.8f});
+  plastic.specular = 1.0f;
+  plastic.roughness = 0.3f;
+  const int plast = test::add_material(s, plastic);
+  const int lamp = test::add_material(s, test::diffuse(glm::vec3(0.0f), glm::vec3(2.0f, 1.8f, 1.5f), true));
+  test::add_quad(s, floor, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, {-3, 0, -3}, 1);
+  test::add_box(s, gloss, {-1.2f, 0.0f, -0.6f}, {-0.2f, 1.0f, 0.4f}, false, 2);
+  test::add_box(s, plast, {0.3f, 0.0f, -0.3f}, {1.1f, 0.6f, 0.5f}, false, 3);
+  test::add_quad(s, lamp, {-1.5f, 2.5f, 1.5f}, {1.5f, 2.5f, 1.5f}, {1.5f, 2.5f, -1.5f}, {-1.5f, 2.5f, -1.5f}, 4);
+  s.environment = glm::vec3(0.15f, 0.2f, 0.3f);
+  s.derive();
+  return s;
+}
+
+Film render_with(const scenes::Scene& s, Estimator e, uint32_t spp) {
+  RenderSettings rs;
+  rs.width = rs.height = 16;
+  rs.max_bounces = 6;
+  rs.estimator = e;
+  rs.seed = 100 + uint64_t(e);  // independent renders
+  Renderer r(s, scenes::Camera::look_at({0.5f, 2.2f, 3.5f}, {0.0f, 0.4f, 0.0f}, {0, 1, 0}, 0.9f), rs);
+  Film f = r.make_film();
+  r.render(f, spp);
+  EXPECT_EQ(f.nonfinite_samples(), 0u);
+  return f;
+}
+
+TEST(Estimators, LightOnlyBsdfOnlyAndMisAgree) {
+  const scenes::Scene s = glossy_scene();
+  const Film mis = render_with(s, Estimator::Mis, 64);
+  const Film light = render_with(s, Estimator::LightOnly, 64);
+  const Film bsdf = render_with(s, Estimator::BsdfOnly, 128);
+  for (int y = 0; y < 16; y += 4)
+    for (int x = 0; x < 16; x += 4) {
+      const test::BlockStat m = test::block_luminance(mis, x, y, 4, 4);
+      const test::BlockStat l = test::block_luminance(light, x, y, 4, 4);
+      const test::BlockStat b = test::block_luminance(bsdf, x, y, 4, 4);
+      EXPECT_NEAR(m.mean, l.mean, 4.5 * std::sqrt(m.variance + l.variance)) << "light-only, block " << x << "," << y;
+      EXPECT_NEAR(m.mean, b.mean, 4.5 * std::sqrt(m.variance + b.variance)) << "bsdf-only, block " << x << "," << y;
+    }
+}
+
+}  // namespace
+}  // namespace giq::reference

@@ -1,0 +1,188 @@
+// Material behaviour the glTF specification fixes: alpha-mask cut-outs are transparent to
+// every ray, a one-sided surface's back is black (reflects and emits nothing) while a
+// double-sided one shades both sides, and shading normals never bring light from below the
+// geometric surface.
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+#include "giq/reference/renderer.h"
+#include "scene_builder.h"
+
+namespace giq::reference {
+namespace {
+
+constexpr int kSize = 16;
+
+Film render(const scenes::Scene& s, const scenes::Camera& cam, uint32_t spp = 8) {
+  RenderSettings rs;
+  rs.width = rs.height = kSize;
+  Renderer r(s, cam, rs);
+  Film f = r.make_film();
+  r.render(f, spp);
+  EXPECT_EQ(f.nonfinite_samples(), 0u);
+  return f;
+}
+
+double total(const Film& f) {
+  double t = 0.0;
+  for (const PixelAccumulator& p : f.pixels) t += p.mean[0] + p.mean[1] + p.mean[2];
+  return t;
+}
+
+scenes::Light sun(glm::vec3 direction) {
+  scenes::Light l;
+  l.type = scenes::LightType::Directional;
+  l.direction = glm::normalize(direction);
+  l.intensity = 2.0f;
+  return l;
+}
+
+const scenes::Camera kCam = scenes::Camera::look_at({0.3f, 3.0f, 0.5f}, {0, 0, 0}, {0, 0, -1}, 0.9f);
+
+// A lit floor with a square card floating over it (between the floor, the camera and the sun).
+scenes::Scene floor_and_card(float card_alpha, bool with_card) {
+  scenes::Scene s;
+  const int floor = test::add_material(s, test::diffuse(glm::vec3(0.6f)));
+  test::add_quad(s, floor, {-4, 0, 4}, {4, 0, 4}, {4, 0, -4}, {-4, 0, -4}, 1);
+  scenes::Material card = test::diffuse({0.9f, 0.1f, 0.1f}, glm::vec3(0.0f), true);
+  card.base_color.a = card_alpha;
+  card.alpha_mode = scenes::AlphaMode::Mask;
+  card.alpha_cutoff = 0.5f;
+  const int c = test::add_material(s, card);
+  if (with_card) test::add_quad(s, c, {-0.6f, 1, 0.6f}, {0.6f, 1, 0.6f}, {0.6f, 1, -0.6f}, {-0.6f, 1, -0.6f}, 2);
+  s.lights.push_back(sun({0.2f, -1.0f, -0.1f}));
+  s.derive();
+  return s;
+}
+
+TEST(Materials, AlphaMaskCutOutIsTransparentToEveryRay) {
+  const Film without = render(floor_and_card(1.0f, false), kCam);
+  const scenes::Scene cut = floor_and_card(0.3f, true);
+  ASSERT_TRUE(cut.features.alpha_mask);
+  const Film with_cut = render(cut, kCam);
+  // Same random numbers, same paths: a card that is cut out everywhere changes nothing.
+  for (size_t i = 0; i < without.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(with_cut.pixels[i].mean[c], without.pixels[i].mean[c]) << "pixel " << i;
+  // Above the cutoff the card is there: it is seen (object id 2) and casts a shadow.
+  const Film opaque = render(floor_and_card(0.7f, true), kCam);
+  EXPECT_NE(total(opaque), total(without));
+}
+
+TEST(Materials, BackOfOneSidedSurfaceIsBlackDoubleSidedIsShaded) {
+  for (bool double_sided : {false, true}) {
+    scenes::Scene s;
+    const int m = test::add_material(s, test::diffuse(glm::vec3(0.5f), glm::vec3(0.25f), double_sided));
+    // Faces down (-y); camera and sun above it see and light its back.
+    test::add_quad(s, m, {-4, 0, -4}, {4, 0, -4}, {4, 0, 4}, {-4, 0, 4}, 1);
+    s.lights.push_back(sun({0.0f, -1.0f, 0.0f}));
+    s.derive();
+    const Film f = render(s, kCam, 64);
+    if (!double_sided) {
+      EXPECT_EQ(total(f), 0.0);
+    } else {
+      // Emission 0.25 plus (rho / pi) E on every pixel. The emissive quad is also an area
+      // light that next-event estimation may pick (uselessly, for points on itself), so the
+      // image is noisy: compare its mean within 4 standard errors.
+      const double expected = 0.25 + 0.5 / 3.14159265358979 * 2.0;
+      double mean = 0.0, var = 0.0;
+      const double n = double(f.pixels.size());
+      for (const PixelAccumulator& p : f.pixels) mean += p.mean[0] / n, var += p.variance_of_mean(0) / (n * n);
+      EXPECT_GT(var, 0.0);
+      EXPECT_NEAR(mean, expected, 4.0 * std::sqrt(var) + 1e-6);
+    }
+  }
+}
+
+TEST(Materials, ShadingNormalsDoNotLeakLightFromBelow) {
+  // A floor whose vertex normals lean 80 degrees towards a sun that shines from below it:
+  // the geometric surface faces away from the sun, so its top must stay black.
+  scenes::Scene s;
+  const int m = test::add_material(s, test::diffuse(glm::vec3(0.8f)));
+  test::add_quad(s, m, {-4, 0, 4}, {4, 0, 4}, {4, 0, -4}, {-4, 0, -4}, 1);
+  const glm::vec3 lean = glm::normalize(glm::vec3(std::sin(1.4f), std::cos(1.4f), 0.0f));
+  s.meshes[0].normals.assign(4, lean);
+  s.lights.push_back(sun({-1.0f, 0.3f, 0.0f}));  // travels up and to -x: below the floor
+  s.derive();
+  EXPECT_EQ(total(render(s, kCam)), 0.0);
+}
+
+}  // namespace
+}  // namespace giq::reference
+
+namespace giq::reference {
+namespace {
+
+TEST(Materials, FirstHitLayersAndTextures) {
+  // A plane textured with a 2 x 1 red/green texture (nearest filtering), seen straight down
+  // from height 4: albedo follows the texels, N is +y, Z is 4, objectId is the mesh's.
+  scenes::Scene s;
+  scenes::Texture t;
+  t.name = "red-green";
+  t.width = 2;
+  t.height = 1;
+  t.texels = std::make_shared<const std::vector<glm::vec4>>(std::vector<glm::vec4>{{1, 0, 0, 1}, {0, 1, 0, 1}});
+  t.wrap_s = t.wrap_t = scenes::Wrap::ClampToEdge;
+  t.filter = scenes::Filter::Nearest;
+  s.textures.push_back(t);
+  scenes::Material m = test::diffuse(glm::vec3(0.5f));
+  m.base_color_texture = 0;
+  const int mi = test::add_material(s, m);
+  test::add_quad(s, mi, {-4, 0, 4}, {4, 0, 4}, {4, 0, -4}, {-4, 0, -4}, 42);
+  s.lights.push_back(sun({0.0f, -1.0f, 0.0f}));
+  s.derive();
+  ASSERT_TRUE(s.features.textures);
+  RenderSettings rs;
+  rs.width = rs.height = kSize;
+  const scenes::Camera cam = scenes::Camera::look_at({0, 4, 0}, {0, 0, 0}, {0, 0, -1}, 0.9f);
+  Renderer r(s, cam, rs);
+  EXPECT_NE(r.feature_mask() & 2u, 0u);  // the textured variant runs (FeatureBit kTextures)
+  Film f = r.make_film();
+  r.render_aux(f);
+  r.render(f, 4);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const size_t i = size_t(y) * kSize + size_t(x);
+      const PixelAux& a = f.aux[i];
+      const bool left = x < kSize / 2;
+      ASSERT_EQ(a.albedo[0], left ? 0.5f : 0.0f) << x << "," << y;
+      ASSERT_EQ(a.albedo[1], left ? 0.0f : 0.5f) << x << "," << y;
+      ASSERT_NEAR(a.normal[1], 1.0f, 1e-6f);
+      ASSERT_NEAR(a.depth, 4.0f, 4e-6f);
+      ASSERT_EQ(a.object_id, 42u);
+      // Lit straight on with E = 2: radiance (0.5 / pi) * 2 in the texel's channel. Pixels on
+      // the seam mix both texels through the jitter, so test the others.
+      if (x != kSize / 2 - 1 && x != kSize / 2) ASSERT_NEAR(f.pixels[i].mean[left ? 0 : 1], 1.0 / 3.14159265358979, 1e-5);
+    }
+}
+
+}  // namespace
+}  // namespace giq::reference
+
+namespace giq::reference {
+namespace {
+
+TEST(Materials, NonFiniteSamplesAreDiscardedAndCounted) {
+  // A material with a NaN base colour makes every sample that reflects off it NaN: those are
+  // counted and replaced by zero, and nothing non-finite reaches the image.
+  scenes::Scene s = floor_and_card(1.0f, false);
+  s.materials[0].base_color = glm::vec4(std::nanf(""), 0.5f, 0.5f, 1.0f);
+  s.derive();
+  RenderSettings rs;
+  rs.width = rs.height = kSize;
+  Renderer r(s, kCam, rs);
+  Film f = r.make_film();
+  r.render_aux(f);
+  r.render(f, 4);
+  EXPECT_EQ(f.nonfinite_samples(), uint64_t(kSize) * kSize * 4);
+  const image::Image img = f.to_image();
+  for (const std::string& c : img.channel_names()) {
+    const float* p = img.channel(c);
+    for (size_t i = 0; i < img.pixel_count(); ++i) ASSERT_TRUE(std::isfinite(p[i])) << c;
+  }
+}
+
+}  // namespace
+}  // namespace giq::reference

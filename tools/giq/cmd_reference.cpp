@@ -1,0 +1,244 @@
+// `giq reference`: renders the path-traced ground truth of a scene's view as a multi-layer
+// reference EXR, with checkpoints and resume. See docs/reference.md.
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "command.h"
+#include "giq/base/error.h"
+#include "giq/image/io.h"
+#include "giq/reference/progressive_render.h"
+#include "giq/reference/reference_exr.h"
+#include "giq/reference/renderer.h"
+#include "giq/scenes/scene.h"
+
+namespace giq::cli {
+namespace {
+
+namespace fs = std::filesystem;
+namespace ref = giq::reference;
+namespace sc = giq::scenes;
+
+std::atomic<bool> g_cancel{false};
+extern "C" void on_signal(int) { g_cancel.store(true); }
+
+struct Options {
+  std::string scene;
+  std::string view;
+  std::vector<std::string> camera;
+  int frame = 0;
+  std::string frames;
+  uint32_t spp = 0;
+  double seconds = 0.0;
+  double rel_error = 0.0;
+  ref::RenderSettings settings;
+  std::string estimator = "mis";
+  std::string out;
+  double checkpoint_interval = 60.0;
+  bool resume = false;
+  bool record_time = false;
+};
+
+glm::dvec3 parse_vec3(const std::string& key, const std::string& text) {
+  glm::dvec3 v;
+  char tail;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &v.x, &v.y, &v.z, &tail) != 3 || !std::isfinite(v.x) ||
+      !std::isfinite(v.y) || !std::isfinite(v.z))
+    throw InputError("", "--camera", key + "=" + text + " is not three finite numbers x,y,z");
+  return v;
+}
+
+// --camera eye=x,y,z target=x,y,z [up=x,y,z] [fov=deg]: world coordinates, as the scene's
+// extras views are given, moved into the scene's local frame.
+sc::Camera parse_camera(const std::vector<std::string>& args, const sc::Scene& scene) {
+  glm::dvec3 eye, target, up(0.0, 1.0, 0.0);
+  double fov = 45.0;
+  bool has_eye = false, has_target = false;
+  for (const std::string& a : args) {
+    const size_t eq = a.find('=');
+    const std::string key = a.substr(0, eq), value = eq == std::string::npos ? "" : a.substr(eq + 1);
+    if (key == "eye") {
+      eye = parse_vec3(key, value), has_eye = true;
+    } else if (key == "target") {
+      target = parse_vec3(key, value), has_target = true;
+    } else if (key == "up") {
+      up = parse_vec3(key, value);
+    } else if (key == "fov") {
+      char* end = nullptr;
+      fov = std::strtod(value.c_str(), &end);
+      if (value.empty() || *end != '\0' || !(fov > 0.0 && fov < 180.0))
+        throw InputError("", "--camera", "fov=" + value + " must be a vertical field of view in degrees in (0, 180)");
+    } else {
+      throw InputError("", "--camera", "'" + a + "' is not one of eye=x,y,z target=x,y,z up=x,y,z fov=deg");
+    }
+  }
+  if (!has_eye || !has_target) throw InputError("", "--camera", "needs both eye=x,y,z and target=x,y,z");
+  try {
+    return sc::Camera::look_at(glm::vec3(eye - scene.origin), glm::vec3(target - scene.origin), glm::vec3(up),
+                               float(fov * 3.14159265358979323846 / 180.0));
+  } catch (const std::invalid_argument& e) {
+    throw InputError("", "--camera", e.what());
+  }
+}
+
+std::pair<int, int> frame_range(const Options& o, const sc::Scene& scene) {
+  int a = o.frame, b = o.frame;
+  if (!o.frames.empty()) {
+    char tail;
+    if (std::sscanf(o.frames.c_str(), "%d:%d%c", &a, &b, &tail) != 2 || a > b)
+      throw InputError("", "--frames", "'" + o.frames + "' is not a range A:B with A <= B");
+  }
+  if (a < 0 || b >= scene.sequence.frames)
+    throw InputError(scene.path.string(), "--frame", "frames " + std::to_string(a) + " to " + std::to_string(b) +
+                                                         " are outside the scene's sequence 0 to " +
+                                                         std::to_string(scene.sequence.frames - 1));
+  return {a, b};
+}
+
+// The output path of one frame: "#" runs are replaced by the zero-padded frame number;
+// otherwise, when several frames are rendered, ".<frame>" goes before the extension.
+fs::path frame_path(const std::string& pattern, int frame, bool several) {
+  const size_t hash = pattern.find('#');
+  if (hash != std::string::npos) {
+    size_t n = 0;
+    while (hash + n < pattern.size() && pattern[hash + n] == '#') ++n;
+    std::string num = std::to_string(frame);
+    if (num.size() < n) num.insert(0, n - num.size(), '0');
+    return pattern.substr(0, hash) + num + pattern.substr(hash + n);
+  }
+  if (!several) return pattern;
+  fs::path p(pattern);
+  char num[16];
+  std::snprintf(num, sizeof num, ".%04d", frame);
+  return p.parent_path() / (p.stem().string() + num + p.extension().string());
+}
+
+std::string format_seconds(double s) {
+  char b[32];
+  if (s < 0.0) return "?";
+  if (s < 120.0)
+    std::snprintf(b, sizeof b, "%.0fs", s);
+  else if (s < 7200.0)
+    std::snprintf(b, sizeof b, "%dm%02ds", int(s) / 60, int(s) % 60);
+  else
+    std::snprintf(b, sizeof b, "%dh%02dm", int(s) / 3600, (int(s) / 60) % 60);
+  return b;
+}
+
+void draw_bar(const ref::Progress& p, const std::string& label) {
+  double fraction = 0.0;
+  if (p.target_spp > 0) fraction = double(p.spp) / double(p.target_spp);
+  else if (p.eta_seconds >= 0.0) fraction = p.elapsed_seconds / std::max(1e-9, p.elapsed_seconds + p.eta_seconds);
+  constexpr int kWidth = 28;
+  const int filled = int(std::clamp(fraction, 0.0, 1.0) * kWidth);
+  std::string bar(size_t(filled), '=');
+  bar.resize(kWidth, ' ');
+  std::fprintf(stderr, "\r%s [%s] %u spp  %s elapsed  ETA %s  rel.err %.3g%%   ", label.c_str(), bar.c_str(), p.spp,
+               format_seconds(p.elapsed_seconds).c_str(), format_seconds(p.eta_seconds).c_str(), 100.0 * p.rel_error);
+  std::fflush(stderr);
+}
+
+int run(const Options& o) {
+  if (!o.view.empty() && !o.camera.empty()) throw InputError("", "--view/--camera", "give a view or a camera, not both");
+  ref::RenderSettings settings = o.settings;
+  if (o.estimator == "mis") settings.estimator = ref::Estimator::Mis;
+  else if (o.estimator == "light") settings.estimator = ref::Estimator::LightOnly;
+  else if (o.estimator == "bsdf") settings.estimator = ref::Estimator::BsdfOnly;
+  else throw InputError("", "--estimator", "'" + o.estimator + "' is not one of mis, light, bsdf");
+  if (o.seconds < 0.0 || !std::isfinite(o.seconds)) throw InputError("", "--time", "must be a positive number of seconds");
+  if (o.rel_error < 0.0 || !std::isfinite(o.rel_error)) throw InputError("", "--rel-error", "must be a positive fraction, e.g. 0.01");
+  if (!(o.checkpoint_interval > 0.0)) throw InputError("", "--checkpoint-interval", "must be a positive number of seconds");
+
+  const sc::Scene scene = sc::load(o.scene);
+  const auto [first, last] = frame_range(o, scene);
+  const bool tty = ::isatty(STDERR_FILENO) != 0;
+  for (int f = first; f <= last; ++f) {
+    const sc::Scene posed = scene.features.animation ? scene.at_frame(f) : scene;
+    ref::ReferenceMetadata meta;
+    meta.scene = o.scene;
+    meta.scene_hash = scene.content_hash;
+    meta.frame = f;
+    if (!o.camera.empty()) {
+      meta.camera = parse_camera(o.camera, posed);
+      meta.view = "cli";
+    } else {
+      const sc::View& v = posed.view(o.view.empty() ? "0" : o.view);
+      meta.camera = v.camera;
+      meta.view = v.name;
+    }
+    const fs::path out = frame_path(o.out, f, first != last);
+    if (out.has_parent_path()) fs::create_directories(out.parent_path());
+    const ref::Renderer renderer(posed, meta.camera, settings);
+
+    ref::ProgressiveOptions po;
+    po.stop = {o.spp, o.seconds, o.rel_error};
+    po.checkpoint = out.string() + ".checkpoint";
+    po.checkpoint_interval_seconds = o.checkpoint_interval;
+    po.resume = o.resume;
+    po.identity = "scene " + scene.content_hash + " view " + meta.view + " camera " + ref::describe_camera(meta.camera) +
+                  " frame " + std::to_string(f) + " settings " + ref::settings_json(settings);
+    po.cancel = &g_cancel;
+    const std::string label = out.filename().string();
+    if (tty) po.on_progress = [&](const ref::Progress& p) { draw_bar(p, label); };
+
+    g_cancel = false;
+    auto old_int = std::signal(SIGINT, on_signal);
+    auto old_term = std::signal(SIGTERM, on_signal);
+    const ref::RenderOutcome r = ref::render_progressive(renderer, po);
+    std::signal(SIGINT, old_int);
+    std::signal(SIGTERM, old_term);
+    if (tty) std::fprintf(stderr, "\n");
+    if (!r.completed) {
+      std::fprintf(stderr, "giq: interrupted after %.1f s; progress saved in %s; continue with --resume\n", r.elapsed_seconds,
+                   po.checkpoint.string().c_str());
+      return 130;
+    }
+    meta.render_seconds = o.record_time ? r.elapsed_seconds : -1.0;
+    image::write_exr(ref::reference_image(r.film, settings, meta), out);
+    fs::remove(po.checkpoint);
+    const uint64_t nonfinite = r.film.nonfinite_samples();
+    std::printf("reference %s: %dx%d, view %s, frame %d, %u spp, %.2f s%s, rel.err %.3g%%, %llu non-finite samples\n",
+                out.string().c_str(), settings.width, settings.height, meta.view.c_str(), f, r.spp, r.elapsed_seconds,
+                r.resumed ? " (resumed)" : "", 100.0 * r.film.relative_standard_error(), (unsigned long long)nonfinite);
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_reference_command(CLI::App& app, int& exit_code) {
+  static Options o;
+  auto* cmd = app.add_subcommand("reference", "Render the path-traced reference EXR of a view");
+  cmd->add_option("--scene", o.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
+  cmd->add_option("--view", o.view, "View name or index (default: the first view)");
+  cmd->add_option("--camera", o.camera, "Camera in world coordinates: eye=x,y,z target=x,y,z [up=x,y,z] [fov=deg]")
+      ->expected(1, 4);
+  auto* frame = cmd->add_option("--frame", o.frame, "Frame of the sequence to render (default 0)");
+  cmd->add_option("--frames", o.frames, "Frames A:B (inclusive); '#' in --out becomes the frame number")->excludes(frame);
+  cmd->add_option("--spp", o.spp, "Stop at this many samples per pixel");
+  cmd->add_option("--time", o.seconds, "Stop after this many seconds of rendering");
+  cmd->add_option("--rel-error", o.rel_error, "Stop when the mean relative standard error of the beauty is below this");
+  cmd->add_option("--width", o.settings.width, "Image width in pixels")->capture_default_str();
+  cmd->add_option("--height", o.settings.height, "Image height in pixels")->capture_default_str();
+  cmd->add_option("--seed", o.settings.seed, "Random seed")->capture_default_str();
+  cmd->add_option("--threads", o.settings.threads, "Worker threads (0 = all cores; never changes the image)")->capture_default_str();
+  cmd->add_option("--max-bounces", o.settings.max_bounces, "Scattering events per path")->capture_default_str();
+  cmd->add_option("--estimator", o.estimator, "mis, light (light sampling only) or bsdf (BSDF sampling only)")->capture_default_str();
+  cmd->add_option("--out", o.out, "Output EXR path")->required();
+  cmd->add_option("--checkpoint-interval", o.checkpoint_interval, "Seconds between checkpoints (OUT.checkpoint)")->capture_default_str();
+  cmd->add_flag("--resume", o.resume, "Continue from OUT.checkpoint when it exists");
+  cmd->add_flag("--record-time", o.record_time, "Write the render time into the header (the file then differs run to run)");
+  cmd->callback([&exit_code] { exit_code = run(o); });
+}
+
+}  // namespace giq::cli
