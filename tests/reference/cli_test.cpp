@@ -24,14 +24,22 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A scratch folder for this process, removed when the tests end.
+struct WorkDir {
+  fs::path path;
+  WorkDir() : path(fs::temp_directory_path() / ("giq_ref_cli_" + std::to_string(::getpid()))) {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~WorkDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
 fs::path work_dir() {
-  static const fs::path d = [] {
-    fs::path p = fs::temp_directory_path() / ("giq_ref_cli_" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p;
-  }();
-  return d;
+  static const WorkDir d;
+  return d.path;
 }
 
 // A floor, a back wall and a double-sided area light, with a camera, as glTF 2.0 with an
@@ -159,7 +167,10 @@ TEST(ReferenceCli, FilesAreByteIdenticalAcrossThreadsAndAfterKillAndResume) {
   fs::remove(c);
   args.pop_back();
   const pid_t pid2 = start(args);
-  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  // Interrupt once the render has saved progress (the first checkpoint, 0.05 s into the
+  // render), however long start-up takes on a loaded machine.
+  for (int i = 0; i < 6000 && !fs::exists(c.string() + ".checkpoint") && !fs::exists(c); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   ::kill(pid2, SIGINT);
   const int interrupted = finish(pid2);
   if (interrupted == 130) {

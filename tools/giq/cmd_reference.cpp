@@ -31,6 +31,25 @@ namespace sc = giq::scenes;
 std::atomic<bool> g_cancel{false};
 extern "C" void on_signal(int) { g_cancel.store(true); }
 
+// SIGINT/SIGTERM ask the render to stop at the next pass boundary and save a checkpoint. The
+// handlers cover the whole command, not only the render loop: a signal that arrives while the
+// scene loads is kept and honoured by the first render, so an interruption always leaves a
+// checkpoint to --resume from instead of killing the process with nothing saved.
+class InterruptGuard {
+ public:
+  InterruptGuard() : old_int_(std::signal(SIGINT, on_signal)), old_term_(std::signal(SIGTERM, on_signal)) {}
+  ~InterruptGuard() {
+    std::signal(SIGINT, old_int_);
+    std::signal(SIGTERM, old_term_);
+  }
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+ private:
+  void (*old_int_)(int);
+  void (*old_term_)(int);
+};
+
 struct Options {
   std::string scene;
   std::string view;
@@ -148,6 +167,7 @@ void draw_bar(const ref::Progress& p, const std::string& label) {
 }
 
 int run(const Options& o) {
+  const InterruptGuard interrupts;
   if (!o.view.empty() && !o.camera.empty()) throw InputError("", "--view/--camera", "give a view or a camera, not both");
   ref::RenderSettings settings = o.settings;
   if (o.estimator == "mis") settings.estimator = ref::Estimator::Mis;
@@ -190,12 +210,7 @@ int run(const Options& o) {
     const std::string label = out.filename().string();
     if (tty) po.on_progress = [&](const ref::Progress& p) { draw_bar(p, label); };
 
-    g_cancel = false;
-    auto old_int = std::signal(SIGINT, on_signal);
-    auto old_term = std::signal(SIGTERM, on_signal);
     const ref::RenderOutcome r = ref::render_progressive(renderer, po);
-    std::signal(SIGINT, old_int);
-    std::signal(SIGTERM, old_term);
     if (tty) std::fprintf(stderr, "\n");
     if (!r.completed) {
       std::fprintf(stderr, "giq: interrupted after %.1f s; progress saved in %s; continue with --resume\n", r.elapsed_seconds,

@@ -10,10 +10,14 @@
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 #include <ImfPartType.h>
+#include <ImfThreading.h>
 
 #include <half.h>
 
+#include <algorithm>
 #include <exception>
+#include <mutex>
+#include <thread>
 #include <vector>
 #include <set>
 
@@ -36,6 +40,13 @@ Imf::Compression to_imf(ExrOptions::Compression c) {
   return Imf::ZIP_COMPRESSION;
 }
 
+// OpenEXR compresses and decompresses chunks on its own thread pool, which is off (0 threads)
+// unless asked for.
+void enable_threads() {
+  static std::once_flag once;
+  std::call_once(once, [] { Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency()))); });
+}
+
 }  // namespace
 
 void write_exr(const Image& image, const fs::path& path, const ExrOptions& options) {
@@ -44,6 +55,7 @@ void write_exr(const Image& image, const fs::path& path, const ExrOptions& optio
                                             std::to_string(image.height()) + ") as EXR");
   // Everything the library may reject (channel names, attributes) happens inside the atomic
   // writer, so a failure leaves neither the final file nor a temporary behind.
+  enable_threads();
   write_atomically(path, [&](const fs::path& tmp) {
     try {
       Imf::Header header(image.width(), image.height());
@@ -86,6 +98,7 @@ void write_exr(const Image& image, const fs::path& path, const ExrOptions& optio
 }
 
 Image read_exr(const fs::path& path) {
+  enable_threads();
   try {
     Imf::MultiPartInputFile file(path.c_str());
     Image image;
