@@ -10,16 +10,6 @@
 namespace giq::metrics {
 namespace {
 
-struct MeanSum {
-  double sum = 0;
-  size_t n = 0;
-  MeanSum& operator+=(const MeanSum& o) {
-    sum += o.sum, n += o.n;
-    return *this;
-  }
-  double mean() const { return n ? sum / double(n) : std::numeric_limits<double>::quiet_NaN(); }
-};
-
 }  // namespace
 
 std::vector<uint8_t> changed_region(const RgbLayer& before, const RgbLayer* vb, const RgbLayer& after,
@@ -41,7 +31,7 @@ std::vector<uint8_t> changed_region(const RgbLayer& before, const RgbLayer* vb, 
 
 double region_abs_error(const RgbLayer& r, const RgbLayer& t, const std::vector<uint8_t>& region) {
   const int w = r.width;
-  return detail::reduce_rows<MeanSum>(r.height, [&](int y0, int y1, MeanSum& acc) {
+  return detail::reduce_rows<detail::MeanSum>(r.height, [&](int y0, int y1, detail::MeanSum& acc) {
            for (size_t i = size_t(y0) * size_t(w), end = size_t(y1) * size_t(w); i < end; ++i)
              if (region[i] && r.finite(i) && t.finite(i))
                acc.sum += std::abs(double(t.luminance(i)) - double(r.luminance(i))), ++acc.n;
@@ -51,7 +41,7 @@ double region_abs_error(const RgbLayer& r, const RgbLayer& t, const std::vector<
 
 double mean_luminance_change(const RgbLayer& prev, const RgbLayer& cur) {
   const int w = prev.width;
-  return detail::reduce_rows<MeanSum>(prev.height, [&](int y0, int y1, MeanSum& acc) {
+  return detail::reduce_rows<detail::MeanSum>(prev.height, [&](int y0, int y1, detail::MeanSum& acc) {
            for (size_t i = size_t(y0) * size_t(w), end = size_t(y1) * size_t(w); i < end; ++i)
              if (prev.finite(i) && cur.finite(i))
                acc.sum += std::abs(double(cur.luminance(i)) - double(prev.luminance(i))), ++acc.n;

@@ -7,11 +7,24 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace giq::metrics::detail {
 
 constexpr int kRowsPerChunk = 16;
+
+// A sum and a count, for means reduced with reduce_rows.
+struct MeanSum {
+  double sum = 0;
+  size_t n = 0;
+  MeanSum& operator+=(const MeanSum& o) {
+    sum += o.sum, n += o.n;
+    return *this;
+  }
+  double mean() const { return n ? sum / double(n) : std::numeric_limits<double>::quiet_NaN(); }
+};
 
 // body(y0, y1, Acc& acc) accumulates rows [y0, y1) into acc; Acc needs operator+=.
 template <class Acc, class Body>

@@ -13,15 +13,6 @@
 namespace giq::metrics {
 namespace {
 
-struct MeanSum {
-  double sum = 0;
-  size_t n = 0;
-  MeanSum& operator+=(const MeanSum& o) {
-    sum += o.sum, n += o.n;
-    return *this;
-  }
-};
-
 // Box filter of the source pixels that fall in panel pixel (px, py); fn(i, acc[3]) adds pixel
 // i's value and returns false when the pixel is not finite.
 template <class Fn>
@@ -49,7 +40,7 @@ StripInfo write_strip(const std::filesystem::path& path, const RgbLayer& ref, co
   StripInfo info;
   info.panel_width = std::max(1, int(std::lround(w * scale)));
   info.panel_height = std::max(1, int(std::lround(h * scale)));
-  const MeanSum lum = detail::reduce_rows<MeanSum>(h, [&](int y0, int y1, MeanSum& acc) {
+  const detail::MeanSum lum = detail::reduce_rows<detail::MeanSum>(h, [&](int y0, int y1, detail::MeanSum& acc) {
     for (size_t i = size_t(y0) * size_t(w), end = size_t(y1) * size_t(w); i < end; ++i)
       if (ref.finite(i)) acc.sum += ref.luminance(i), ++acc.n;
   });
