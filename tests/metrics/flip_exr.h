@@ -8,6 +8,7 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <Imath/ImathBox.h>
+#include <Imath/half.h>
 
 #include <string>
 #include <vector>
@@ -16,15 +17,24 @@
 
 namespace giq::flip_pairs {
 
+// `type` is the channels' type in the file; the planes are always float. OpenEXR converts types
+// only when reading, so HALF planes are rounded here (to nearest, Imath's conversion).
 inline void write_exr(const std::string& path, int w, int h, const std::vector<std::string>& names,
-                      const std::vector<const float*>& planes) {
+                      const std::vector<const float*>& planes, Imf::PixelType type = Imf::FLOAT) {
   Imf::Header header(w, h);
   header.compression() = Imf::ZIP_COMPRESSION;
   Imf::FrameBuffer fb;
+  std::vector<std::vector<Imath::half>> halves(names.size());
   for (size_t c = 0; c < names.size(); ++c) {
-    header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
-    fb.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(planes[c])), sizeof(float),
-                                   sizeof(float) * size_t(w)));
+    header.channels().insert(names[c], Imf::Channel(type));
+    if (type == Imf::HALF) {
+      halves[c].assign(planes[c], planes[c] + size_t(w) * size_t(h));
+      fb.insert(names[c], Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves[c].data()), sizeof(Imath::half),
+                                     sizeof(Imath::half) * size_t(w)));
+    } else {
+      fb.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(planes[c])),
+                                     sizeof(float), sizeof(float) * size_t(w)));
+    }
   }
   Imf::OutputFile file(path.c_str(), header);
   file.setFrameBuffer(fb);

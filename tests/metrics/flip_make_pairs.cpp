@@ -2,7 +2,10 @@
 // of `giq score`):
 //   flip_make_pairs stored DIR              the pairs of tests/data/flip (DIR/<name>.{ref,test}.<ext>)
 //   flip_make_pairs procedural W H SEED REF.exr TEST.exr   the procedural HDR scene at any size
-// tests/data/flip/make_reference runs it and then NVIDIA's implementation on every pair.
+//   flip_make_pairs extract IN.exr LAYER OUT.exr   one RGB layer of a giq render (`beauty` is R,G,B;
+//                                                  otherwise LAYER.R/G/B) as a plain R,G,B half EXR
+// tests/data/flip/make_reference runs it and then NVIDIA's implementation on every pair;
+// tests/data/flip/make_render_pairs runs `extract` on giq's own renders.
 
 #include <cstdio>
 #include <cstdlib>
@@ -53,8 +56,25 @@ int main(int argc, char** argv) {
     write_rgb(argv[6], p.test);
     return 0;
   }
+  if (mode == "extract" && argc == 5) {
+    // Plain R,G,B because NVIDIA's EXR loader reads only unprefixed channels. Half precision keeps
+    // the stored renders small; both implementations read the same half values back as floats,
+    // so the rounding changes the inputs, never the agreement.
+    const std::string layer = argv[3];
+    const std::string prefix = layer == "beauty" ? "" : layer + ".";
+    for (const char* c : {"R", "G", "B"})
+      if (Imf::InputFile(argv[2]).header().channels().findChannel(prefix + c) == nullptr) {
+        std::fprintf(stderr, "%s has no channel %s%s\n", argv[2], prefix.c_str(), c);
+        return 2;
+      }
+    int w = 0, h = 0;
+    const auto planes = read_exr(argv[2], {prefix + "R", prefix + "G", prefix + "B"}, w, h);
+    write_exr(argv[4], w, h, {"R", "G", "B"}, {planes[0].data(), planes[1].data(), planes[2].data()}, Imf::HALF);
+    return 0;
+  }
   std::fprintf(stderr,
                "usage: flip_make_pairs stored DIR\n"
-               "       flip_make_pairs procedural W H SEED REF.exr TEST.exr\n");
+               "       flip_make_pairs procedural W H SEED REF.exr TEST.exr\n"
+               "       flip_make_pairs extract IN.exr LAYER OUT.exr\n");
   return 2;
 }
