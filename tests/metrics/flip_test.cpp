@@ -161,6 +161,24 @@ TEST(Flip, NonFiniteTestValuesAreReplacedByTheReference) {
   EXPECT_EQ(a.map, b.map);
 }
 
+// More than half of the reference black: the paper's stop exposure log2(x_max / median) is
+// undefined (NVIDIA's tool then evaluates no exposure and reports 0); giq takes the median of the
+// lit pixels and still sees the differences.
+TEST(Flip, MostlyBlackReferenceStillScoresDifferences) {
+  flip_pairs::Rgb a(16, 16), b(16, 16);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const float v = y < 10 ? 0.0f : 2.0f + float(x);
+      a.set(x, y, v, v, v);
+      b.set(x, y, 1.1f * v, v, 0.9f * v);
+    }
+  const FlipResult r = evaluate(view(a, b), true, {});
+  // Lit luminances 2..17 (6 rows each); the median of the 96 lit pixels is the 49th smallest, 10.
+  EXPECT_NEAR(r.stop_exposure, std::log2(aces_x_max() / 10.0f), 1e-5);
+  EXPECT_NEAR(r.start_exposure, std::log2(aces_x_max() / 17.0f), 1e-5);
+  EXPECT_GT(r.mean, 0.01);
+}
+
 TEST(Flip, TinyImages) {
   for (auto [w, h] : {std::pair{1, 1}, std::pair{3, 5}, std::pair{1, 40}, std::pair{40, 1}}) {
     const auto pair = flip_pairs::procedural_hdr_pair(w, h, 1);
