@@ -10,45 +10,20 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include "support/subprocess.h"
 #include <string>
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
+using giq::test::Outcome;
+using giq::test::slurp;
+const auto& quote = giq::test::shell_quote;
 
 Outcome giq(const std::string& args) {
-  static int n = 0;
-  const fs::path dir = fs::temp_directory_path() / ("giq_cli_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path out = dir / ("out" + std::to_string(n)), err = dir / ("err" + std::to_string(n));
-  ++n;
-  const std::string cmd = quote(GIQ_BINARY) + " " + args + " >" + quote(out.string()) + " 2>" + quote(err.string());
-  const int status = std::system(cmd.c_str());
-  Outcome r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  fs::remove(out);
-  fs::remove(err);
-  return r;
+  return giq::test::run_captured(quote(GIQ_BINARY) + " " + args,
+                                 fs::temp_directory_path() / ("giq_cli_test_" + std::to_string(::getpid())));
 }
 
 const fs::path kScenes = fs::path(GIQ_TEST_DATA) / "scenes";

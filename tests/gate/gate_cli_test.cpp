@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include "support/subprocess.h"
 #include <sstream>
 
 namespace {
@@ -20,12 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using giq::test::slurp;
 
 struct Result {
   int code = -1;
@@ -64,9 +60,8 @@ class GateCli : public testing::Test {
   Result giq(const std::string& args) {
     const std::string cmd = std::string("cd ") + dir_.string() + " && " + GIQ_BINARY + " " + args +
                             " >out.txt 2>err.txt";
-    const int status = std::system(cmd.c_str());
     Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.code = giq::test::exit_code(std::system(cmd.c_str()));
     r.out = slurp(dir_ / "out.txt");
     r.err = slurp(dir_ / "err.txt");
     return r;

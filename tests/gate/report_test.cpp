@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "support/subprocess.h"
 #include "giq/image/image.h"
 #include "giq/image/io.h"
 
@@ -20,12 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using giq::test::slurp;
 
 void solid_exr(const fs::path& p, float r, float g, float b, const std::string& technique = "") {
   giq::image::Image img(24, 24);
@@ -106,8 +102,7 @@ class Report : public testing::Test {
   int giq(const std::string& args) {
     const std::string cmd =
         std::string(GIQ_BINARY) + " " + args + " >" + (dir_ / "out.txt").string() + " 2>&1";
-    const int status = std::system(cmd.c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return giq::test::exit_code(std::system(cmd.c_str()));
   }
 
   fs::path dir_;

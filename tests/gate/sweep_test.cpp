@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "support/subprocess.h"
 #include "giq/base/error.h"
 #include "sweep_plan.h"
 
@@ -87,8 +88,7 @@ class SweepCli : public testing::Test {
     const std::string cmd =
         "cd " + dir_.string() + " && " + GIQ_BINARY + " sweep --giq " + FAKE_GIQ + " --scene " +
         GIQ_SCENES_DIR + "/cornell.gltf --width 8 --height 8 --out out " + args + " >log.txt 2>&1";
-    const int status = std::system(cmd.c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return giq::test::exit_code(std::system(cmd.c_str()));
   }
   json read(const std::string& name) {
     std::ifstream in(dir_ / "out" / name);

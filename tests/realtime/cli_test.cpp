@@ -12,23 +12,15 @@
 #include <sstream>
 #include <string>
 
+#include "support/subprocess.h"
 #include "giq/image/io.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using giq::test::Outcome;
+using giq::test::slurp;
 
 fs::path scratch() {
   const fs::path dir = fs::temp_directory_path() / ("giq_realtime_cli_" + std::to_string(::getpid()));
@@ -37,11 +29,9 @@ fs::path scratch() {
 }
 
 Outcome giq(const std::string& args) {
-  const fs::path dir = scratch();
-  const std::string cmd = std::string("GIQ_SHADER_CACHE=") + GIQ_TEST_SHADER_CACHE + " '" + GIQ_BINARY + "' realtime " +
-                          args + " >'" + (dir / "out.txt").string() + "' 2>'" + (dir / "err.txt").string() + "'";
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "out.txt"), slurp(dir / "err.txt")};
+  return giq::test::run_captured(std::string("GIQ_SHADER_CACHE=") + GIQ_TEST_SHADER_CACHE + " '" + GIQ_BINARY +
+                                     "' realtime " + args,
+                                 scratch());
 }
 
 const std::string kCornell = std::string(GIQ_SCENES_DIR) + "/cornell.gltf";

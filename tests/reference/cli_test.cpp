@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "support/subprocess.h"
 #include "giq/image/io.h"
 
 namespace fs = std::filesystem;
@@ -101,12 +102,7 @@ int finish(pid_t pid) {
 }
 int giq(const std::vector<std::string>& args) { return finish(start(args)); }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using giq::test::slurp;
 
 std::vector<std::string> render_args(const fs::path& scene, const fs::path& out, int spp, int threads) {
   return {"reference", "--scene", scene.string(), "--spp", std::to_string(spp), "--width", "32", "--height", "24",
