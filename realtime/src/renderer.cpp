@@ -64,7 +64,7 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
     const auto start = std::chrono::steady_clock::now();
     ctx.submit_and_wait([&](VkCommandBuffer cmd) {
       timer.reset(cmd);
-      technique->render({cmd, technique_frame, camera, timer});
+      technique->render({cmd, technique_frame, camera, timer, *posed, SceneChange::None});
     });
     t.cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     t.passes = timer.resolve();

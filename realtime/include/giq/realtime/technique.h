@@ -62,11 +62,20 @@ struct TechniqueCreateInfo {
   const ParameterValues& parameters;
 };
 
+// What moved in the scene since the technique's previous frame. A technique lives for a whole
+// sequence: the SceneGpu it was created with is updated in place before each render() (same
+// buffer handles and sizes, so recorded descriptors stay valid), and the technique drops or
+// rebuilds whatever it derived from what moved (accumulated samples, cached shadow maps,
+// injected light). Geometry implies that lights may have moved too.
+enum class SceneChange { None, Lights, Geometry };
+
 struct FrameInput {
   VkCommandBuffer cmd;
   int frame;                     // frames rendered by this technique so far (0 first)
   const scenes::Camera& camera;  // in the scene's local frame
   GpuTimer& timer;
+  const scenes::Scene& scene;    // posed at this frame: lights, cameras and geometry moved
+  SceneChange change = SceneChange::None;
 };
 
 class Technique {
