@@ -8,6 +8,12 @@
 
 namespace giq::realtime {
 
+Parameter GBufferPass::ray_traced_parameter() {
+  return {"gbuffer_ray_traced", 0, 0, 1, true,
+          "1: build the G-buffer by casting camera rays through the BVH in compute instead of rasterising (same "
+          "contents; faster on GPUs with few graphics units)"};
+}
+
 GBufferPass::GBufferPass(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene,
                          const scenes::FeatureSet& features, uint32_t width, uint32_t height, bool ray_traced)
     : scene_(scene), width_(width), height_(height), ray_traced_(ray_traced) {

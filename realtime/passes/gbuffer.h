@@ -13,6 +13,7 @@
 
 #include "giq/realtime/pipeline.h"
 #include "giq/realtime/resources.h"
+#include "giq/realtime/technique.h"
 #include "giq/scenes/camera.h"
 #include "giq/scenes/features.h"
 
@@ -25,6 +26,9 @@ class ShaderCompiler;
 
 class GBufferPass {
  public:
+  // "gbuffer_ray_traced" (0 or 1), for techniques to list among their parameters.
+  static Parameter ray_traced_parameter();
+
   // ray_traced: cast the pixel-centre camera rays through the BVH in a compute shader
   // instead of rasterising (gbuffer_rays.comp); same contents, for GPUs whose graphics units
   // are few (the H100's).

@@ -1,6 +1,6 @@
-// Structures shared by direct.cpp and direct_lighting.comp.
-#ifndef GIQ_DIRECT_SHARED_H
-#define GIQ_DIRECT_SHARED_H
+// Structures shared by passes/direct_light.cpp and direct_light.comp.
+#ifndef GIQ_DIRECT_LIGHT_SHARED_H
+#define GIQ_DIRECT_LIGHT_SHARED_H
 
 #include "shaders/camera_shared.h"
 

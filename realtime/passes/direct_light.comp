@@ -1,6 +1,7 @@
 #version 460
-// `direct` lighting: for each G-buffer texel, emission seen directly plus light arriving
-// straight from the light sources, each attenuated by its shadow map; no indirect light.
+// The shared direct-lighting pass: for each G-buffer texel, emission seen directly plus light
+// arriving straight from the light sources, each attenuated by its shadow map; no indirect
+// light. Every technique's `direct` layer comes from here.
 // Punctual lights are evaluated exactly (glTF units and falloff). Emissive meshes are area
 // lights: the diffuse part integrates each emissive triangle exactly (Lambert's polygon
 // formula after clipping to the horizon; Arvo 1995, "Applications of Irradiance Tensors to
@@ -12,7 +13,7 @@
 #include "shaders/scene.glsl"
 #include "shaders/brdf.glsl"
 #include "shaders/lights.glsl"
-#include "techniques/direct/direct_shared.h"
+#include "passes/direct_light_shared.h"
 #include "passes/shadow_maps_shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -25,9 +26,7 @@ layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 4) readonly buffer ShadowLaye
 layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 5) readonly buffer AreaLights { GpuAreaLight area_lights[]; };
 layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 6) readonly buffer AreaTriangles { GpuAreaTriangle area_triangles[]; };
 layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 7) readonly buffer LightShadow { uint light_shadow_layer[]; };
-layout(binding = GIQ_SCENE_BINDING_COUNT + 8, rgba32f) uniform writeonly image2D out_beauty;
-layout(binding = GIQ_SCENE_BINDING_COUNT + 9, rgba32f) uniform writeonly image2D out_direct;
-layout(binding = GIQ_SCENE_BINDING_COUNT + 10, rgba32f) uniform writeonly image2D out_indirect;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 8, rgba32f) uniform writeonly image2D out_direct;
 
 layout(push_constant) uniform Push { DirectPush pc; };
 
@@ -168,7 +167,5 @@ void main() {
       }
     }
   }
-  imageStore(out_beauty, px, vec4(radiance, 1.0));
   imageStore(out_direct, px, vec4(radiance, 1.0));
-  imageStore(out_indirect, px, vec4(0.0, 0.0, 0.0, 1.0));
 }

@@ -1,0 +1,114 @@
+#include "passes/direct_light.h"
+
+#include <algorithm>
+#include <glm/geometric.hpp>
+
+#include "giq/realtime/context.h"
+#include "giq/realtime/scene_gpu.h"
+#include "giq/realtime/shader.h"
+#include "giq/realtime/timer.h"
+#include "passes/gbuffer.h"
+
+namespace giq::realtime {
+
+std::vector<Parameter> DirectLightPass::parameters() {
+  return {{"shadow_map_size", 2048, 64, 8192, true, "texels per side of every shadow-map layer"},
+          {"pcf_radius", 1, 0, 4, true, "PCF kernel radius in texels ((2r+1)^2 taps)"},
+          {"normal_offset", 1.5, 0, 8, false, "receiver offset along its normal, in shadow-map texels"},
+          {"cascade_split_lambda", 0.5, 0, 1, false, "cascade splits: 0 uniform, 1 logarithmic"},
+          {"cache_static_shadows", 1, 0, 1, true,
+           "1: render cube shadow maps only when the geometry or the lights moved"}};
+}
+
+DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
+    : scene_gpu_(ci.scene_gpu), width_(ci.width), height_(ci.height),
+      pcf_radius_(float(ci.parameters.get_int("pcf_radius"))),
+      normal_offset_(float(ci.parameters.get("normal_offset"))),
+      shadows_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.bounds, uint32_t(ci.parameters.get_int("shadow_map_size"))) {
+  shadows_.set_split_lambda(float(ci.parameters.get("cascade_split_lambda")));
+  shadows_.set_cache_static(ci.parameters.get_int("cache_static_shadows") != 0);
+  for (const auto& l : ci.scene.lights)
+    light_layer_.push_back(l.type == scenes::LightType::Directional ? shadows_.add_cascades(l.direction)
+                                                                     : shadows_.add_cube(l.position));
+  build_area_lights(ci.scene);
+
+  direct_ = Image(ci.ctx, {width_, height_, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
+  light_layer_buffer_ = Buffer::storage(ci.ctx, light_layer_);
+  area_light_buffer_ = Buffer::storage(ci.ctx, area_lights_);
+  area_triangle_buffer_ = Buffer::storage(ci.ctx, area_triangles_);
+
+  auto bindings = SceneGpu::binding_types();
+  bindings.insert(bindings.end(), {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+  pipeline_ = Pipeline::compute(
+      ci.ctx, ci.compiler.compile("passes/direct_light.comp", feature_defines(ci.scene.features)), bindings,
+      sizeof(gpu::DirectPush));
+}
+
+void DirectLightPass::record_shadows(const FrameInput& in) {
+  shadows_.record(in.cmd, in.camera, float(width_) / float(height_), in.timer);
+}
+
+void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer) {
+  in.timer.begin(in.cmd, "direct_lighting");
+  direct_.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
+  pipeline_.bind(in.cmd);
+  auto d = scene_gpu_.descriptors();
+  d.push_back(Descriptor::storage_image(gbuffer.position()));
+  d.push_back(Descriptor::storage_image(gbuffer.normal()));
+  d.push_back(Descriptor::storage_image(gbuffer.ids()));
+  d.push_back(Descriptor::sampled(shadows_.depth(), shadows_.sampler()));
+  d.push_back(Descriptor::storage(shadows_.layers()));
+  d.push_back(Descriptor::storage(area_light_buffer_));
+  d.push_back(Descriptor::storage(area_triangle_buffer_));
+  d.push_back(Descriptor::storage(light_layer_buffer_));
+  d.push_back(Descriptor::storage_image(direct_));
+  pipeline_.push_descriptors(in.cmd, d);
+  gpu::DirectPush pc{};
+  pc.camera = gpu::make_gpu_camera(in.camera);
+  pc.viewport = glm::vec4(float(width_), float(height_), normal_offset_, pcf_radius_);
+  pc.environment = glm::vec4(in.scene.environment, 0.0f);
+  pc.counts = glm::uvec4(scene_gpu_.light_count(), uint32_t(area_lights_.size()), 0, 0);
+  pipeline_.push_constants(in.cmd, pc);
+  pipeline_.dispatch_2d(in.cmd, width_, height_);
+  full_barrier(in.cmd);
+  in.timer.end(in.cmd);
+}
+
+// One area light per emissive mesh; its representative point (for the shadow cube) is the
+// area-weighted centroid, moved a hair in front of the mesh along its mean normal so that the
+// emitter does not shadow itself.
+void DirectLightPass::build_area_lights(const scenes::Scene& scene) {
+  std::vector<std::vector<const scenes::EmissiveTriangle*>> per_mesh(scene.meshes.size());
+  for (const auto& e : scene.emissive_triangles)
+    if (e.area > 0.0f && e.power > 0.0f) per_mesh[e.mesh].push_back(&e);
+  const float offset = 1e-4f * std::max(glm::length(scene.bounds.extent()), 1e-6f);
+  for (size_t m = 0; m < per_mesh.size(); ++m) {
+    if (per_mesh[m].empty()) continue;
+    const auto& mesh = scene.meshes[m];
+    const bool two_sided = scene.materials[mesh.material].double_sided;
+    glm::vec3 centroid(0.0f), normal(0.0f);
+    float area = 0.0f;
+    gpu::GpuAreaLight l;
+    l.range = glm::uvec4(uint32_t(area_triangles_.size()), uint32_t(per_mesh[m].size()), 0, 0);
+    for (const auto* e : per_mesh[m]) {
+      const auto t = mesh.triangles[e->triangle];
+      const glm::vec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
+      centroid += e->area * (a + b + c) / 3.0f;
+      normal += glm::cross(b - a, c - a);
+      area += e->area;
+      area_triangles_.push_back({glm::vec4(a, two_sided ? 1.0f : 0.0f), glm::vec4(b, 0.0f), glm::vec4(c, 0.0f),
+                                 glm::vec4(e->radiance, 0.0f)});
+    }
+    centroid /= area;
+    const float nl = glm::length(normal);
+    if (!two_sided && nl > 0.0f) centroid += normal / nl * offset;
+    l.position = glm::vec4(centroid, float(shadows_.add_cube(centroid)));
+    area_lights_.push_back(l);
+  }
+}
+
+}  // namespace giq::realtime

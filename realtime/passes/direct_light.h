@@ -1,0 +1,58 @@
+#pragma once
+// The shared direct-lighting pass: shadow maps for every light (passes/shadow_maps.h) and one
+// compute pass that lights each G-buffer texel with emission seen directly plus the light
+// arriving straight from the light sources (direct_light.comp). `direct` is this pass alone;
+// every GI technique adds its indirect light to this pass's output, so all of them share one
+// direct term and their differences are differences of indirect light only.
+//
+// Punctual lights are evaluated exactly (glTF units and falloff); each emissive mesh is one
+// area light, integrated exactly when unshadowed and shadowed from a representative point.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "giq/realtime/pipeline.h"
+#include "giq/realtime/resources.h"
+#include "giq/realtime/technique.h"
+#include "passes/direct_light_shared.h"
+#include "passes/shadow_maps.h"
+
+namespace giq::realtime {
+
+class GBufferPass;
+
+class DirectLightPass {
+ public:
+  // The parameters this pass reads (shadow_map_size, pcf_radius, normal_offset,
+  // cascade_split_lambda, cache_static_shadows); a technique lists them among its own.
+  static std::vector<Parameter> parameters();
+
+  explicit DirectLightPass(const TechniqueCreateInfo& ci);
+
+  // Records "shadow_maps" (before the G-buffer is needed) and then "direct_lighting".
+  void record_shadows(const FrameInput& in);
+  void record_lighting(const FrameInput& in, GBufferPass& gbuffer);
+
+  Image& output() { return direct_; }  // RGBA32F, GENERAL after record_lighting()
+  ShadowMaps& shadows() { return shadows_; }
+  // Shadow-map layer of punctual light i (scene order), and the area lights.
+  const std::vector<uint32_t>& light_layers() const { return light_layer_; }
+  const std::vector<gpu::GpuAreaLight>& area_lights() const { return area_lights_; }
+
+ private:
+  void build_area_lights(const scenes::Scene& scene);
+
+  const SceneGpu& scene_gpu_;
+  uint32_t width_, height_;
+  float pcf_radius_, normal_offset_;
+  ShadowMaps shadows_;
+  std::vector<uint32_t> light_layer_;
+  std::vector<gpu::GpuAreaLight> area_lights_;
+  std::vector<gpu::GpuAreaTriangle> area_triangles_;
+  Buffer light_layer_buffer_, area_light_buffer_, area_triangle_buffer_;
+  Image direct_;
+  Pipeline pipeline_;
+};
+
+}  // namespace giq::realtime
