@@ -44,9 +44,15 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
   // an animated scene is posed per frame into `posed` (which the technique holds by
   // reference) and the GPU scene is updated in place; the technique learns what moved.
   scenes::Scene posed = scene.features.animation ? scene.at_frame(0) : scene;
+  // Device memory the scene and the technique keep resident (sub-allocated bytes, so what
+  // the resources need, not the 64 MiB blocks around them); measured after the first frame,
+  // since passes may create resources when they first record.
+  const uint64_t memory_before = ctx.allocator().bytes_in_use();
   SceneGpu scene_gpu(ctx, posed);
+  const uint64_t memory_scene = ctx.allocator().bytes_in_use();
   std::unique_ptr<Technique> technique =
       info.create({ctx, compiler, posed, scene_gpu, options.width, options.height, params});
+  uint64_t memory_technique = 0;
   std::vector<FrameTiming> timings;
   int technique_frame = 0;
   const int total = options.warmup + options.frames;
@@ -66,6 +72,7 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
       technique->render({cmd, technique_frame, camera, timer, posed, change});
     });
     t.cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (f == 0) memory_technique = ctx.allocator().bytes_in_use() - memory_scene;
     t.passes = timer.resolve();
     t.gpu_ms = timer.frame_ms();
     timings.push_back(t);
@@ -106,6 +113,8 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
                                  std::to_string(VK_API_VERSION_MINOR(ctx.info().api_version)) + "." +
                                  std::to_string(VK_API_VERSION_PATCH(ctx.info().api_version))}}},
       {"declared_passes", declared},
+      {"gpu_memory_mb", {{"scene", double(memory_scene - memory_before) / (1 << 20)},
+                         {"technique", double(memory_technique) / (1 << 20)}}},
       {"validation", ctx.validation_enabled()},
   };
   return timings_json(timings, run);
