@@ -29,16 +29,23 @@ class GpuTimer;
 class SceneGpu;
 class ShaderCompiler;
 
+// How the G-buffer is built: rasterised, or by casting the pixel-centre camera rays through
+// the BVH in a compute shader (gbuffer_rays.comp; same contents). Auto picks by device:
+// rays on GPUs, whose graphics units may be few (on an H100 the rasteriser path is more than
+// ten times slower: bench/results/realtime-h100.md), the rasteriser on CPU implementations
+// such as lavapipe, where tracing is the slower one.
+enum class GBufferBuilder { Raster, RayTraced, Auto };
+
 class GBufferPass {
  public:
-  // "gbuffer_ray_traced" (0 or 1), for techniques to list among their parameters.
+  // "gbuffer_ray_traced" (-1 auto, 0 raster, 1 rays; default auto), for techniques to list
+  // among their parameters, and its value as a builder.
   static Parameter ray_traced_parameter();
+  static GBufferBuilder builder(const ParameterValues& parameters);
 
-  // ray_traced: cast the pixel-centre camera rays through the BVH in a compute shader
-  // instead of rasterising (gbuffer_rays.comp); same contents, for GPUs whose graphics units
-  // are few (the H100's).
   GBufferPass(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene, const scenes::FeatureSet& features,
-              uint32_t width, uint32_t height, bool ray_traced = false);
+              uint32_t width, uint32_t height, GBufferBuilder builder = GBufferBuilder::Raster);
+  bool ray_traced() const { return ray_traced_; }
   // For temporal techniques: also write motion vectors on every record().
   void enable_motion_vectors();
   void record(VkCommandBuffer cmd, const scenes::Camera& camera, GpuTimer& timer);
