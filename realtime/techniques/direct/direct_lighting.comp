@@ -11,6 +11,7 @@
 
 #include "shaders/scene.glsl"
 #include "shaders/brdf.glsl"
+#include "shaders/surface.glsl"
 #include "shaders/lights.glsl"
 #include "techniques/direct/direct_shared.h"
 #include "passes/shadow_maps_shared.h"
@@ -145,8 +146,17 @@ void main() {
       vec3 p = pos.xyz;
       vec3 n = imageLoad(gb_normal, px).xyz;
       vec3 wo = normalize(pc.camera.position.xyz - p);
-      if (mat.emissive.w != 0.0) radiance += mat.emissive.rgb;
-      Surface s = make_surface(mat, n);
+      uint tri = ids.x - 1u;
+      // Textured materials are looked up at the G-buffer point (deferred texturing): its
+      // barycentrics on the triangle's plane, as the G-buffer pass computed them.
+      vec2 bary = vec2(0.0);
+#ifdef GIQ_SURFACE_TEXTURES
+      vec3 ta, tb, tc;
+      triangle_vertices(tri, ta, tb, tc);
+      bary = plane_barycentrics(p, ta, tb, tc);
+#endif
+      if (mat.emissive.w != 0.0) radiance += emission_at(mat, tri, bary.x, bary.y);
+      Surface s = hit_material(tri, bary.x, bary.y, n);
       float normal_offset = pc.viewport.z;
       int pcf = int(pc.viewport.w);
       for (uint i = 0u; i < pc.counts.x; ++i) {

@@ -1,6 +1,7 @@
 #pragma once
 // The scene uploaded once for every technique: vertices, triangles, materials, the BVH,
-// punctual lights and the emissive triangles with their power CDF, bound as bindings 0..6 of
+// punctual lights, the emissive triangles with their power CDF and, for textured scenes,
+// texture coordinates, tangents and texels, bound as bindings 0..9 of
 // any pipeline that reads the scene (shaders/scene_shared.h, shaders/scene.glsl).
 //
 // All meshes are concatenated in Scene::meshes order; a triangle's global index (reported by
@@ -41,12 +42,17 @@ class SceneGpu {
   uint32_t emissive_count() const { return emissive_count_; }
   const Bvh& bvh() const { return bvh_; }
   const FlatGeometry& geometry() const { return geometry_; }
+  // The FeatureSet the scene was uploaded for; passes compile their shaders with its defines.
+  const scenes::FeatureSet& features() const { return features_; }
+  uint32_t texture_count() const { return texture_count_; }
 
  private:
   FlatGeometry geometry_;
+  scenes::FeatureSet features_;
   Bvh bvh_;
   Buffer vertices_, triangles_, materials_, nodes_, prims_, lights_, emissive_, indices_;
-  uint32_t triangle_count_ = 0, light_count_ = 0, emissive_count_ = 0;
+  Buffer vertex_extra_, textures_, texels_;
+  uint32_t triangle_count_ = 0, light_count_ = 0, emissive_count_ = 0, texture_count_ = 0;
 };
 
 }  // namespace giq::realtime
