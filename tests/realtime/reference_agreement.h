@@ -1,0 +1,47 @@
+#pragma once
+// Per-pixel agreement of a real-time render with the CPU reference, both carrying the
+// variance of their pixel means (`variance.R/G/B`): the z-score (a - b) / sqrt(var_a + var_b)
+// of two unbiased estimators of the same pixel is close to standard normal, so beyond 4 sigma
+// there should be almost no pixels (6e-5 of a normal population; 0.5% allowed), and the image
+// means must agree within 4 standard errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "giq/image/image.h"
+
+namespace giq::test {
+
+struct Agreement {
+  size_t outliers = 0, n = 0;
+  double diff_sum = 0.0, var_sum = 0.0;
+};
+
+// `prefix` selects the layer ("" = beauty R,G,B; "direct." = the direct layer, compared with
+// the beauty's variance, which bounds it when the indirect part is zero).
+inline Agreement expect_agreement(const image::Image& gpu, const image::Image& cpu, const std::string& what,
+                                  const std::string& prefix = "") {
+  Agreement a;
+  for (const char* c : {"R", "G", "B"}) {
+    const std::string ch = prefix + c, v = std::string("variance.") + c;
+    for (size_t i = 0; i < gpu.pixel_count(); ++i) {
+      const double x = gpu.channel(ch)[i], y = cpu.channel(ch)[i];
+      const double var = (gpu.has_channel(v) ? double(gpu.channel(v)[i]) : 0.0) + double(cpu.channel(v)[i]);
+      EXPECT_TRUE(std::isfinite(x)) << what << " pixel " << i;
+      a.diff_sum += x - y;
+      a.var_sum += var;
+      ++a.n;
+      // Noise-free pixels (emission seen directly, black background) must agree to float
+      // rounding; the others by their z-score.
+      const double z = std::abs(x - y) / std::sqrt(var + 1e-12 * (x * x + y * y) + 1e-30);
+      a.outliers += z > 4.0;
+    }
+  }
+  EXPECT_LE(double(a.outliers), 0.005 * double(a.n)) << what << ": " << a.outliers << " of " << a.n << " beyond 4 sigma";
+  EXPECT_LE(std::abs(a.diff_sum), 4.0 * std::sqrt(a.var_sum))
+      << what << ": image mean differs by " << a.diff_sum / double(a.n) << ", se " << std::sqrt(a.var_sum) / double(a.n);
+  return a;
+}
+
+}  // namespace giq::test
