@@ -2,12 +2,17 @@
 // Per-pixel agreement of a real-time render with the CPU reference, both carrying the
 // variance of their pixel means (`variance.R/G/B`): the z-score (a - b) / sqrt(var_a + var_b)
 // of two unbiased estimators of the same pixel is close to standard normal, so beyond 4 sigma
-// there should be almost no pixels (6e-5 of a normal population; 0.5% allowed), and the image
-// means must agree within 4 standard errors.
+// there should be almost no pixels (6e-5 of a normal population; 0.5% allowed), the image
+// means must agree within 4 standard errors, and the mean z-score must be consistent with
+// zero: within 4 standard errors of the mean, estimated from the z-scores' own spread (their
+// distribution is not exactly normal when both variances are estimated from few samples).
+// R, G and B of a pixel share their paths, so z is averaged per pixel first and pixels are
+// the independent units.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "giq/image/image.h"
 
@@ -16,6 +21,7 @@ namespace giq::test {
 struct Agreement {
   size_t outliers = 0, n = 0;
   double diff_sum = 0.0, var_sum = 0.0;
+  double mean_z = 0.0, mean_z_se = 0.0;  // over pixels with noise (variance > 0)
 };
 
 // `prefix` selects the layer ("" = beauty R,G,B; "direct." = the direct layer, compared with
@@ -23,6 +29,8 @@ struct Agreement {
 inline Agreement expect_agreement(const image::Image& gpu, const image::Image& cpu, const std::string& what,
                                   const std::string& prefix = "") {
   Agreement a;
+  std::vector<double> pixel_z(gpu.pixel_count(), 0.0);
+  std::vector<int> pixel_noisy(gpu.pixel_count(), 0);
   for (const char* c : {"R", "G", "B"}) {
     const std::string ch = prefix + c, v = std::string("variance.") + c;
     for (size_t i = 0; i < gpu.pixel_count(); ++i) {
@@ -36,7 +44,20 @@ inline Agreement expect_agreement(const image::Image& gpu, const image::Image& c
       // rounding; the others by their z-score.
       const double z = std::abs(x - y) / std::sqrt(var + 1e-12 * (x * x + y * y) + 1e-30);
       a.outliers += z > 4.0;
+      if (var > 0.0) pixel_z[i] += (x - y) / std::sqrt(var), ++pixel_noisy[i];
     }
+  }
+  double sum = 0.0, sum2 = 0.0;
+  size_t m = 0;
+  for (size_t i = 0; i < pixel_z.size(); ++i) {
+    if (pixel_noisy[i] == 0) continue;
+    const double z = pixel_z[i] / pixel_noisy[i];
+    sum += z, sum2 += z * z, ++m;
+  }
+  if (m > 1) {
+    a.mean_z = sum / double(m);
+    a.mean_z_se = std::sqrt(std::max(0.0, sum2 / double(m) - a.mean_z * a.mean_z) / double(m - 1));
+    EXPECT_LE(std::abs(a.mean_z), 4.0 * a.mean_z_se) << what << ": mean z " << a.mean_z << ", se " << a.mean_z_se;
   }
   EXPECT_LE(double(a.outliers), 0.005 * double(a.n)) << what << ": " << a.outliers << " of " << a.n << " beyond 4 sigma";
   EXPECT_LE(std::abs(a.diff_sum), 4.0 * std::sqrt(a.var_sum))
