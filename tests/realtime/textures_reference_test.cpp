@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "giq/realtime/renderer.h"
 #include "giq/realtime/scene_gpu.h"
@@ -48,7 +49,25 @@ TEST_F(TexturesReferenceTest, PtAgreesWithinNoiseOnATexturedBox) {
   const uint32_t spp = 128;
   const image::Image gpu = render(s, "pt", size, {"samples_per_frame=" + std::to_string(spp), "seed=7"});
   const image::Image cpu = reference(s, size, spp);
-  test::expect_agreement(gpu, cpu, "textured box");
+  // Emissive meshes only: both sides pick emitters by (texture-averaged) power and evaluate the
+  // emissive texture at the sampled point, so the mean z-score is gated too.
+  test::expect_agreement(gpu, cpu, "textured box", "", true);
+}
+
+// The same from a glTF file: PNG textures decoded by the scene library (sRGB for colour,
+// linear for data), per-vertex TANGENTs, a point light and a textured emitter.
+TEST_F(TexturesReferenceTest, PtAgreesWithinNoiseOnATexturedGltfRoom) {
+  const scenes::Scene s = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes/textured_room.gltf");
+  ASSERT_TRUE(s.features.textures && s.features.normal_maps && s.features.alpha_mask);
+  const int size = 64;
+  const uint32_t spp = 64;
+  const image::Image gpu = render(s, "pt", size, {"samples_per_frame=" + std::to_string(spp), "seed=7"});
+  const image::Image cpu = reference(s, size, spp);
+  // Per-pixel z-scores and the image means are gated; the mean z-score is not: with the point
+  // light the two sides sample differently (see reference_agreement.h) and it measures
+  // +0.14 (se 0.019) at 64 paths, +0.086 (se 0.018) at 256 paths, shrinking with the path
+  // count as that bias does, while the image means agree within 1.7 and 0.5 standard errors.
+  test::expect_agreement(gpu, cpu, "textured_room.gltf");
 }
 
 // A Lambertian plane with a bilinear base-colour checker and a normal map of bumps
