@@ -32,8 +32,9 @@ struct Agreement {
 
 // `prefix` selects the layer ("" = beauty R,G,B; "direct." = the direct layer, compared with
 // the beauty's variance, which bounds it when the indirect part is zero).
-inline Agreement expect_agreement(const image::Image& gpu, const image::Image& cpu, const std::string& what,
-                                  const std::string& prefix = "", bool check_mean_z = false) {
+inline Agreement expect_agreement(const image::Image& gpu, const image::Image& cpu,
+                                  const std::string& what, const std::string& prefix = "",
+                                  bool check_mean_z = false) {
   Agreement a;
   std::vector<double> pixel_z(gpu.pixel_count(), 0.0);
   std::vector<int> pixel_noisy(gpu.pixel_count(), 0);
@@ -41,7 +42,8 @@ inline Agreement expect_agreement(const image::Image& gpu, const image::Image& c
     const std::string ch = prefix + c, v = std::string("variance.") + c;
     for (size_t i = 0; i < gpu.pixel_count(); ++i) {
       const double x = gpu.channel(ch)[i], y = cpu.channel(ch)[i];
-      const double var = (gpu.has_channel(v) ? double(gpu.channel(v)[i]) : 0.0) + double(cpu.channel(v)[i]);
+      const double var =
+          (gpu.has_channel(v) ? double(gpu.channel(v)[i]) : 0.0) + double(cpu.channel(v)[i]);
       EXPECT_TRUE(std::isfinite(x)) << what << " pixel " << i;
       a.diff_sum += x - y;
       a.var_sum += var;
@@ -63,11 +65,15 @@ inline Agreement expect_agreement(const image::Image& gpu, const image::Image& c
   if (m > 1) {
     a.mean_z = sum / double(m);
     a.mean_z_se = std::sqrt(std::max(0.0, sum2 / double(m) - a.mean_z * a.mean_z) / double(m - 1));
-    if (check_mean_z) EXPECT_LE(std::abs(a.mean_z), 4.0 * a.mean_z_se) << what << ": mean z " << a.mean_z << ", se " << a.mean_z_se;
+    if (check_mean_z)
+      EXPECT_LE(std::abs(a.mean_z), 4.0 * a.mean_z_se)
+          << what << ": mean z " << a.mean_z << ", se " << a.mean_z_se;
   }
-  EXPECT_LE(double(a.outliers), 0.005 * double(a.n)) << what << ": " << a.outliers << " of " << a.n << " beyond 4 sigma";
+  EXPECT_LE(double(a.outliers), 0.005 * double(a.n))
+      << what << ": " << a.outliers << " of " << a.n << " beyond 4 sigma";
   EXPECT_LE(std::abs(a.diff_sum), 4.0 * std::sqrt(a.var_sum))
-      << what << ": image mean differs by " << a.diff_sum / double(a.n) << ", se " << std::sqrt(a.var_sum) / double(a.n);
+      << what << ": image mean differs by " << a.diff_sum / double(a.n) << ", se "
+      << std::sqrt(a.var_sum) / double(a.n);
   return a;
 }
 

@@ -20,7 +20,8 @@ namespace {
 
 class TexturesReferenceTest : public test::VulkanTest {
  protected:
-  image::Image render(const scenes::Scene& s, const std::string& technique, int size, std::vector<std::string> params) {
+  image::Image render(const scenes::Scene& s, const std::string& technique, int size,
+                      std::vector<std::string> params) {
     RenderOptions o;
     o.technique = technique;
     o.view = "0";
@@ -44,10 +45,12 @@ class TexturesReferenceTest : public test::VulkanTest {
 
 TEST_F(TexturesReferenceTest, PtAgreesWithinNoiseOnATexturedBox) {
   const scenes::Scene s = test::textured_box();
-  ASSERT_TRUE(s.features.textures && s.features.normal_maps && s.features.alpha_mask && s.features.specular);
+  ASSERT_TRUE(s.features.textures && s.features.normal_maps && s.features.alpha_mask &&
+              s.features.specular);
   const int size = 48;
   const uint32_t spp = 128;
-  const image::Image gpu = render(s, "pt", size, {"samples_per_frame=" + std::to_string(spp), "seed=7"});
+  const image::Image gpu =
+      render(s, "pt", size, {"samples_per_frame=" + std::to_string(spp), "seed=7"});
   const image::Image cpu = reference(s, size, spp);
   // Emissive meshes only: both sides pick emitters by (texture-averaged) power and evaluate the
   // emissive texture at the sampled point, so the mean z-score is gated too.
@@ -57,11 +60,13 @@ TEST_F(TexturesReferenceTest, PtAgreesWithinNoiseOnATexturedBox) {
 // The same from a glTF file: PNG textures decoded by the scene library (sRGB for colour,
 // linear for data), per-vertex TANGENTs, a point light and a textured emitter.
 TEST_F(TexturesReferenceTest, PtAgreesWithinNoiseOnATexturedGltfRoom) {
-  const scenes::Scene s = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes/textured_room.gltf");
+  const scenes::Scene s =
+      scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes/textured_room.gltf");
   ASSERT_TRUE(s.features.textures && s.features.normal_maps && s.features.alpha_mask);
   const int size = 64;
   const uint32_t spp = 64;
-  const image::Image gpu = render(s, "pt", size, {"samples_per_frame=" + std::to_string(spp), "seed=7"});
+  const image::Image gpu =
+      render(s, "pt", size, {"samples_per_frame=" + std::to_string(spp), "seed=7"});
   const image::Image cpu = reference(s, size, spp);
   // Per-pixel z-scores and the image means are gated; the mean z-score is not: with the point
   // light the two sides sample differently (see reference_agreement.h) and it measures
@@ -81,9 +86,12 @@ scenes::Scene textured_plane() {
   s.meshes.clear();
   const int m = test::add_material(s, glm::vec3(1.0f));
   scenes::Material& mat = s.materials[m];
-  mat.base_color_texture = test::add_texture(s, 8, 8, [](int x, int y) {
-    return (x + y) % 2 ? glm::vec4(0.8f, 0.6f, 0.3f, 1.0f) : glm::vec4(0.2f, 0.4f, 0.7f, 1.0f);
-  }, scenes::Filter::Linear, scenes::Wrap::MirroredRepeat);
+  mat.base_color_texture = test::add_texture(
+      s, 8, 8,
+      [](int x, int y) {
+        return (x + y) % 2 ? glm::vec4(0.8f, 0.6f, 0.3f, 1.0f) : glm::vec4(0.2f, 0.4f, 0.7f, 1.0f);
+      },
+      scenes::Filter::Linear, scenes::Wrap::MirroredRepeat);
   mat.normal_texture = test::add_texture(s, 16, 16, [](int x, int y) {
     const float a = 0.6f * std::sin(0.8f * float(x)), b = 0.6f * std::cos(0.5f * float(y));
     return glm::vec4(0.5f * glm::normalize(glm::vec3(a, b, 1.0f)) + 0.5f, 1.0f);
@@ -118,14 +126,17 @@ TEST_F(TexturesReferenceTest, DirectAgreesWithTheReferenceOnATexturedNormalMappe
       const glm::vec3 to = l.position - p;
       const float dist = glm::length(to);
       const glm::vec3 n(ref.at("N.X", x, y), ref.at("N.Y", x, y), ref.at("N.Z", x, y));
-      const glm::vec3 albedo(ref.at("albedo.R", x, y), ref.at("albedo.G", x, y), ref.at("albedo.B", x, y));
-      const glm::vec3 expected = albedo / float(M_PI) * l.intensity * std::max(0.0f, glm::dot(n, to / dist)) / (dist * dist);
+      const glm::vec3 albedo(ref.at("albedo.R", x, y), ref.at("albedo.G", x, y),
+                             ref.at("albedo.B", x, y));
+      const glm::vec3 expected = albedo / float(M_PI) * l.intensity *
+                                 std::max(0.0f, glm::dot(n, to / dist)) / (dist * dist);
       const char* ch[3] = {"R", "G", "B"};
       for (int c = 0; c < 3; ++c)
         // The G-buffer's barycentrics and the reference's differ in the last bits; through the
         // bilinear normal map (gradient < 2 per texel, 3 texels per unit) and base colour
         // that moves the result by well under 1e-3 relative.
-        EXPECT_NEAR(d.at(ch[c], x, y), expected[c], 1e-3f * expected[c] + 1e-6f) << x << "," << y << " " << ch[c];
+        EXPECT_NEAR(d.at(ch[c], x, y), expected[c], 1e-3f * expected[c] + 1e-6f)
+            << x << "," << y << " " << ch[c];
     }
   // The reference's direct layer averages over each pixel (its noise is that of the beauty:
   // there is no indirect light on a lone plane); `direct` takes the pixel centre, which
@@ -167,7 +178,8 @@ TEST_F(TexturesReferenceTest, GBufferNormalsAreTheReferenceFirstHitNormals) {
     for (int y = 0; y < size; ++y)
       for (int x = 0; x < size; ++x) {
         const size_t i = 4 * (size_t(y) * size + size_t(x));
-        const glm::vec3 a(n[i], n[i + 1], n[i + 2]), b(ref.at("N.X", x, y), ref.at("N.Y", x, y), ref.at("N.Z", x, y));
+        const glm::vec3 a(n[i], n[i + 1], n[i + 2]),
+            b(ref.at("N.X", x, y), ref.at("N.Y", x, y), ref.at("N.Z", x, y));
         worst = std::max(worst, double(glm::length(a - b)));
       }
     // Same formulas; the barycentrics differ in the last bits (see above): 1e-3 bounds it.

@@ -40,7 +40,8 @@ scenes::Scene masked_square(scenes::Filter filter, float uv_scale, float h) {
   s.materials[mask].alpha_mode = scenes::AlphaMode::Mask;
   s.materials[mask].alpha_cutoff = 0.5f;
   s.materials[mask].base_color.a = 0.9f;  // the factor multiplies the texture's alpha
-  s.materials[mask].base_color_texture = test::add_texture(s, 5, 3, [&](int, int) { return glm::vec4(1.0f, 1.0f, 1.0f, u(rng)); }, filter);
+  s.materials[mask].base_color_texture = test::add_texture(
+      s, 5, 3, [&](int, int) { return glm::vec4(1.0f, 1.0f, 1.0f, u(rng)); }, filter);
   test::add_textured_quad(s, {-h, h, 0}, {h, h, 0}, {h, -h, 0}, {-h, -h, 0}, mask, uv_scale);
   const int wall = test::add_material(s, glm::vec3(0.5f));
   test::add_quad(s, {-4, -4, -1}, {4, -4, -1}, {4, 4, -1}, {-4, 4, -1}, wall);
@@ -75,14 +76,18 @@ TEST_F(TexturesTest, BvhSkipsCutOutsInClosestAndAnyHitQueries) {
         const glm::vec2 uv(k * (q.x + h) / (2.0f * h), k * (h - q.y) / (2.0f * h));
         const float alpha = 0.9f * tex.sample(uv).a;
         const float gx = uv.x * float(tex.width), gy = uv.y * float(tex.height);
-        const bool edge = std::abs(gx - std::round(gx)) < 1e-3f || std::abs(gy - std::round(gy)) < 1e-3f;
-        e = std::abs(alpha - 0.5f) < 1e-3f || (filter == scenes::Filter::Nearest && edge) ? -1 : alpha >= 0.5f;
+        const bool edge =
+            std::abs(gx - std::round(gx)) < 1e-3f || std::abs(gy - std::round(gy)) < 1e-3f;
+        e = std::abs(alpha - 0.5f) < 1e-3f || (filter == scenes::Filter::Nearest && edge)
+                ? -1
+                : alpha >= 0.5f;
         if (std::abs(std::abs(q.x) - h) < 1e-4f || std::abs(std::abs(q.y) - h) < 1e-4f) e = -1;
       }
       expect.push_back(e);
       rays.push_back({glm::vec4(o, 1e30f), glm::vec4(d, 0.0f)});
-      rays.push_back({glm::vec4(o, 1e30f), glm::vec4(d, 1.0f)});        // any hit, unbounded
-      rays.push_back({glm::vec4(o, 1.5f / -d.z), glm::vec4(d, 1.0f)});  // any hit ending between the two
+      rays.push_back({glm::vec4(o, 1e30f), glm::vec4(d, 1.0f)});  // any hit, unbounded
+      rays.push_back(
+          {glm::vec4(o, 1.5f / -d.z), glm::vec4(d, 1.0f)});  // any hit ending between the two
     }
     const auto hits = query.trace(rays);
     int square = 0, wall = 0;
@@ -115,8 +120,9 @@ TEST_F(TexturesTest, AlphaMaskedGratingCastsCutOutShadows) {
   s.materials[mask].alpha_cutoff = 0.5f;
   s.materials[mask].double_sided = true;
   const int bars = 6;
-  s.materials[mask].base_color_texture =
-      test::add_texture(s, bars, 1, [](int x, int) { return glm::vec4(1.0f, 1.0f, 1.0f, x % 2 ? 0.0f : 1.0f); }, scenes::Filter::Nearest);
+  s.materials[mask].base_color_texture = test::add_texture(
+      s, bars, 1, [](int x, int) { return glm::vec4(1.0f, 1.0f, 1.0f, x % 2 ? 0.0f : 1.0f); },
+      scenes::Filter::Nearest);
   const float h = 0.6f, y0 = 0.8f;
   test::add_textured_quad(s, {-h, y0, h}, {h, y0, h}, {h, y0, -h}, {-h, y0, -h}, mask);
   scenes::Light l;
@@ -132,7 +138,8 @@ TEST_F(TexturesTest, AlphaMaskedGratingCastsCutOutShadows) {
   // Column of the grating at x, or -1 outside it; `edge`: within `margin` of a bar's edge.
   auto column = [&](glm::vec3 q, float margin, bool& edge) {
     const float g = (q.x + h) / (2.0f * h) * float(bars);
-    edge = std::abs(g - std::round(g)) * (2.0f * h / float(bars)) < margin || std::abs(std::abs(q.z) - h) < margin;
+    edge = std::abs(g - std::round(g)) * (2.0f * h / float(bars)) < margin ||
+           std::abs(std::abs(q.z) - h) < margin;
     return std::abs(q.x) < h && std::abs(q.z) < h ? int(std::floor(g)) : -1;
   };
   int lit_through = 0, shadowed = 0;
@@ -140,7 +147,8 @@ TEST_F(TexturesTest, AlphaMaskedGratingCastsCutOutShadows) {
     for (int x = 0; x < size; ++x) {
       const glm::vec3 d = cam.ray_direction(x + 0.5f, y + 0.5f, size, size);
       bool edge = false;
-      const glm::vec3 qc = cam.position + ((y0 - cam.position.y) / d.y) * d;  // on the grating's plane
+      const glm::vec3 qc =
+          cam.position + ((y0 - cam.position.y) / d.y) * d;  // on the grating's plane
       const int cc = column(qc, 1e-3f, edge);
       if (edge || (cc >= 0 && cc % 2 == 0)) continue;  // the camera sees a bar (or an edge)
       const glm::vec3 p = cam.position + (-cam.position.y / d.y) * d;
@@ -150,9 +158,11 @@ TEST_F(TexturesTest, AlphaMaskedGratingCastsCutOutShadows) {
       const int c = column(q, 0.03f, edge);
       if (edge) continue;
       const bool blocked = c >= 0 && c % 2 == 0;
-      const float expected = blocked ? 0.0f : rho / float(M_PI) * l.intensity * (to.y / dist) / (dist * dist);
+      const float expected =
+          blocked ? 0.0f : rho / float(M_PI) * l.intensity * (to.y / dist) / (dist * dist);
       // float32 evaluation of the same formula: a few ulps of relative error.
-      EXPECT_NEAR(img.at("G", x, y), expected, 1e-4f * expected + 1e-7f) << x << "," << y << (blocked ? " under a bar" : " lit");
+      EXPECT_NEAR(img.at("G", x, y), expected, 1e-4f * expected + 1e-7f)
+          << x << "," << y << (blocked ? " under a bar" : " lit");
       if (c >= 0) (blocked ? shadowed : lit_through)++;
     }
   EXPECT_GT(lit_through, 100);
@@ -180,7 +190,8 @@ TEST_F(TexturesTest, RasterisedAndRayTracedGBuffersAgree) {
     ASSERT_TRUE(std::isfinite(x) && std::isfinite(y)) << i;
     differ += std::abs(x - y) > 1e-4f * std::max(x, y) + 1e-7f;
   }
-  EXPECT_LE(differ, int(a.pixel_count() / 100)) << differ << " of " << a.pixel_count() << " pixels differ";
+  EXPECT_LE(differ, int(a.pixel_count() / 100))
+      << differ << " of " << a.pixel_count() << " pixels differ";
 }
 
 }  // namespace
