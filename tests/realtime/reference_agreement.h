@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,9 @@ inline Agreement expect_agreement(const image::Image& gpu, const image::Image& c
   EXPECT_LE(std::abs(a.diff_sum), 4.0 * std::sqrt(a.var_sum))
       << what << ": image mean differs by " << a.diff_sum / double(a.n) << ", se "
       << std::sqrt(a.var_sum) / double(a.n);
+  // The measured agreement, for the log (docs/realtime.md quotes these numbers).
+  std::printf("%s: %zu of %zu beyond 4 sigma, mean z %.4f (se %.4f), mean difference %.3g (se %.3g)\n", what.c_str(),
+              a.outliers, a.n, a.mean_z, a.mean_z_se, a.diff_sum / double(a.n), std::sqrt(a.var_sum) / double(a.n));
   return a;
 }
 

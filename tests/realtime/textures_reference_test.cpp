@@ -48,7 +48,7 @@ TEST_F(TexturesReferenceTest, PtAgreesWithinNoiseOnATexturedBox) {
   ASSERT_TRUE(s.features.textures && s.features.normal_maps && s.features.alpha_mask &&
               s.features.specular);
   const int size = 48;
-  const uint32_t spp = 128;
+  const uint32_t spp = 64;
   const image::Image gpu =
       render(s, "pt", size, {"samples_per_frame=" + std::to_string(spp), "seed=7"});
   const image::Image cpu = reference(s, size, spp);
