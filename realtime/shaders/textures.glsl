@@ -3,7 +3,8 @@
 // (reference/src/surface.h, reference/src/embree_scene.cpp). Textures are float RGBA texels
 // in one storage buffer (scene.glsl, GIQ_BINDING_TEXELS) filtered here by hand: the same
 // texels as the reference (sRGB decoded on the CPU), the same wrap modes and the same
-// bilinear weights, on every Vulkan device without samplers or descriptor indexing.
+// bilinear weights (the same bits for power-of-two sizes), on every Vulkan device without
+// samplers or descriptor indexing.
 // Needs scene.glsl.
 #ifndef GIQ_TEXTURES_GLSL
 #define GIQ_TEXTURES_GLSL
@@ -42,15 +43,26 @@ vec4 texture_sample(int index, vec2 uv) {
   float v = isnan(uv.y) || isinf(uv.y) ? 0.0 : clamp(uv.y, -1e6, 1e6);
   if (((t.info.w >> 4) & 1u) == GIQ_FILTER_NEAREST)
     return texel_at(t, texture_wrap(floor(u * w), w, wrap_s), texture_wrap(floor(v * h), h, wrap_t));
-  // Texture::sample forms u * width - 0.5 in double. In float it is the same number for
-  // power-of-two sizes while |u * width| < 2^23; otherwise u * width is rounded once, which
-  // moves the bilinear weights by at most 2^-24 |u| width. `precise` keeps the blend below as the reference's separately
-  // rounded products and sums (no fused multiply-add).
-  precise float x = u * w - 0.5;
-  precise float y = v * h - 0.5;
-  float x0 = floor(x), y0 = floor(y);
-  precise float fx = x - x0;
-  precise float fy = y - y0;
+  // Texture::sample forms x = u * width - 0.5 in double, x0 = floor(x) and the weight
+  // fx = float(x - x0), rounded once. Here p = u * width is exact in float for power-of-two
+  // sizes (rounded once otherwise, which moves the weights by at most 2^-24 |u| width);
+  // x0 + 0.5 is exact, so p - (x0 + 0.5) is x - x0 rounded once, as the reference rounds it.
+  // x0 from the float p - 0.5 can be one too large where that rounds up onto an integer; the
+  // weight then comes out negative, and one step down fixes it. `precise` keeps every
+  // product and sum here and below separately rounded (no fused multiply-add), as in C++.
+  precise float px = u * w;
+  precise float py = v * h;
+  float x0 = floor(px - 0.5), y0 = floor(py - 0.5);
+  precise float fx = px - (x0 + 0.5);
+  precise float fy = py - (y0 + 0.5);
+  if (fx < 0.0) {
+    x0 -= 1.0;
+    fx = px - (x0 + 0.5);
+  }
+  if (fy < 0.0) {
+    y0 -= 1.0;
+    fy = py - (y0 + 0.5);
+  }
   int xa = texture_wrap(x0, w, wrap_s), xb = texture_wrap(x0 + 1.0, w, wrap_s);
   int ya = texture_wrap(y0, h, wrap_t), yb = texture_wrap(y0 + 1.0, h, wrap_t);
   precise vec4 top = texel_at(t, xa, ya) * (1.0 - fx) + texel_at(t, xb, ya) * fx;

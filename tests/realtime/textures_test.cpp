@@ -5,11 +5,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <iterator>
 #include <random>
 
+#include "giq/realtime/context.h"
+#include "giq/realtime/pipeline.h"
 #include "giq/realtime/ray_query.h"
 #include "giq/realtime/renderer.h"
+#include "giq/realtime/resources.h"
 #include "giq/realtime/scene_gpu.h"
+#include "giq/realtime/shader.h"
 #include "test_scenes.h"
 
 namespace giq::realtime {
@@ -29,6 +35,100 @@ class TexturesTest : public test::VulkanTest {
     return out;
   }
 };
+
+// texture_sample (shaders/textures.glsl) at a batch of (uv, texture) queries, on the GPU.
+std::vector<glm::vec4> sample_on_gpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& s,
+                                     const std::vector<glm::vec4>& queries) {
+  const std::string src = R"(#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "shaders/textures.glsl"
+layout(local_size_x = 64) in;
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT) readonly buffer Queries { vec4 queries[]; };
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 1) writeonly buffer Results { vec4 results[]; };
+layout(push_constant) uniform Push { uint count; } pc;
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i < pc.count) results[i] = texture_sample(int(queries[i].z), queries[i].xy);
+}
+)";
+  SceneGpu gpu(ctx, s);
+  auto bindings = SceneGpu::binding_types();
+  bindings.insert(bindings.end(), 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  const Pipeline pipeline = Pipeline::compute(
+      ctx, compiler.compile_source("tests/texture_query.comp", src, feature_defines(s.features)),
+      bindings, sizeof(uint32_t));
+  Buffer in = Buffer::storage(ctx, queries);
+  Buffer out(ctx, queries.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+             MemoryUsage::Readback);
+  ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    pipeline.bind(cmd);
+    auto d = gpu.descriptors();
+    d.push_back(Descriptor::storage(in));
+    d.push_back(Descriptor::storage(out));
+    pipeline.push_descriptors(cmd, d);
+    const uint32_t n = uint32_t(queries.size());
+    pipeline.push_constants(cmd, n);
+    vkCmdDispatch(cmd, (n + 63) / 64, 1, 1);
+    full_barrier(cmd);
+  });
+  std::vector<glm::vec4> r(queries.size());
+  std::memcpy(r.data(), out.mapped(), r.size() * sizeof(glm::vec4));
+  return r;
+}
+
+// The GPU lookup against scenes::Texture::sample (the reference's) for every wrap mode and
+// filter. Power-of-two sizes: u * size - 0.5 is exact in float as in the reference's double,
+// every later step is the same separately rounded float arithmetic (IEEE add and multiply are
+// correctly rounded in Vulkan), so the results are the same bits. Other sizes: u * size is
+// rounded once, which moves a bilinear weight by at most 2^-24 |u| size = 1.8e-6 here (|u| <= 3,
+// size 5) and the result by that times the largest texel difference (1), plus a few ulps.
+TEST_F(TexturesTest, LookupsAreTheSceneLibrarysTextureSample) {
+  scenes::Scene s = test::lambert_plane(0.5f);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+  auto random_texel = [&](int, int) { return glm::vec4(u01(rng), u01(rng), u01(rng), u01(rng)); };
+  using W = scenes::Wrap;
+  using F = scenes::Filter;
+  const struct {
+    int w, h;
+    F filter;
+    W wrap;
+    bool exact;
+  } kinds[] = {
+      {8, 4, F::Linear, W::Repeat, true},          {4, 4, F::Linear, W::MirroredRepeat, true},
+      {16, 8, F::Linear, W::ClampToEdge, true},    {4, 2, F::Nearest, W::Repeat, true},
+      {2, 8, F::Nearest, W::MirroredRepeat, true}, {5, 3, F::Linear, W::Repeat, false},
+      {3, 5, F::Linear, W::MirroredRepeat, false}};
+  for (const auto& k : kinds) test::add_texture(s, k.w, k.h, random_texel, k.filter, k.wrap);
+  // A material that uses a texture makes the scene textured (the texels are uploaded).
+  s.materials[0].base_color_texture = 0;
+  s.derive();
+  ASSERT_TRUE(s.features.textures);
+  std::uniform_real_distribution<float> uv(-3.0f, 3.0f);
+  std::vector<glm::vec4> queries;
+  for (int t = 0; t < int(std::size(kinds)); ++t)
+    for (int i = 0; i < 2000; ++i) queries.emplace_back(uv(rng), uv(rng), float(t), 0.0f);
+  const std::vector<glm::vec4> gpu = sample_on_gpu(*ctx, *compiler, s, queries);
+  int exact = 0;
+  for (size_t i = 0; i < queries.size(); ++i) {
+    const auto& k = kinds[size_t(queries[i].z)];
+    const glm::vec4 ref = s.textures[size_t(queries[i].z)].sample(glm::vec2(queries[i]));
+    if (k.exact) {
+      if (k.filter == F::Nearest) {
+        // A uv on a texel edge may fall either way in float; none of 2000 random ones should.
+        const float gx = queries[i].x * float(k.w), gy = queries[i].y * float(k.h);
+        if (gx == std::floor(gx) || gy == std::floor(gy)) continue;
+      }
+      for (int c = 0; c < 4; ++c)
+        EXPECT_EQ(gpu[i][c], ref[c]) << "query " << i << " texture " << queries[i].z;
+      ++exact;
+    } else {
+      for (int c = 0; c < 4; ++c)
+        EXPECT_NEAR(gpu[i][c], ref[c], 4e-6f) << "query " << i << " texture " << queries[i].z;
+    }
+  }
+  EXPECT_GT(exact, 9000);
+}
 
 // An alpha-masked square [-h, h]^2 in the plane z = 0 facing +z (TEXCOORD_0 u along x, v
 // along -y, `uv_scale` repeats) in front of an opaque wall at z = -1.
