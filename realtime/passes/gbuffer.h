@@ -6,7 +6,10 @@
 //
 // Targets (RGBA32F unless noted, GENERAL layout after record()):
 //   position: xyz local-frame position, w = 1 where a surface was hit, 0 elsewhere
-//   normal:   xyz shading normal turned to the viewer's side, w = 0
+//   normal:   xyz shading normal as the reference's first hit has it (interpolated,
+//             normal-mapped, turned to the viewer's side; shaders/surface.glsl), w = 0
+// Alpha-masked cut-outs are no surface: the rasteriser discards them, the ray caster passes
+// through them.
 //   ids (RGBA32UI): x = triangle + 1 (0 = nothing), y = material, z = object id, w = 1 back face
 //   motion (only after enable_motion_vectors()): xy = where this pixel's surface point was in
 //     the previous frame minus this pixel's centre, in pixels (so the history of pixel p is
