@@ -27,17 +27,21 @@ ShadowMaps::ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& s
   pipeline_ = Pipeline::graphics(ctx, g, SceneGpu::binding_types(), sizeof(glm::mat4));
 }
 
-uint32_t ShadowMaps::add_cube(glm::vec3 position) {
-  const uint32_t first = uint32_t(layers_.size());
-  sources_.push_back({true, position, first});
+glm::mat4 ShadowMaps::cube_face_view_proj(glm::vec3 position, const scenes::Bounds& bounds, int face) {
   // Near plane: a thousandth of the scene; far: beyond the farthest point of the scene.
-  const float diag = diagonal(bounds_);
-  const float znear = 1e-3f * diag, zfar = 2.0f * diag + glm::length(position - centre(bounds_));
+  const float diag = diagonal(bounds);
+  const float znear = 1e-3f * diag, zfar = 2.0f * diag + glm::length(position - centre(bounds));
   const glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, znear, zfar);
   const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+  return proj * glm::lookAtRH(position, position + dirs[face], ups[face]);
+}
+
+uint32_t ShadowMaps::add_cube(glm::vec3 position) {
+  const uint32_t first = uint32_t(layers_.size());
+  sources_.push_back({true, position, first});
   for (int f = 0; f < 6; ++f) {
-    layers_.push_back(proj * glm::lookAtRH(position, position + dirs[f], ups[f]));
+    layers_.push_back(cube_face_view_proj(position, bounds_, f));
     // A 90-degree face is 2 units wide at distance 1.
     params_.emplace_back(GIQ_SHADOW_CUBE_FACE, 2.0f / float(size_), 0.0f, 0.0f);
   }
