@@ -116,7 +116,7 @@ TechniqueInfo rsm_technique() {
   parameters.push_back(GBufferPass::ray_traced_parameter());
   for (auto& p : ReflectiveShadowMaps::parameters()) parameters.push_back(p);
   parameters.push_back({"samples", 512, 1, 4096, true, "VPL samples per pixel (seed 000: 512)"});
-  parameters.push_back({"r_max", 0.5, 0.001, 1, false,
+  parameters.push_back({"r_max", 0.75, 0.001, 1, false,
                         "sampling radius: a fraction of a directional light's window; for cube maps, of the "
                         "half-angle pi (1 = the whole sphere around the light)"});
   return {"rsm",
