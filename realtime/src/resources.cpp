@@ -225,6 +225,21 @@ std::vector<float> Image::read_floats(uint32_t layer) {
   return out;
 }
 
+void Image::write_floats(const std::vector<float>& data, uint32_t layer) {
+  const uint64_t bytes = uint64_t(desc_.width) * desc_.height * texel_bytes(desc_.format);
+  if (data.size() * sizeof(float) != bytes) throw std::logic_error("Image::write_floats: size mismatch");
+  Buffer staging(*ctx_, bytes, 0, MemoryUsage::Upload);
+  std::memcpy(staging.mapped(), data.data(), bytes);
+  ctx_->submit_and_wait([&](VkCommandBuffer cmd) {
+    transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    VkBufferImageCopy c{};
+    c.imageSubresource = {aspect(), 0, layer, 1};
+    c.imageExtent = {desc_.width, desc_.height, 1};
+    vkCmdCopyBufferToImage(cmd, staging.handle(), image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &c);
+    transition(cmd, VK_IMAGE_LAYOUT_GENERAL);
+  });
+}
+
 void full_barrier(VkCommandBuffer cmd) {
   VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
   b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;

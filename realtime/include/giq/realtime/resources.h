@@ -83,6 +83,8 @@ class Image {
 
   // Reads an RGBA32F or R32 image back (blocking): width*height*components floats, row-major.
   std::vector<float> read_floats(uint32_t layer = 0);
+  // Fills a layer from host data of the same layout (blocking); leaves the image GENERAL.
+  void write_floats(const std::vector<float>& data, uint32_t layer = 0);
 
  private:
   void release();
