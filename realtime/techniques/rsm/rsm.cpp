@@ -13,6 +13,7 @@
 #include "passes/direct_light.h"
 #include "passes/gbuffer.h"
 #include "passes/rsm.h"
+#include "passes/upsample.h"
 #include "techniques/rsm/rsm_shared.h"
 
 namespace giq::realtime {
@@ -44,7 +45,11 @@ class Rsm : public Technique {
                  ci.parameters.get_int("gbuffer_ray_traced") != 0),
         lighting_(ci), rsm_(ci), composite_(ci.ctx, ci.compiler, ci.width, ci.height),
         samples_(uint32_t(ci.parameters.get_int("samples"))), r_max_(float(ci.parameters.get("r_max"))),
-        indirect_(ci.ctx, {ci.width, ci.height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT}) {
+        upsample_(ci.ctx, ci.compiler, ci.width, ci.height, uint32_t(ci.parameters.get_int("downsample")),
+                  ci.parameters.get_int("blur") != 0),
+        blur_(ci.parameters.get_int("blur") != 0),
+        low_(ci.ctx, {upsample_.low_width(), upsample_.low_height(), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                      VK_IMAGE_USAGE_STORAGE_BIT}) {
     sample_buffer_ = Buffer::storage(ci.ctx, polar_samples(samples_));
     auto bindings = SceneGpu::binding_types();
     bindings.insert(bindings.end(), {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
@@ -58,7 +63,10 @@ class Rsm : public Technique {
   }
 
   std::vector<std::string> passes() const override {
-    return {"shadow_maps", "rsm", "gbuffer", "direct_lighting", "rsm_gather", "composite"};
+    std::vector<std::string> p = {"shadow_maps", "rsm", "gbuffer", "direct_lighting", "rsm_gather", "upsample"};
+    if (blur_) p.push_back("blur");
+    p.push_back("composite");
+    return p;
   }
 
   void render(const FrameInput& in) override {
@@ -68,7 +76,7 @@ class Rsm : public Technique {
     lighting_.record_lighting(in, gbuffer_);
 
     in.timer.begin(in.cmd, "rsm_gather");
-    indirect_.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
+    low_.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
     gather_.bind(in.cmd);
     auto d = scene_gpu_.descriptors();
     d.push_back(Descriptor::storage_image(gbuffer_.position()));
@@ -79,20 +87,22 @@ class Rsm : public Technique {
     d.push_back(Descriptor::storage(rsm_.layer_buffer()));
     d.push_back(Descriptor::storage(rsm_.emitter_buffer()));
     d.push_back(Descriptor::storage(sample_buffer_));
-    d.push_back(Descriptor::storage_image(indirect_));
+    d.push_back(Descriptor::storage_image(low_));
     gather_.push_descriptors(in.cmd, d);
-    gpu::RsmGatherPush pc{glm::uvec4(width_, height_, width_, height_),
-                          glm::vec4(r_max_, float(samples_), 1.0f, float(rsm_.emitter_count()))};
+    // Seed 000, 2.2.1: the gather runs at 1/k resolution, O(width/k height/k N).
+    gpu::RsmGatherPush pc{glm::uvec4(width_, height_, upsample_.low_width(), upsample_.low_height()),
+                          glm::vec4(r_max_, float(samples_), float(upsample_.factor()), float(rsm_.emitter_count()))};
     gather_.push_constants(in.cmd, pc);
-    gather_.dispatch_2d(in.cmd, width_, height_);
+    gather_.dispatch_2d(in.cmd, upsample_.low_width(), upsample_.low_height());
     full_barrier(in.cmd);
     in.timer.end(in.cmd);
 
-    composite_.record(in.cmd, lighting_.output(), indirect_, in.timer);
+    upsample_.record(in.cmd, low_, gbuffer_, in.timer);
+    composite_.record(in.cmd, lighting_.output(), upsample_.output(), in.timer);
   }
 
   std::vector<std::pair<std::string, Image*>> outputs() override {
-    return {{"", &composite_.output()}, {"direct", &lighting_.output()}, {"indirect", &indirect_}};
+    return {{"", &composite_.output()}, {"direct", &lighting_.output()}, {"indirect", &upsample_.output()}};
   }
 
  private:
@@ -104,7 +114,9 @@ class Rsm : public Technique {
   CompositePass composite_;
   uint32_t samples_;
   float r_max_;
-  Image indirect_;
+  UpsamplePass upsample_;
+  bool blur_;
+  Image low_;
   Buffer sample_buffer_;
   Pipeline gather_;
 };
@@ -119,6 +131,7 @@ TechniqueInfo rsm_technique() {
   parameters.push_back({"r_max", 0.75, 0.001, 1, false,
                         "sampling radius: a fraction of a directional light's window; for cube maps, of the "
                         "half-angle pi (1 = the whole sphere around the light)"});
+  for (auto& p : UpsamplePass::parameters(3)) parameters.push_back(p);  // seed 000, 2.2.1: k = 3
   return {"rsm",
           "Reflective Shadow Maps (seed 000 ch. II): one diffuse bounce from the VPLs of each light's RSM "
           "(ortho window for the sun, cube faces for point/spot/area lights), N polar samples per pixel",
