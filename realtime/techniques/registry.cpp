@@ -2,6 +2,7 @@
 // here.
 #include "giq/realtime/technique.h"
 #include "techniques/direct/direct.h"
+#include "techniques/lpv/lpv.h"
 #include "techniques/pt/pt.h"
 #include "techniques/rsm/rsm.h"
 
@@ -12,6 +13,7 @@ const std::vector<TechniqueInfo>& techniques() {
       direct_technique(),
       pt_technique(),
       rsm_technique(),
+      lpv_technique(),
   };
   return all;
 }
