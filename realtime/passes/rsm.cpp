@@ -15,12 +15,14 @@ namespace giq::realtime {
 
 namespace {
 
-float max3(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
+float max3(glm::vec3 v) {
+  return std::max(v.x, std::max(v.y, v.z));
+}
 
 // The layers and emitters the scene's lights need, in a fixed order: the scene's lights, then
 // one area light per emissive mesh (as passes/direct_light.cpp builds them).
-void build(const scenes::Scene& scene, uint32_t ortho_size, uint32_t cube_size, std::vector<gpu::GpuRsmEmitter>& emitters,
-           std::vector<gpu::GpuRsmLayer>& layers) {
+void build(const scenes::Scene& scene, uint32_t ortho_size, uint32_t cube_size,
+           std::vector<gpu::GpuRsmEmitter>& emitters, std::vector<gpu::GpuRsmLayer>& layers) {
   emitters.clear();
   layers.clear();
   const scenes::Bounds& b = scene.bounds;
@@ -35,7 +37,8 @@ void build(const scenes::Scene& scene, uint32_t ortho_size, uint32_t cube_size, 
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const scenes::Light& l = scene.lights[i];
     const glm::vec3 radiant = l.radiant();
-    gpu::GpuRsmEmitter e{glm::vec4(l.position, GIQ_RSM_PUNCTUAL), glm::vec4(0.0f), glm::vec4(radiant, float(i)),
+    gpu::GpuRsmEmitter e{glm::vec4(l.position, GIQ_RSM_PUNCTUAL), glm::vec4(0.0f),
+                         glm::vec4(radiant, float(i)),
                          glm::uvec4(uint32_t(layers.size()), 0, 0, 0)};
     if (l.type == scenes::LightType::Directional) {
       // The scene's bounding sphere seen along the light, from outside it.
@@ -44,8 +47,9 @@ void build(const scenes::Scene& scene, uint32_t ortho_size, uint32_t cube_size, 
       const glm::vec3 up = std::abs(dir.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
       const glm::mat4 view = glm::lookAtRH(c0 - dir * (2.0f * r), c0, up);
       const glm::mat4 proj = glm::orthoRH_ZO(-r, r, -r, r, 0.0f, 4.0f * r);
-      layers.push_back({proj * view, glm::vec4(dir, 2.0f * r),
-                        glm::vec4(GIQ_RSM_ORTHO, float(ortho_size), max3(radiant), float(emitters.size()))});
+      layers.push_back(
+          {proj * view, glm::vec4(dir, 2.0f * r),
+           glm::vec4(GIQ_RSM_ORTHO, float(ortho_size), max3(radiant), float(emitters.size()))});
       e.layers.y = 1;
     } else {
       add_cube(l.position, radiant);
@@ -85,13 +89,15 @@ void build(const scenes::Scene& scene, uint32_t ortho_size, uint32_t cube_size, 
 }  // namespace
 
 std::vector<Parameter> ReflectiveShadowMaps::parameters() {
-  return {{"rsm_size", 2048, 16, 8192, true, "RSM texels per side of a directional light's window over the scene"},
+  return {{"rsm_size", 2048, 16, 8192, true,
+           "RSM texels per side of a directional light's window over the scene"},
           {"rsm_cube_size", 512, 16, 4096, true,
            "RSM texels per side of each cube face (point, spot and area lights)"}};
 }
 
 ReflectiveShadowMaps::ReflectiveShadowMaps(const TechniqueCreateInfo& ci)
-    : scene_gpu_(ci.scene_gpu), ortho_size_(uint32_t(ci.parameters.get_int("rsm_size"))),
+    : scene_gpu_(ci.scene_gpu),
+      ortho_size_(uint32_t(ci.parameters.get_int("rsm_size"))),
       cube_size_(uint32_t(ci.parameters.get_int("rsm_cube_size"))) {
   build(ci.scene, ortho_size_, cube_size_, emitters_, layers_);
   extent_ = 1;
@@ -101,11 +107,13 @@ ReflectiveShadowMaps::ReflectiveShadowMaps(const TechniqueCreateInfo& ci)
   surface_ = Image(ci.ctx, {extent_, extent_, n, VK_FORMAT_R32G32B32A32_UINT, usage, true});
   flux_ = Image(ci.ctx, {extent_, extent_, n, VK_FORMAT_R16G16B16A16_SFLOAT, usage, true});
   // One depth buffer serves every layer in turn.
-  depth_ = Image(ci.ctx, {extent_, extent_, 1, VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
+  depth_ = Image(ci.ctx, {extent_, extent_, 1, VK_FORMAT_D32_SFLOAT,
+                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
   layer_buffer_ = Buffer(ci.ctx, std::max<size_t>(1, layers_.size()) * sizeof(gpu::GpuRsmLayer),
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
-  emitter_buffer_ = Buffer(ci.ctx, std::max<size_t>(1, emitters_.size()) * sizeof(gpu::GpuRsmEmitter),
-                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
+  emitter_buffer_ =
+      Buffer(ci.ctx, std::max<size_t>(1, emitters_.size()) * sizeof(gpu::GpuRsmEmitter),
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
 
   const auto defines = feature_defines(ci.scene.features);
   GraphicsDesc g;
@@ -122,15 +130,18 @@ void ReflectiveShadowMaps::update(const scenes::Scene& scene) {
   const size_t n_layers = layers_.size(), n_emitters = emitters_.size();
   build(scene, ortho_size_, cube_size_, emitters_, layers_);
   if (layers_.size() != n_layers || emitters_.size() != n_emitters)
-    throw std::logic_error("reflective shadow maps: the scene's lights changed in number during a sequence");
+    throw std::logic_error(
+        "reflective shadow maps: the scene's lights changed in number during a sequence");
   draw_scale_.clear();
   // The stored flux is density x scale with scale = 1 / the light's brightest channel, so every
   // stored value lies in [0, 1] (fp16 keeps ~3 significant digits there and cannot overflow for
   // any light); a dark light stores zeros. Readers multiply by params.z = 1 / scale.
   for (auto& l : layers_) draw_scale_.push_back(l.params.z > 0.0f ? 1.0f / l.params.z : 0.0f);
-  if (!layers_.empty()) std::memcpy(layer_buffer_.mapped(), layers_.data(), layers_.size() * sizeof(layers_[0]));
+  if (!layers_.empty())
+    std::memcpy(layer_buffer_.mapped(), layers_.data(), layers_.size() * sizeof(layers_[0]));
   if (!emitters_.empty())
-    std::memcpy(emitter_buffer_.mapped(), emitters_.data(), emitters_.size() * sizeof(emitters_[0]));
+    std::memcpy(emitter_buffer_.mapped(), emitters_.data(),
+                emitters_.size() * sizeof(emitters_[0]));
 }
 
 void ReflectiveShadowMaps::record(const FrameInput& in) {
@@ -174,7 +185,8 @@ void ReflectiveShadowMaps::record(const FrameInput& in) {
       VkRect2D sc{{0, 0}, {size, size}};
       vkCmdSetViewport(in.cmd, 0, 1, &vp);
       vkCmdSetScissor(in.cmd, 0, 1, &sc);
-      gpu::RsmDrawPush pc{layers_[l].view_proj, glm::vec4(layers_[l].params.w, draw_scale_[l], 0.0f, 0.0f)};
+      gpu::RsmDrawPush pc{layers_[l].view_proj,
+                          glm::vec4(layers_[l].params.w, draw_scale_[l], 0.0f, 0.0f)};
       pipeline_.push_constants(in.cmd, pc);
       if (scene_gpu_.triangle_count() > 0) {
         vkCmdBindIndexBuffer(in.cmd, scene_gpu_.index_buffer().handle(), 0, VK_INDEX_TYPE_UINT32);

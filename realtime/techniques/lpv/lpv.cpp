@@ -67,7 +67,8 @@ std::vector<glm::vec4> face_table() {
     t[2 * (5 * n) + 1] = cos_lobe_sh(d);
     const glm::vec3 sides[4] = {s1, -s1, s2, -s2};
     for (int f = 0; f < 4; ++f) {
-      const glm::vec3 eval = 0.894427191f * d + 0.447213595f * sides[f];  // towards the side face's centre
+      const glm::vec3 eval =
+          0.894427191f * d + 0.447213595f * sides[f];  // towards the side face's centre
       t[2 * (5 * n + 1 + f)] = float(kSideFaceSolidAngle / kPi) * dir_to_sh(eval);
       t[2 * (5 * n + 1 + f) + 1] = cos_lobe_sh(sides[f]);
     }
@@ -79,37 +80,50 @@ std::vector<glm::vec4> face_table() {
 class Lpv : public Technique {
  public:
   explicit Lpv(const TechniqueCreateInfo& ci)
-      : ctx_(ci.ctx), scene_gpu_(ci.scene_gpu), width_(ci.width), height_(ci.height),
+      : ctx_(ci.ctx),
+        scene_gpu_(ci.scene_gpu),
+        width_(ci.width),
+        height_(ci.height),
         gbuffer_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.features, ci.width, ci.height,
                  ci.parameters.get_int("gbuffer_ray_traced") != 0),
-        lighting_(ci), rsm_(ci), composite_(ci.ctx, ci.compiler, ci.width, ci.height),
-        res_(uint32_t(ci.parameters.get_int("lpv_grid"))), steps_(ci.parameters.get_int("propagation_steps")),
+        lighting_(ci),
+        rsm_(ci),
+        composite_(ci.ctx, ci.compiler, ci.width, ci.height),
+        res_(uint32_t(ci.parameters.get_int("lpv_grid"))),
+        steps_(ci.parameters.get_int("propagation_steps")),
         camera_centred_(ci.parameters.get_int("lpv_placement") != 0),
         downsample_(uint32_t(ci.parameters.get_int("rsm_downsample"))),
         intensity_(float(ci.parameters.get("intensity"))),
-        indirect_(ci.ctx, {ci.width, ci.height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT}) {
+        indirect_(ci.ctx, {ci.width, ci.height, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                           VK_IMAGE_USAGE_STORAGE_BIT}) {
     const uint64_t cells = uint64_t(res_) * res_ * res_;
     inject_ = Buffer(ci.ctx, cells * 12 * sizeof(int32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    for (auto& v : volume_) v = Buffer(ci.ctx, cells * 3 * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    accumulated_ = Buffer(ci.ctx, cells * 3 * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    for (auto& v : volume_)
+      v = Buffer(ci.ctx, cells * 3 * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    accumulated_ =
+        Buffer(ci.ctx, cells * 3 * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     faces_ = Buffer::storage(ci.ctx, face_table());
     const auto s = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, i = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    inject_pipeline_ = Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/lpv/lpv_inject.comp"),
-                                         {i, i, s, s, s}, sizeof(gpu::LpvGrid));
-    resolve_pipeline_ = Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/lpv/lpv_resolve.comp"), {s, s, s},
-                                          sizeof(gpu::LpvGrid));
-    propagate_pipeline_ = Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/lpv/lpv_propagate.comp"),
-                                            {s, s, s, s}, sizeof(gpu::LpvGrid));
+    inject_pipeline_ =
+        Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/lpv/lpv_inject.comp"),
+                          {i, i, s, s, s}, sizeof(gpu::LpvGrid));
+    resolve_pipeline_ =
+        Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/lpv/lpv_resolve.comp"), {s, s, s},
+                          sizeof(gpu::LpvGrid));
+    propagate_pipeline_ =
+        Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/lpv/lpv_propagate.comp"),
+                          {s, s, s, s}, sizeof(gpu::LpvGrid));
     auto bindings = SceneGpu::binding_types();
     bindings.insert(bindings.end(), {i, i, i, s, i});
     lookup_pipeline_ = Pipeline::compute(
-        ci.ctx, ci.compiler.compile("techniques/lpv/lpv_lookup.comp", feature_defines(ci.scene.features)), bindings,
-        sizeof(gpu::LpvLookupPush));
+        ci.ctx,
+        ci.compiler.compile("techniques/lpv/lpv_lookup.comp", feature_defines(ci.scene.features)),
+        bindings, sizeof(gpu::LpvLookupPush));
   }
 
   std::vector<std::string> passes() const override {
-    return {"shadow_maps", "rsm", "gbuffer", "direct_lighting", "lpv_inject", "lpv_propagate", "lpv_lookup",
-            "composite"};
+    return {"shadow_maps", "rsm",           "gbuffer",    "direct_lighting",
+            "lpv_inject",  "lpv_propagate", "lpv_lookup", "composite"};
   }
 
   void render(const FrameInput& in) override {
@@ -124,17 +138,19 @@ class Lpv : public Technique {
     vkCmdFillBuffer(in.cmd, inject_.handle(), 0, VK_WHOLE_SIZE, 0);
     full_barrier(in.cmd);
     inject_pipeline_.bind(in.cmd);
-    inject_pipeline_.push_descriptors(in.cmd, {Descriptor::storage_image(rsm_.surface()),
-                                               Descriptor::storage_image(rsm_.flux()),
-                                               Descriptor::storage(rsm_.layer_buffer()),
-                                               Descriptor::storage(rsm_.emitter_buffer()), Descriptor::storage(inject_)});
+    inject_pipeline_.push_descriptors(
+        in.cmd, {Descriptor::storage_image(rsm_.surface()), Descriptor::storage_image(rsm_.flux()),
+                 Descriptor::storage(rsm_.layer_buffer()),
+                 Descriptor::storage(rsm_.emitter_buffer()), Descriptor::storage(inject_)});
     inject_pipeline_.push_constants(in.cmd, grid);
     const uint32_t blocks = (rsm_.extent() + downsample_ - 1) / downsample_;
-    if (rsm_.layer_count() > 0) vkCmdDispatch(in.cmd, (blocks + 7) / 8, (blocks + 7) / 8, rsm_.layer_count());
+    if (rsm_.layer_count() > 0)
+      vkCmdDispatch(in.cmd, (blocks + 7) / 8, (blocks + 7) / 8, rsm_.layer_count());
     full_barrier(in.cmd);
     resolve_pipeline_.bind(in.cmd);
-    resolve_pipeline_.push_descriptors(in.cmd, {Descriptor::storage(inject_), Descriptor::storage(volume_[0]),
-                                                Descriptor::storage(accumulated_)});
+    resolve_pipeline_.push_descriptors(
+        in.cmd, {Descriptor::storage(inject_), Descriptor::storage(volume_[0]),
+                 Descriptor::storage(accumulated_)});
     resolve_pipeline_.push_constants(in.cmd, grid);
     vkCmdDispatch(in.cmd, (cells * 3 + 63) / 64, 1, 1);
     full_barrier(in.cmd);
@@ -145,9 +161,10 @@ class Lpv : public Technique {
     propagate_pipeline_.push_constants(in.cmd, grid);
     const uint32_t groups = (res_ + 3) / 4;
     for (int step = 0; step < steps_; ++step) {
-      propagate_pipeline_.push_descriptors(in.cmd, {Descriptor::storage(volume_[step % 2]),
-                                                    Descriptor::storage(volume_[(step + 1) % 2]),
-                                                    Descriptor::storage(accumulated_), Descriptor::storage(faces_)});
+      propagate_pipeline_.push_descriptors(
+          in.cmd,
+          {Descriptor::storage(volume_[step % 2]), Descriptor::storage(volume_[(step + 1) % 2]),
+           Descriptor::storage(accumulated_), Descriptor::storage(faces_)});
       vkCmdDispatch(in.cmd, groups, groups, groups);
       full_barrier(in.cmd);
     }
@@ -163,7 +180,8 @@ class Lpv : public Technique {
     d.push_back(Descriptor::storage(accumulated_));
     d.push_back(Descriptor::storage_image(indirect_));
     lookup_pipeline_.push_descriptors(in.cmd, d);
-    lookup_pipeline_.push_constants(in.cmd, gpu::LpvLookupPush{grid, glm::uvec4(width_, height_, 0, 0)});
+    lookup_pipeline_.push_constants(in.cmd,
+                                    gpu::LpvLookupPush{grid, glm::uvec4(width_, height_, 0, 0)});
     lookup_pipeline_.dispatch_2d(in.cmd, width_, height_);
     full_barrier(in.cmd);
     in.timer.end(in.cmd);
@@ -186,17 +204,20 @@ class Lpv : public Technique {
     const float cell = extent / float(std::max<uint32_t>(1, res_ - 2));
     const glm::vec3 centre = b.empty() ? glm::vec3(0.0f) : 0.5f * (b.lo + b.hi);
     glm::vec3 origin = centre - 0.5f * cell * float(res_);
-    if (camera_centred_) origin = glm::floor((in.camera.position - 0.5f * cell * float(res_)) / cell) * cell;
+    if (camera_centred_)
+      origin = glm::floor((in.camera.position - 0.5f * cell * float(res_)) / cell) * cell;
     // Fixed point for the injection sums: no cell's SH coefficient can exceed the total flux
     // of all RSM texels / pi x 1.0233 (the cosine lobe's largest coefficient), bounded by the
     // light's brightest channel x 4 pi / 6 per cube face or x window area per ortho layer;
     // 2^30 units for that bound keep every int32 sum from overflowing.
     double bound = 0.0;
     for (const auto& l : rsm_.layers())
-      bound += double(l.params.z) * (l.params.x == GIQ_RSM_ORTHO ? double(l.axes.w) * l.axes.w : 4.0 * kPi / 6.0);
+      bound += double(l.params.z) *
+               (l.params.x == GIQ_RSM_ORTHO ? double(l.axes.w) * l.axes.w : 4.0 * kPi / 6.0);
     const double coefficient = bound / kPi * 1.02332671;
     const float scale = coefficient > 0.0 ? float(std::ldexp(1.0, 30) / coefficient) : 0.0f;
-    return {glm::vec4(origin, cell), glm::uvec4(res_, rsm_.layer_count(), downsample_, rsm_.emitter_count()),
+    return {glm::vec4(origin, cell),
+            glm::uvec4(res_, rsm_.layer_count(), downsample_, rsm_.emitter_count()),
             glm::vec4(scale, intensity_, 0.0f, 0.0f)};
   }
 
@@ -223,17 +244,23 @@ TechniqueInfo lpv_technique() {
   std::vector<Parameter> parameters = DirectLightPass::parameters();
   parameters.push_back(GBufferPass::ray_traced_parameter());
   for (auto& p : ReflectiveShadowMaps::parameters()) parameters.push_back(p);
-  parameters.push_back({"rsm_downsample", 4, 1, 8, true,
-                        "k: one VPL per k x k RSM block, by the brightest-texel scheme (seed 000, 3.2: k = 4)"});
+  parameters.push_back(
+      {"rsm_downsample", 4, 1, 8, true,
+       "k: one VPL per k x k RSM block, by the brightest-texel scheme (seed 000, 3.2: k = 4)"});
   parameters.push_back({"lpv_grid", 32, 4, 128, true, "cells per side of the propagation volume"});
   parameters.push_back({"propagation_steps", 50, 0, 100, true,
                         "propagation steps (seed 000: 50, 1-100); 0 = the injected light only"});
-  parameters.push_back({"lpv_placement", 0, 0, 1, true, "0: the grid fits the scene's bounds; 1: centred on the camera"});
-  parameters.push_back({"intensity", 1, 0, 100, false, "multiplier of the indirect light (1 = physical units)"});
-  return {"lpv",
-          "Light Propagation Volumes (seed 000 ch. III): RSM VPLs (brightest texel of each 4x4 block) injected as "
-          "2-band SH into a grid, propagated to the 6 face neighbours, trilinear cosine-lobe lookup",
-          std::move(parameters), [](const TechniqueCreateInfo& ci) { return std::make_unique<Lpv>(ci); }};
+  parameters.push_back({"lpv_placement", 0, 0, 1, true,
+                        "0: the grid fits the scene's bounds; 1: centred on the camera"});
+  parameters.push_back(
+      {"intensity", 1, 0, 100, false, "multiplier of the indirect light (1 = physical units)"});
+  return {
+      "lpv",
+      "Light Propagation Volumes (seed 000 ch. III): RSM VPLs (brightest texel of each 4x4 block) "
+      "injected as "
+      "2-band SH into a grid, propagated to the 6 face neighbours, trilinear cosine-lobe lookup",
+      std::move(parameters),
+      [](const TechniqueCreateInfo& ci) { return std::make_unique<Lpv>(ci); }};
 }
 
 }  // namespace giq::realtime

@@ -32,7 +32,8 @@ std::vector<glm::vec4> polar_samples(uint32_t n) {
     bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
     bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
     const double xi1 = (i + 0.5) / n, xi2 = double(bits) * 2.3283064365386963e-10;
-    xi[i] = glm::vec4(float(xi1), float(std::sin(2.0 * M_PI * xi2)), float(std::cos(2.0 * M_PI * xi2)), 0.0f);
+    xi[i] = glm::vec4(float(xi1), float(std::sin(2.0 * M_PI * xi2)),
+                      float(std::cos(2.0 * M_PI * xi2)), 0.0f);
   }
   return xi;
 }
@@ -40,30 +41,39 @@ std::vector<glm::vec4> polar_samples(uint32_t n) {
 class Rsm : public Technique {
  public:
   explicit Rsm(const TechniqueCreateInfo& ci)
-      : scene_gpu_(ci.scene_gpu), width_(ci.width), height_(ci.height),
+      : scene_gpu_(ci.scene_gpu),
+        width_(ci.width),
+        height_(ci.height),
         gbuffer_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.features, ci.width, ci.height,
                  ci.parameters.get_int("gbuffer_ray_traced") != 0),
-        lighting_(ci), rsm_(ci), composite_(ci.ctx, ci.compiler, ci.width, ci.height),
-        samples_(uint32_t(ci.parameters.get_int("samples"))), r_max_(float(ci.parameters.get("r_max"))),
-        upsample_(ci.ctx, ci.compiler, ci.width, ci.height, uint32_t(ci.parameters.get_int("downsample")),
+        lighting_(ci),
+        rsm_(ci),
+        composite_(ci.ctx, ci.compiler, ci.width, ci.height),
+        samples_(uint32_t(ci.parameters.get_int("samples"))),
+        r_max_(float(ci.parameters.get("r_max"))),
+        upsample_(ci.ctx, ci.compiler, ci.width, ci.height,
+                  uint32_t(ci.parameters.get_int("downsample")),
                   ci.parameters.get_int("blur") != 0),
         blur_(ci.parameters.get_int("blur") != 0),
-        low_(ci.ctx, {upsample_.low_width(), upsample_.low_height(), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
-                      VK_IMAGE_USAGE_STORAGE_BIT}) {
+        low_(ci.ctx, {upsample_.low_width(), upsample_.low_height(), 1,
+                      VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT}) {
     sample_buffer_ = Buffer::storage(ci.ctx, polar_samples(samples_));
     auto bindings = SceneGpu::binding_types();
-    bindings.insert(bindings.end(), {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                                     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                                     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+    bindings.insert(bindings.end(),
+                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                     VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
     gather_ = Pipeline::compute(
-        ci.ctx, ci.compiler.compile("techniques/rsm/rsm_gather.comp", feature_defines(ci.scene.features)), bindings,
-        sizeof(gpu::RsmGatherPush));
+        ci.ctx,
+        ci.compiler.compile("techniques/rsm/rsm_gather.comp", feature_defines(ci.scene.features)),
+        bindings, sizeof(gpu::RsmGatherPush));
   }
 
   std::vector<std::string> passes() const override {
-    std::vector<std::string> p = {"shadow_maps", "rsm", "gbuffer", "direct_lighting", "rsm_gather", "upsample"};
+    std::vector<std::string> p = {"shadow_maps",     "rsm",        "gbuffer",
+                                  "direct_lighting", "rsm_gather", "upsample"};
     if (blur_) p.push_back("blur");
     p.push_back("composite");
     return p;
@@ -90,8 +100,9 @@ class Rsm : public Technique {
     d.push_back(Descriptor::storage_image(low_));
     gather_.push_descriptors(in.cmd, d);
     // Seed 000, 2.2.1: the gather runs at 1/k resolution, O(width/k height/k N).
-    gpu::RsmGatherPush pc{glm::uvec4(width_, height_, upsample_.low_width(), upsample_.low_height()),
-                          glm::vec4(r_max_, float(samples_), float(upsample_.factor()), float(rsm_.emitter_count()))};
+    gpu::RsmGatherPush pc{
+        glm::uvec4(width_, height_, upsample_.low_width(), upsample_.low_height()),
+        glm::vec4(r_max_, float(samples_), float(upsample_.factor()), float(rsm_.emitter_count()))};
     gather_.push_constants(in.cmd, pc);
     gather_.dispatch_2d(in.cmd, upsample_.low_width(), upsample_.low_height());
     full_barrier(in.cmd);
@@ -102,7 +113,9 @@ class Rsm : public Technique {
   }
 
   std::vector<std::pair<std::string, Image*>> outputs() override {
-    return {{"", &composite_.output()}, {"direct", &lighting_.output()}, {"indirect", &upsample_.output()}};
+    return {{"", &composite_.output()},
+            {"direct", &lighting_.output()},
+            {"indirect", &upsample_.output()}};
   }
 
  private:
@@ -128,14 +141,18 @@ TechniqueInfo rsm_technique() {
   parameters.push_back(GBufferPass::ray_traced_parameter());
   for (auto& p : ReflectiveShadowMaps::parameters()) parameters.push_back(p);
   parameters.push_back({"samples", 512, 1, 4096, true, "VPL samples per pixel (seed 000: 512)"});
-  parameters.push_back({"r_max", 0.75, 0.001, 1, false,
-                        "sampling radius: a fraction of a directional light's window; for cube maps, of the "
-                        "half-angle pi (1 = the whole sphere around the light)"});
+  parameters.push_back(
+      {"r_max", 0.75, 0.001, 1, false,
+       "sampling radius: a fraction of a directional light's window; for cube maps, of the "
+       "half-angle pi (1 = the whole sphere around the light)"});
   for (auto& p : UpsamplePass::parameters(3)) parameters.push_back(p);  // seed 000, 2.2.1: k = 3
   return {"rsm",
-          "Reflective Shadow Maps (seed 000 ch. II): one diffuse bounce from the VPLs of each light's RSM "
-          "(ortho window for the sun, cube faces for point/spot/area lights), N polar samples per pixel",
-          std::move(parameters), [](const TechniqueCreateInfo& ci) { return std::make_unique<Rsm>(ci); }};
+          "Reflective Shadow Maps (seed 000 ch. II): one diffuse bounce from the VPLs of each "
+          "light's RSM "
+          "(ortho window for the sun, cube faces for point/spot/area lights), N polar samples per "
+          "pixel",
+          std::move(parameters),
+          [](const TechniqueCreateInfo& ci) { return std::make_unique<Rsm>(ci); }};
 }
 
 }  // namespace giq::realtime
