@@ -13,16 +13,12 @@
 namespace giq::realtime {
 
 namespace {
-float diagonal(const scenes::Bounds& b) {
-  return std::max(glm::length(b.extent()), 1e-6f);
-}
-glm::vec3 centre(const scenes::Bounds& b) {
-  return b.empty() ? glm::vec3(0.0f) : 0.5f * (b.lo + b.hi);
-}
+float diagonal(const scenes::Bounds& b) { return std::max(glm::length(b.extent()), 1e-6f); }
+glm::vec3 centre(const scenes::Bounds& b) { return b.empty() ? glm::vec3(0.0f) : 0.5f * (b.lo + b.hi); }
 }  // namespace
 
-ShadowMaps::ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene,
-                       const scenes::Bounds& bounds, uint32_t size)
+ShadowMaps::ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene, const scenes::Bounds& bounds,
+                       uint32_t size)
     : ctx_(ctx), scene_(scene), bounds_(bounds), size_(size), sampler_(ctx, false, true) {
   GraphicsDesc g;
   g.vertex_spirv = compiler.compile("passes/shadow_maps.vert");
@@ -31,8 +27,7 @@ ShadowMaps::ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& s
   pipeline_ = Pipeline::graphics(ctx, g, SceneGpu::binding_types(), sizeof(glm::mat4));
 }
 
-glm::mat4 ShadowMaps::cube_face_view_proj(glm::vec3 position, const scenes::Bounds& bounds,
-                                          int face) {
+glm::mat4 ShadowMaps::cube_face_view_proj(glm::vec3 position, const scenes::Bounds& bounds, int face) {
   // Near plane: a thousandth of the scene; far: beyond the farthest point of the scene.
   const float diag = diagonal(bounds);
   const float znear = 1e-3f * diag, zfar = 2.0f * diag + glm::length(position - centre(bounds));
@@ -67,8 +62,7 @@ void ShadowMaps::create_resources() {
   const uint32_t n = std::max<uint32_t>(1, layer_count());
   depth_ = Image(ctx_, {size_, size_, n, VK_FORMAT_D32_SFLOAT,
                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
-  layer_buffer_ = Buffer(ctx_, n * sizeof(gpu::GpuShadowLayer), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                         MemoryUsage::Upload);
+  layer_buffer_ = Buffer(ctx_, n * sizeof(gpu::GpuShadowLayer), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
 }
 
 void ShadowMaps::update_cascades(const Source& s, const scenes::Camera& camera, float aspect) {
@@ -91,8 +85,7 @@ void ShadowMaps::update_cascades(const Source& s, const scenes::Camera& camera, 
   const glm::mat4 view = glm::lookAtRH(c0 - s.v * (2.0f * radius), c0, up);
   auto split = [&](int i) {
     const float f = float(i) / float(kCascades);
-    const float log_split = near_d * std::pow(far_d / near_d, f),
-                uni = near_d + (far_d - near_d) * f;
+    const float log_split = near_d * std::pow(far_d / near_d, f), uni = near_d + (far_d - near_d) * f;
     return split_lambda_ * log_split + (1.0f - split_lambda_) * uni;
   };
   for (int c = 0; c < kCascades; ++c) {
@@ -102,8 +95,7 @@ void ShadowMaps::update_cascades(const Source& s, const scenes::Camera& camera, 
     for (int i = 0; i < 8; ++i) {
       const float d = (i & 4) ? d1 : d0;
       const float x = (i & 1) ? 1.0f : -1.0f, y = (i & 2) ? 1.0f : -1.0f;
-      corners[i] = camera.position +
-                   d * (camera.forward + x * t * aspect * camera.right + y * t * camera.up);
+      corners[i] = camera.position + d * (camera.forward + x * t * aspect * camera.right + y * t * camera.up);
       mid += corners[i] / 8.0f;
     }
     float r = 0.0f;
@@ -121,8 +113,7 @@ void ShadowMaps::update_cascades(const Source& s, const scenes::Camera& camera, 
   }
 }
 
-void ShadowMaps::record(VkCommandBuffer cmd, const scenes::Camera& camera, float aspect,
-                        GpuTimer& timer) {
+void ShadowMaps::record(VkCommandBuffer cmd, const scenes::Camera& camera, float aspect, GpuTimer& timer) {
   if (!depth_) create_resources();
   for (const auto& s : sources_)
     if (!s.cube) update_cascades(s, camera, aspect);

@@ -27,8 +27,7 @@ class ShadowMaps {
  public:
   static constexpr int kCascades = 3;
 
-  ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene,
-             const scenes::Bounds& bounds, uint32_t size);
+  ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene, const scenes::Bounds& bounds, uint32_t size);
 
   // View-projection of face f (+x, -x, +y, -y, +z, -z) of a cube centred at `position`, with
   // near and far planes covering `bounds`; shared with the reflective shadow maps (passes/rsm.h).
