@@ -27,6 +27,15 @@ ShadowMaps::ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& s
   pipeline_ = Pipeline::graphics(ctx, g, SceneGpu::binding_types(), sizeof(glm::mat4));
 }
 
+uint32_t ShadowMaps::add_cube(glm::vec3 position) {
+  const uint32_t first = uint32_t(layers_.size());
+  sources_.push_back({true, position, first});
+  layers_.resize(first + 6);
+  params_.resize(first + 6);
+  place_cube(sources_.back());
+  return first;
+}
+
 glm::mat4 ShadowMaps::cube_face_view_proj(glm::vec3 position, const scenes::Bounds& bounds, int face) {
   // Near plane: a thousandth of the scene; far: beyond the farthest point of the scene.
   const float diag = diagonal(bounds);
@@ -37,15 +46,30 @@ glm::mat4 ShadowMaps::cube_face_view_proj(glm::vec3 position, const scenes::Boun
   return proj * glm::lookAtRH(position, position + dirs[face], ups[face]);
 }
 
-uint32_t ShadowMaps::add_cube(glm::vec3 position) {
-  const uint32_t first = uint32_t(layers_.size());
-  sources_.push_back({true, position, first});
+void ShadowMaps::place_cube(const Source& s) {
   for (int f = 0; f < 6; ++f) {
-    layers_.push_back(cube_face_view_proj(position, bounds_, f));
+    layers_[s.first_layer + f] = cube_face_view_proj(s.v, bounds_, f);
     // A 90-degree face is 2 units wide at distance 1.
-    params_.emplace_back(GIQ_SHADOW_CUBE_FACE, 2.0f / float(size_), 0.0f, 0.0f);
+    params_[s.first_layer + f] = glm::vec4(GIQ_SHADOW_CUBE_FACE, 2.0f / float(size_), 0.0f, 0.0f);
   }
-  return first;
+}
+
+void ShadowMaps::move(size_t source, glm::vec3 v) {
+  Source& s = sources_.at(source);
+  const glm::vec3 moved = s.cube ? v : glm::normalize(v);
+  if (moved == s.v) return;
+  s.v = moved;
+  if (s.cube) {
+    place_cube(s);
+    cubes_stale_ = true;
+  }
+}
+
+void ShadowMaps::set_bounds(const scenes::Bounds& bounds) {
+  bounds_ = bounds;
+  for (const auto& s : sources_)
+    if (s.cube) place_cube(s);
+  cubes_stale_ = true;
 }
 
 uint32_t ShadowMaps::add_cascades(glm::vec3 direction) {
@@ -125,7 +149,7 @@ void ShadowMaps::record(VkCommandBuffer cmd, const scenes::Camera& camera, float
   pipeline_.bind(cmd);
   pipeline_.push_descriptors(cmd, scene_.descriptors());
   for (uint32_t l = 0; l < layer_count(); ++l) {
-    if (cache_static_ && rendered_ && params_[l].x == GIQ_SHADOW_CUBE_FACE) continue;
+    if (cache_static_ && !cubes_stale_ && params_[l].x == GIQ_SHADOW_CUBE_FACE) continue;
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = depth_.layer_view(l);
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -151,7 +175,7 @@ void ShadowMaps::record(VkCommandBuffer cmd, const scenes::Camera& camera, float
     vkCmdEndRendering(cmd);
   }
   depth_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-  rendered_ = true;
+  cubes_stale_ = false;
   timer.end(cmd);
 }
 

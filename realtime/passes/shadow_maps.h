@@ -39,10 +39,14 @@ class ShadowMaps {
   // The fraction between logarithmic (1) and uniform (0) cascade splits (Zhang et al. 2006,
   // "Parallel-Split Shadow Maps", practical split scheme).
   void set_split_lambda(float lambda) { split_lambda_ = lambda; }
-  // Render cube maps on the first record() only. The geometry and the punctual lights of a
-  // technique instance never change (an animated scene recreates the technique each frame),
-  // so their cube maps stay valid; cascades follow the camera and are always re-rendered.
+  // Render cube maps only when they are stale (first record, a moved source, moved geometry);
+  // cascades follow the camera and are always re-rendered.
   void set_cache_static(bool cache) { cache_static_ = cache; }
+  // Moves source `source` (numbered in the order of the add_ calls) to a new position (cube)
+  // or direction (cascades), for a light that moved.
+  void move(size_t source, glm::vec3 v);
+  // The geometry moved: new scene bounds, and every cube map is re-rendered.
+  void set_bounds(const scenes::Bounds& bounds);
 
   // Renders every layer; cascades follow the camera. Pass name "shadow_maps".
   void record(VkCommandBuffer cmd, const scenes::Camera& camera, float aspect, GpuTimer& timer);
@@ -60,6 +64,7 @@ class ShadowMaps {
     uint32_t first_layer;
   };
   void create_resources();
+  void place_cube(const Source& s);
   void update_cascades(const Source& s, const scenes::Camera& camera, float aspect);
 
   Context& ctx_;
@@ -68,7 +73,7 @@ class ShadowMaps {
   uint32_t size_;
   float split_lambda_ = 0.5f;
   bool cache_static_ = true;
-  bool rendered_ = false;
+  bool cubes_stale_ = true;
   std::vector<Source> sources_;
   std::vector<glm::mat4> layers_;
   std::vector<glm::vec4> params_;

@@ -42,15 +42,37 @@ void require_supported(const scenes::Scene& scene) {
 }
 }  // namespace
 
-SceneGpu::SceneGpu(Context& ctx, const scenes::Scene& scene) : geometry_((require_supported(scene), flatten(scene))) {
+SceneGpu::SceneGpu(Context& ctx, const scenes::Scene& scene) : ctx_(&ctx) {
+  require_supported(scene);
+  upload_geometry(scene, flatten(scene));
+  previous_vertices_ = Buffer::storage(ctx, vertices_host_);
+  upload_lights(scene);
+}
+
+SceneChange SceneGpu::update(const scenes::Scene& posed) {
+  // The previous frame's vertices, for motion vectors: what is current now, before it moves.
+  previous_vertices_.upload(vertices_host_.data(), vertices_host_.size() * sizeof(glm::vec4));
+  SceneChange change = SceneChange::None;
+  FlatGeometry g = flatten(posed);
+  if (g.positions != geometry_.positions || g.normals != geometry_.normals) {
+    upload_geometry(posed, std::move(g));
+    change = SceneChange::Geometry;
+  }
+  if (upload_lights(posed) && change == SceneChange::None) change = SceneChange::Lights;
+  return change;
+}
+
+void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat) {
   using namespace gpu;
+  Context& ctx = *ctx_;
+  geometry_ = std::move(flat);
   triangle_count_ = uint32_t(geometry_.triangles.size());
   bvh_ = build_bvh(geometry_.positions, geometry_.triangles);
 
-  std::vector<GpuVertex> vertices(geometry_.positions.size());
-  for (size_t i = 0; i < vertices.size(); ++i)
-    vertices[i] = {glm::vec4(geometry_.positions[i], 1.0f), glm::vec4(geometry_.normals[i], 0.0f)};
-
+  static_assert(sizeof(GpuVertex) == 2 * sizeof(glm::vec4));
+  vertices_host_.clear();
+  for (size_t i = 0; i < geometry_.positions.size(); ++i)
+    vertices_host_.insert(vertices_host_.end(), {glm::vec4(geometry_.positions[i], 1.0f), glm::vec4(geometry_.normals[i], 0.0f)});
   // Emissive triangles: chosen by power, as the reference does; the CDF is accumulated in
   // double so that a million small lights still end at exactly 1.
   std::vector<GpuEmissive> emissive;
@@ -92,6 +114,21 @@ SceneGpu::SceneGpu(Context& ctx, const scenes::Scene& scene) : geometry_((requir
     materials.push_back(g);
   }
 
+  std::vector<GpuBvhNode> nodes(bvh_.nodes.size());
+  static_assert(sizeof(GpuBvhNode) == sizeof(BvhNode));
+  std::memcpy(nodes.data(), bvh_.nodes.data(), nodes.size() * sizeof(GpuBvhNode));
+
+  vertices_ = Buffer::storage(ctx, vertices_host_);
+  triangles_ = Buffer::storage(ctx, triangles);
+  materials_ = Buffer::storage(ctx, materials);
+  nodes_ = Buffer::storage(ctx, nodes);
+  prims_ = Buffer::storage(ctx, bvh_.prims);
+  emissive_ = Buffer::storage(ctx, emissive);
+  indices_ = Buffer::storage(ctx, indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+}
+
+bool SceneGpu::upload_lights(const scenes::Scene& scene) {
+  using namespace gpu;
   std::vector<GpuLight> lights;
   for (const auto& l : scene.lights) {
     GpuLight g;
@@ -109,19 +146,15 @@ SceneGpu::SceneGpu(Context& ctx, const scenes::Scene& scene) : geometry_((requir
     lights.push_back(g);
   }
   light_count_ = uint32_t(lights.size());
-
-  std::vector<GpuBvhNode> nodes(bvh_.nodes.size());
-  static_assert(sizeof(GpuBvhNode) == sizeof(BvhNode));
-  std::memcpy(nodes.data(), bvh_.nodes.data(), nodes.size() * sizeof(GpuBvhNode));
-
-  vertices_ = Buffer::storage(ctx, vertices);
-  triangles_ = Buffer::storage(ctx, triangles);
-  materials_ = Buffer::storage(ctx, materials);
-  nodes_ = Buffer::storage(ctx, nodes);
-  prims_ = Buffer::storage(ctx, bvh_.prims);
-  lights_ = Buffer::storage(ctx, lights);
-  emissive_ = Buffer::storage(ctx, emissive);
-  indices_ = Buffer::storage(ctx, indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  static_assert(sizeof(GpuLight) % sizeof(glm::vec4) == 0);
+  const size_t bytes = lights.size() * sizeof(GpuLight);
+  if (lights_ && bytes == lights_host_.size() * sizeof(glm::vec4) &&
+      std::memcmp(lights.data(), lights_host_.data(), bytes) == 0)
+    return false;
+  lights_ = Buffer::storage(*ctx_, lights);
+  lights_host_.resize(bytes / sizeof(glm::vec4));
+  std::memcpy(lights_host_.data(), lights.data(), bytes);
+  return true;
 }
 
 std::vector<VkDescriptorType> SceneGpu::binding_types() {
