@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
     // `direct` twice: with the rasterised G-buffer (the default) and with the ray-traced one
     // (same image; on GPUs with few graphics units, such as the H100, much faster).
     const std::vector<std::pair<std::string, std::vector<std::string>>> variants = {
-        {"direct", {}}, {"direct", {"gbuffer_ray_traced=1"}}, {"pt", {}}};
+        {"direct", {}}, {"direct", {"gbuffer_ray_traced=1"}}, {"pt", {}}, {"rsm", {}}, {"lpv", {}}};
     for (const auto& [t, params] : variants) {
       for (const auto& sz : sizes) {
         if (quick && sz[0] > 1280) break;
