@@ -89,7 +89,7 @@ void build(const scenes::Scene& scene, uint32_t ortho_size, uint32_t cube_size,
 }  // namespace
 
 std::vector<Parameter> ReflectiveShadowMaps::parameters() {
-  return {{"rsm_size", 2048, 16, 8192, true,
+  return {{"rsm_size", 1024, 16, 8192, true,
            "RSM texels per side of a directional light's window over the scene"},
           {"rsm_cube_size", 512, 16, 4096, true,
            "RSM texels per side of each cube face (point, spot and area lights)"}};
