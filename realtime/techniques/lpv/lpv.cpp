@@ -196,7 +196,9 @@ class Lpv : public Technique {
  private:
   // Cubic cells: the grid spans the scene's largest extent (plus a cell on each side, so that
   // the half-cell normal offsets stay inside), centred on the scene or on the camera (snapped
-  // to whole cells, so that a moving camera does not make the injection crawl).
+  // to whole cells, so that a moving camera does not make the injection crawl). A grid ahead of
+  // the camera is for scenes larger than it; sized from the scene, it only covers the scene
+  // when the camera is inside or near it.
   gpu::LpvGrid make_grid(const FrameInput& in) const {
     const scenes::Bounds& b = in.scene.bounds;
     const glm::vec3 ext = b.empty() ? glm::vec3(1.0f) : b.extent();
@@ -204,8 +206,11 @@ class Lpv : public Technique {
     const float cell = extent / float(std::max<uint32_t>(1, res_ - 2));
     const glm::vec3 centre = b.empty() ? glm::vec3(0.0f) : 0.5f * (b.lo + b.hi);
     glm::vec3 origin = centre - 0.5f * cell * float(res_);
-    if (camera_centred_)
-      origin = glm::floor((in.camera.position - 0.5f * cell * float(res_)) / cell) * cell;
+    if (camera_centred_) {
+      // Centred half a grid ahead of the camera: the grid holds the near part of the view.
+      const glm::vec3 c = in.camera.position + in.camera.forward * (0.5f * cell * float(res_));
+      origin = glm::floor((c - 0.5f * cell * float(res_)) / cell) * cell;
+    }
     // Fixed point for the injection sums: no cell's SH coefficient can exceed the total flux
     // of all RSM texels / pi x 1.0233 (the cosine lobe's largest coefficient), bounded by the
     // light's brightest channel x 4 pi / 6 per cube face or x window area per ortho layer;
@@ -251,7 +256,7 @@ TechniqueInfo lpv_technique() {
   parameters.push_back({"propagation_steps", 50, 0, 100, true,
                         "propagation steps (seed 000: 50, 1-100); 0 = the injected light only"});
   parameters.push_back({"lpv_placement", 0, 0, 1, true,
-                        "0: the grid fits the scene's bounds; 1: centred on the camera"});
+                        "0: the grid fits the scene's bounds; 1: centred half a grid ahead of the camera"});
   parameters.push_back(
       {"intensity", 1, 0, 100, false, "multiplier of the indirect light (1 = physical units)"});
   return {
