@@ -84,8 +84,9 @@ uint32_t ShadowMaps::add_cascades(glm::vec3 direction) {
 
 void ShadowMaps::create_resources() {
   const uint32_t n = std::max<uint32_t>(1, layer_count());
+  // An array view even for one layer (a scene without lights): the shaders read a 2D array.
   depth_ = Image(ctx_, {size_, size_, n, VK_FORMAT_D32_SFLOAT,
-                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true});
   layer_buffer_ = Buffer(ctx_, n * sizeof(gpu::GpuShadowLayer), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
 }
 
