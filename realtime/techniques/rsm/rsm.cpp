@@ -21,8 +21,10 @@ namespace {
 
 // The thesis draws (xi1, xi2) uniformly at random once for all pixels (seed 000, appendix:
 // the constant buffer `xi`); a Hammersley set has the same distribution with less clumping:
-// xi1 = (i + 1/2) / N stratified, xi2 the base-2 radical inverse of i.
-std::vector<glm::vec4> polar_samples(uint32_t n) {
+// xi1 = (i + 1/2) / N stratified, xi2 the base-2 radical inverse of i. Stored per sample:
+// (xi1, sin 2 pi xi2, cos 2 pi xi2, cos(pi r_max xi1)), the last for cube maps' cones, so the
+// gather evaluates no trigonometric function.
+std::vector<glm::vec4> polar_samples(uint32_t n, float r_max) {
   std::vector<glm::vec4> xi(n);
   for (uint32_t i = 0; i < n; ++i) {
     uint32_t bits = i;
@@ -33,7 +35,7 @@ std::vector<glm::vec4> polar_samples(uint32_t n) {
     bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
     const double xi1 = (i + 0.5) / n, xi2 = double(bits) * 2.3283064365386963e-10;
     xi[i] = glm::vec4(float(xi1), float(std::sin(2.0 * M_PI * xi2)),
-                      float(std::cos(2.0 * M_PI * xi2)), 0.0f);
+                      float(std::cos(2.0 * M_PI * xi2)), float(std::cos(M_PI * r_max * xi1)));
   }
   return xi;
 }
@@ -57,7 +59,7 @@ class Rsm : public Technique {
         blur_(ci.parameters.get_int("blur") != 0),
         low_(ci.ctx, {upsample_.low_width(), upsample_.low_height(), 1,
                       VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT}) {
-    sample_buffer_ = Buffer::storage(ci.ctx, polar_samples(samples_));
+    sample_buffer_ = Buffer::storage(ci.ctx, polar_samples(samples_, r_max_));
     auto bindings = SceneGpu::binding_types();
     bindings.insert(bindings.end(),
                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,

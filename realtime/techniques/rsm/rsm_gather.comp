@@ -94,9 +94,9 @@ vec3 gather_cube(uint first, vec3 c, vec3 x, vec3 n) {
   vec3 sum = vec3(0.0);
   for (uint i = 0u; i < uint(n_samples); ++i) {
     vec4 s = xi[i];
-    float a = theta_max * s.x;
-    float sa = sin(a);
-    vec3 w = cos(a) * w0 + sa * (s.y * t + s.z * b);
+    // s.w = cos(theta_max xi1); the angle lies in [0, pi], so its sine is the positive root.
+    float sa = sqrt(max(0.0, 1.0 - s.w * s.w));
+    vec3 w = s.w * w0 + sa * (s.y * t + s.z * b);
     vec3 aw = abs(w);
     uint face = aw.x >= aw.y && aw.x >= aw.z ? (w.x >= 0.0 ? 0u : 1u)
               : aw.y >= aw.z                 ? (w.y >= 0.0 ? 2u : 3u)
