@@ -9,14 +9,21 @@
 namespace giq::realtime {
 
 Parameter GBufferPass::ray_traced_parameter() {
-  return {"gbuffer_ray_traced", 0, 0, 1, true,
-          "1: build the G-buffer by casting camera rays through the BVH in compute instead of rasterising (same "
-          "contents; faster on GPUs with few graphics units)"};
+  return {"gbuffer_ray_traced", -1, -1, 1, true,
+          "G-buffer builder: 1 casts the camera rays through the BVH in compute, 0 rasterises (same contents); "
+          "-1 picks rays on GPUs and the rasteriser on CPU devices"};
+}
+
+GBufferBuilder GBufferPass::builder(const ParameterValues& parameters) {
+  const int v = parameters.get_int("gbuffer_ray_traced");
+  return v < 0 ? GBufferBuilder::Auto : v == 0 ? GBufferBuilder::Raster : GBufferBuilder::RayTraced;
 }
 
 GBufferPass::GBufferPass(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene,
-                         const scenes::FeatureSet& features, uint32_t width, uint32_t height, bool ray_traced)
-    : scene_(scene), width_(width), height_(height), ray_traced_(ray_traced), compiler_(compiler), ctx_(ctx) {
+                         const scenes::FeatureSet& features, uint32_t width, uint32_t height, GBufferBuilder builder)
+    : scene_(scene), width_(width), height_(height),
+      ray_traced_(builder == GBufferBuilder::RayTraced || (builder == GBufferBuilder::Auto && ctx.info().type != "cpu")),
+      compiler_(compiler), ctx_(ctx) {
   const VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
   position_ = Image(ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, color});
   normal_ = Image(ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, color});

@@ -21,7 +21,10 @@ ShadowMaps::ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& s
                        uint32_t size)
     : ctx_(ctx), scene_(scene), bounds_(bounds), size_(size), sampler_(ctx, false, true) {
   GraphicsDesc g;
-  g.vertex_spirv = compiler.compile("passes/shadow_maps.vert");
+  const auto defines = feature_defines(scene.features());
+  g.vertex_spirv = compiler.compile("passes/shadow_maps.vert", defines);
+  // Depth only, except where alpha-masked casters need their cut-outs discarded.
+  if (scene.features().alpha_mask) g.fragment_spirv = compiler.compile("passes/shadow_maps.frag", defines);
   g.depth_format = VK_FORMAT_D32_SFLOAT;
   g.depth_bias = true;
   pipeline_ = Pipeline::graphics(ctx, g, SceneGpu::binding_types(), sizeof(glm::mat4));

@@ -5,7 +5,8 @@
 // 90-degree layers (+x, -x, +y, -y, +z, -z); the lighting shader picks the face by the major
 // axis of the light-to-point direction. Depth uses slope-scaled bias when rendering and a
 // normal offset of a few texels when sampling (shaders/shadow.glsl); filtering is PCF over a
-// (2r+1)^2 texel grid.
+// (2r+1)^2 texel grid. In scenes with alpha masks a fragment shader discards the cut-outs,
+// which cast no shadow.
 
 #include <cstdint>
 #include <glm/glm.hpp>

@@ -30,7 +30,8 @@ struct Frame {
 Frame gbuffer_sequence(Context& ctx, ShaderCompiler& compiler, const std::vector<scenes::Scene>& poses,
                        const std::vector<scenes::Camera>& cameras, uint32_t size, bool ray_traced) {
   SceneGpu gpu(ctx, poses[0]);
-  GBufferPass gbuffer(ctx, compiler, gpu, poses[0].features, size, size, ray_traced);
+  GBufferPass gbuffer(ctx, compiler, gpu, poses[0].features, size, size,
+                      ray_traced ? GBufferBuilder::RayTraced : GBufferBuilder::Raster);
   gbuffer.enable_motion_vectors();
   GpuTimer timer(ctx);
   for (size_t f = 0; f < poses.size(); ++f) {

@@ -1,10 +1,11 @@
 #pragma once
 // The scene on the GPU for every technique: vertices, triangles, materials, the BVH, punctual
-// lights and the emissive triangles with their power CDF, bound as bindings 0..6 of any
-// pipeline that reads the scene (shaders/scene_shared.h, shaders/scene.glsl). An animated
-// scene is uploaded once and then updated per frame with the posed scene: what moved is
-// re-uploaded (and the BVH rebuilt when geometry moved), so pipelines must take descriptors()
-// when they record, never keep them across frames.
+// lights, the emissive triangles with their power CDF and, for textured scenes, texture
+// coordinates, tangents and texels, bound as bindings 0..9 of any pipeline that reads the
+// scene (shaders/scene_shared.h, shaders/scene.glsl). An animated scene is uploaded once and
+// then updated per frame with the posed scene: what moved is re-uploaded (and the BVH rebuilt
+// when geometry moved), so pipelines must take descriptors() when they record, never keep
+// them across frames.
 //
 // All meshes are concatenated in Scene::meshes order; a triangle's global index (reported by
 // ray queries) is its mesh's offset plus its index in the mesh.
@@ -52,18 +53,24 @@ class SceneGpu {
   // motion vectors.
   const Buffer& previous_vertices() const { return previous_vertices_; }
   const FlatGeometry& geometry() const { return geometry_; }
+  // The FeatureSet the scene was uploaded for; passes compile their shaders with its defines.
+  const scenes::FeatureSet& features() const { return features_; }
+  uint32_t texture_count() const { return texture_count_; }
 
  private:
+  void upload_materials(const scenes::Scene& scene);
   void upload_geometry(const scenes::Scene& scene, FlatGeometry flat);
   bool upload_lights(const scenes::Scene& scene);  // false when nothing changed
 
   Context* ctx_;
   FlatGeometry geometry_;
+  scenes::FeatureSet features_;
   Bvh bvh_;
   // What the vertex and light buffers hold (gpu::GpuVertex, gpu::GpuLight as vec4 rows).
   std::vector<glm::vec4> vertices_host_, lights_host_;
   Buffer vertices_, triangles_, materials_, nodes_, prims_, lights_, emissive_, indices_, previous_vertices_;
-  uint32_t triangle_count_ = 0, light_count_ = 0, emissive_count_ = 0;
+  Buffer vertex_extra_, textures_, texels_;
+  uint32_t triangle_count_ = 0, light_count_ = 0, emissive_count_ = 0, texture_count_ = 0;
 };
 
 }  // namespace giq::realtime
