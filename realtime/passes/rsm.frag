@@ -13,37 +13,23 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/scene.glsl"
-#include "shaders/brdf.glsl"
+#include "shaders/surface.glsl"
 #include "shaders/lights.glsl"
 #include "passes/rsm_shared.h"
 #include "passes/rsm.glsl"
+#include "passes/rsm_albedo.glsl"
 
 layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 0) readonly buffer Emitters { GpuRsmEmitter emitters[]; };
 
 layout(push_constant) uniform Push { RsmDrawPush pc; };
 
 layout(location = 0) in vec3 in_position;
-layout(location = 1) in vec3 in_normal;
 
 layout(location = 0) out uvec4 out_surface;
 layout(location = 1) out vec4 out_flux;
 
-// The part of incident light a surface re-emits diffusely: the diffuse lobe's albedo of
-// brdf.glsl, with the dielectric Fresnel term taken at normal incidence (the hemispherical
-// average is not needed to first order for the VPL's flux).
-vec3 diffuse_albedo(GpuMaterial m) {
-  Surface s = make_surface(m, vec3(0.0, 0.0, 1.0));
-#ifdef GIQ_SPECULAR
-  vec3 f0 = dielectric_f0(s);
-  return (1.0 - s.metallic) * (1.0 - max(f0.r, max(f0.g, f0.b))) * s.base_color;
-#else
-  return (1.0 - s.metallic) * s.base_color;
-#endif
-}
-
 void main() {
   uint tri = uint(gl_PrimitiveID);
-  GpuTriangle t = scene_triangles[tri];
   vec3 a, b, c;
   triangle_vertices(tri, a, b, c);
   vec3 ng = normalize(cross(b - a, c - a));
@@ -63,15 +49,18 @@ void main() {
     density = punctual_incident(l, p, wi, dist);
     if (int(l.position.w) != GIQ_LIGHT_DIRECTIONAL) density *= dist * dist;
   }
-  bool back = dot(ng, wi) < 0.0;
-  GpuMaterial mat = scene_materials[t.v.w];
-  // The light sees the back of a one-sided material: black, as in the direct-lighting pass.
-  if (back && mat.params.w == 0.0) density = vec3(0.0);
-  vec3 ngv = back ? -ng : ng;
-  vec3 ns = dot(in_normal, in_normal) > 0.0 ? normalize(in_normal) : ngv;
-  if (dot(ns, ngv) < 0.0) ns = -ns;
-  // Light arriving below the shading horizon is not reflected (direct_light.comp's cos_i > 0).
-  if (dot(ns, wi) <= 0.0) density = vec3(0.0);
+  // The surface as the reference describes it, seen from the light: normals (interpolated,
+  // normal-mapped, on the light's side; the back of a one-sided material is black, as in the
+  // direct-lighting pass) and the material with its textures at this point.
+  vec2 bary = plane_barycentrics(p, a, b, c);
+#ifdef GIQ_ALPHA_MASK
+  if (alpha_cut(tri, bary.x, bary.y)) discard;  // cut-out texels stop no light
+#endif
+  HitNormals h = hit_normals(tri, bary.x, bary.y, -wi);
+  vec3 ns = h.ns;
+  // Light below the geometric or the shading horizon is not reflected (direct_light.comp).
+  if (h.black || dot(h.ng, wi) <= 0.0 || dot(ns, wi) <= 0.0) density = vec3(0.0);
+  Surface s = hit_material(tri, bary.x, bary.y, ns);
   out_surface = rsm_encode_surface(p, ns);
-  out_flux = vec4(diffuse_albedo(mat) * density * pc.params.y, 0.0);
+  out_flux = vec4(diffuse_albedo(s) * density * pc.params.y, 0.0);
 }

@@ -9,11 +9,9 @@
 layout(push_constant) uniform Push { RsmDrawPush pc; };
 
 layout(location = 0) out vec3 out_position;
-layout(location = 1) out vec3 out_normal;
 
 void main() {
   vec3 p = scene_vertices[gl_VertexIndex].position.xyz;
   out_position = p;
-  out_normal = scene_vertices[gl_VertexIndex].normal.xyz;
   gl_Position = pc.view_proj * vec4(p, 1.0);
 }

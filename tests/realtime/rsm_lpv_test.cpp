@@ -46,9 +46,12 @@ double mean(const image::Image& img, const std::string& channel) {
 }
 
 TEST_F(RsmLpvTest, EveryBuiltInSceneRendersFinite) {
-  for (const char* name : {"cornell", "leak", "sunroom", "movinglight"}) {
-    const scenes::Scene s =
-        scenes::load(std::filesystem::path(GIQ_SCENES_DIR) / (std::string(name) + ".gltf"));
+  // The built-in scenes, and the textured room (textures, a normal map, an alpha mask: the RSM
+  // texels and the receivers take their material from the textures).
+  const std::filesystem::path textured = std::filesystem::path(GIQ_TEST_DATA) / "scenes/textured_room.gltf";
+  for (const std::string name : {"cornell", "leak", "sunroom", "movinglight", "textured_room"}) {
+    const scenes::Scene s = scenes::load(name == "textured_room" ? textured
+                                                                 : std::filesystem::path(GIQ_SCENES_DIR) / (name + ".gltf"));
     for (const char* t : {"rsm", "lpv"}) {
       // Two frames of the moving light: the second re-renders the RSM for the moved light.
       const image::Image img = render(s, t, 24, small(t), s.features.animation ? 2 : 1);

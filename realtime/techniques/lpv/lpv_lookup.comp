@@ -8,7 +8,8 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/scene.glsl"
-#include "shaders/brdf.glsl"
+#include "shaders/surface.glsl"
+#include "passes/rsm_albedo.glsl"
 #include "techniques/lpv/lpv_shared.h"
 #include "techniques/lpv/lpv_sh.glsl"
 
@@ -54,13 +55,15 @@ void main() {
       bool inside = all(greaterThanEqual(g, vec3(-0.5))) && all(lessThan(g, vec3(float(res) - 0.5)));
       vec4 lobe = cos_lobe_sh(-n);
       vec3 e = inside ? max(vec3(dot(r, lobe), dot(gg, lobe), dot(b, lobe)), vec3(0.0)) / (cell * cell) : vec3(0.0);
-      Surface s = make_surface(mat, n);
-#ifdef GIQ_SPECULAR
-      vec3 f0 = dielectric_f0(s);
-      vec3 albedo = (1.0 - s.metallic) * (1.0 - max(f0.r, max(f0.g, f0.b))) * s.base_color;
-#else
-      vec3 albedo = (1.0 - s.metallic) * s.base_color;
+      // The receiver's material at the G-buffer point (deferred texturing, as direct_light.comp).
+      uint tri = ids.x - 1u;
+      vec2 bary = vec2(0.0);
+#ifdef GIQ_SURFACE_TEXTURES
+      vec3 ta, tb, tc;
+      triangle_vertices(tri, ta, tb, tc);
+      bary = plane_barycentrics(x, ta, tb, tc);
 #endif
+      vec3 albedo = diffuse_albedo(hit_material(tri, bary.x, bary.y, n));
       radiance = albedo / PI * e * grid.params.y;
     }
   }
