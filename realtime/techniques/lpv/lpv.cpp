@@ -91,7 +91,7 @@ class Lpv : public Technique {
         composite_(ci.ctx, ci.compiler, ci.width, ci.height),
         res_(uint32_t(ci.parameters.get_int("lpv_grid"))),
         steps_(ci.parameters.get_int("propagation_steps")),
-        camera_centred_(ci.parameters.get_int("lpv_placement") != 0),
+        placement_(ci.parameters.get_int("lpv_placement")),
         downsample_(uint32_t(ci.parameters.get_int("rsm_downsample"))),
         intensity_(float(ci.parameters.get("intensity"))),
         indirect_(ci.ctx, {ci.width, ci.height, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
@@ -195,10 +195,10 @@ class Lpv : public Technique {
 
  private:
   // Cubic cells: the grid spans the scene's largest extent (plus a cell on each side, so that
-  // the half-cell normal offsets stay inside), centred on the scene or on the camera (snapped
-  // to whole cells, so that a moving camera does not make the injection crawl). A grid ahead of
-  // the camera is for scenes larger than it; sized from the scene, it only covers the scene
-  // when the camera is inside or near it.
+  // the half-cell normal offsets stay inside), centred on the scene, on the camera or half a
+  // grid ahead of it (the last two snapped to whole cells, so that a moving camera does not
+  // make the injection crawl). Grids that follow the camera are for scenes larger than them;
+  // sized from the scene, they cover it only when the camera is inside or near it.
   gpu::LpvGrid make_grid(const FrameInput& in) const {
     const scenes::Bounds& b = in.scene.bounds;
     const glm::vec3 ext = b.empty() ? glm::vec3(1.0f) : b.extent();
@@ -206,9 +206,9 @@ class Lpv : public Technique {
     const float cell = extent / float(std::max<uint32_t>(1, res_ - 2));
     const glm::vec3 centre = b.empty() ? glm::vec3(0.0f) : 0.5f * (b.lo + b.hi);
     glm::vec3 origin = centre - 0.5f * cell * float(res_);
-    if (camera_centred_) {
-      // Centred half a grid ahead of the camera: the grid holds the near part of the view.
-      const glm::vec3 c = in.camera.position + in.camera.forward * (0.5f * cell * float(res_));
+    if (placement_ != 0) {
+      const float ahead = placement_ == 2 ? 0.5f * cell * float(res_) : 0.0f;
+      const glm::vec3 c = in.camera.position + in.camera.forward * ahead;
       origin = glm::floor((c - 0.5f * cell * float(res_)) / cell) * cell;
     }
     // Fixed point for the injection sums: no cell's SH coefficient can exceed the total flux
@@ -235,7 +235,7 @@ class Lpv : public Technique {
   CompositePass composite_;
   uint32_t res_;
   int steps_;
-  bool camera_centred_;
+  int placement_;  // 0 scene, 1 camera-centred, 2 half a grid ahead of the camera
   uint32_t downsample_;
   float intensity_;
   Image indirect_;
@@ -256,8 +256,8 @@ TechniqueInfo lpv_technique() {
   parameters.push_back({"propagation_steps", 50, 0, 100, true,
                         "propagation steps (seed 000: 50, 1-100); 0 = the injected light only"});
   parameters.push_back(
-      {"lpv_placement", 0, 0, 1, true,
-       "0: the grid fits the scene's bounds; 1: centred half a grid ahead of the camera"});
+      {"lpv_placement", 0, 0, 2, true,
+       "0: the grid fits the scene's bounds; 1: centred on the camera; 2: half a grid ahead of it"});
   parameters.push_back(
       {"intensity", 1, 0, 100, false, "multiplier of the indirect light (1 = physical units)"});
   return {
