@@ -48,10 +48,12 @@ double mean(const image::Image& img, const std::string& channel) {
 TEST_F(RsmLpvTest, EveryBuiltInSceneRendersFinite) {
   // The built-in scenes, and the textured room (textures, a normal map, an alpha mask: the RSM
   // texels and the receivers take their material from the textures).
-  const std::filesystem::path textured = std::filesystem::path(GIQ_TEST_DATA) / "scenes/textured_room.gltf";
+  const std::filesystem::path textured =
+      std::filesystem::path(GIQ_TEST_DATA) / "scenes/textured_room.gltf";
   for (const std::string name : {"cornell", "leak", "sunroom", "movinglight", "textured_room"}) {
-    const scenes::Scene s = scenes::load(name == "textured_room" ? textured
-                                                                 : std::filesystem::path(GIQ_SCENES_DIR) / (name + ".gltf"));
+    const scenes::Scene s = scenes::load(
+        name == "textured_room" ? textured
+                                : std::filesystem::path(GIQ_SCENES_DIR) / (name + ".gltf"));
     for (const char* t : {"rsm", "lpv"}) {
       // Two frames of the moving light: the second re-renders the RSM for the moved light.
       const image::Image img = render(s, t, 24, small(t), s.features.animation ? 2 : 1);
@@ -287,6 +289,27 @@ TEST_F(RsmLpvTest, LpvWithoutPropagationIsTheInjectedLightOnly) {
   // where walls meet within a cell, the injected light alone does reach surfaces.
   const image::Image box = render(test::cornell_box(), "lpv", 16, with("0"));
   EXPECT_GT(mean(box, "indirect.G"), 0.0);
+}
+
+TEST_F(RsmLpvTest, LpvGridsThatFollowTheCamera) {
+  // The sunroom's camera is inside the room: a scene-sized grid centred on it (1) or half a
+  // grid ahead of it (2) holds the room, so there is indirect light, finite; the grid moved,
+  // so the result differs from the grid fitted to the scene (0).
+  const scenes::Scene s = scenes::load(std::filesystem::path(GIQ_SCENES_DIR) / "sunroom.gltf");
+  auto with = [&](int placement) {
+    auto p = small("lpv");
+    p.push_back("lpv_placement=" + std::to_string(placement));
+    return render(s, "lpv", 16, p);
+  };
+  const double fit = mean(with(0), "indirect.G");
+  for (int placement : {1, 2}) {
+    const image::Image img = with(placement);
+    for (size_t i = 0; i < img.pixel_count(); ++i)
+      ASSERT_TRUE(std::isfinite(img.channel("indirect.G")[i]));
+    const double m = mean(img, "indirect.G");
+    EXPECT_GT(m, 0.0) << placement;
+    EXPECT_NE(m, fit) << placement;
+  }
 }
 
 TEST_F(RsmLpvTest, LpvInjectionIsDeterministic) {

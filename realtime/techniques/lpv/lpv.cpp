@@ -255,9 +255,9 @@ TechniqueInfo lpv_technique() {
   parameters.push_back({"lpv_grid", 32, 4, 128, true, "cells per side of the propagation volume"});
   parameters.push_back({"propagation_steps", 50, 0, 100, true,
                         "propagation steps (seed 000: 50, 1-100); 0 = the injected light only"});
-  parameters.push_back(
-      {"lpv_placement", 0, 0, 2, true,
-       "0: the grid fits the scene's bounds; 1: centred on the camera; 2: half a grid ahead of it"});
+  parameters.push_back({"lpv_placement", 0, 0, 2, true,
+                        "0: the grid fits the scene's bounds; 1: centred on the camera; 2: half a "
+                        "grid ahead of it"});
   parameters.push_back(
       {"intensity", 1, 0, 100, false, "multiplier of the indirect light (1 = physical units)"});
   return {
