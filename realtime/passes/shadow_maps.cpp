@@ -39,15 +39,19 @@ uint32_t ShadowMaps::add_cube(glm::vec3 position) {
   return first;
 }
 
-void ShadowMaps::place_cube(const Source& s) {
+glm::mat4 ShadowMaps::cube_face_view_proj(glm::vec3 position, const scenes::Bounds& bounds, int face) {
   // Near plane: a thousandth of the scene; far: beyond the farthest point of the scene.
-  const float diag = diagonal(bounds_);
-  const float znear = 1e-3f * diag, zfar = 2.0f * diag + glm::length(s.v - centre(bounds_));
+  const float diag = diagonal(bounds);
+  const float znear = 1e-3f * diag, zfar = 2.0f * diag + glm::length(position - centre(bounds));
   const glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, znear, zfar);
   const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+  return proj * glm::lookAtRH(position, position + dirs[face], ups[face]);
+}
+
+void ShadowMaps::place_cube(const Source& s) {
   for (int f = 0; f < 6; ++f) {
-    layers_[s.first_layer + f] = proj * glm::lookAtRH(s.v, s.v + dirs[f], ups[f]);
+    layers_[s.first_layer + f] = cube_face_view_proj(s.v, bounds_, f);
     // A 90-degree face is 2 units wide at distance 1.
     params_[s.first_layer + f] = glm::vec4(GIQ_SHADOW_CUBE_FACE, 2.0f / float(size_), 0.0f, 0.0f);
   }
@@ -83,8 +87,9 @@ uint32_t ShadowMaps::add_cascades(glm::vec3 direction) {
 
 void ShadowMaps::create_resources() {
   const uint32_t n = std::max<uint32_t>(1, layer_count());
+  // An array view even for one layer (a scene without lights): the shaders read a 2D array.
   depth_ = Image(ctx_, {size_, size_, n, VK_FORMAT_D32_SFLOAT,
-                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true});
   layer_buffer_ = Buffer(ctx_, n * sizeof(gpu::GpuShadowLayer), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
 }
 

@@ -30,6 +30,10 @@ class ShadowMaps {
 
   ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene, const scenes::Bounds& bounds, uint32_t size);
 
+  // View-projection of face f (+x, -x, +y, -y, +z, -z) of a cube centred at `position`, with
+  // near and far planes covering `bounds`; shared with the reflective shadow maps (passes/rsm.h).
+  static glm::mat4 cube_face_view_proj(glm::vec3 position, const scenes::Bounds& bounds, int face);
+
   // Declare the maps before the first record(); each returns its first layer.
   uint32_t add_cube(glm::vec3 position);
   uint32_t add_cascades(glm::vec3 direction);
