@@ -17,8 +17,11 @@
 #include <thread>
 #include <vector>
 
+#include "giq/image/io.h"
+#include "giq/reference/reference_exr.h"
 #include "giq/reference/renderer.h"
 #include "giq/scenes/scene.h"
+#include "long_render.h"
 
 namespace {
 
@@ -44,32 +47,18 @@ Throughput measure(const sc::Scene& s, const sc::Camera& cam, ref::RenderSetting
   return {double(stats.samples) / t, double(stats.rays) / t};
 }
 
-double rel_mse(const ref::Film& f, const ref::Film& reference, double reference_var_term) {
-  double sum = 0.0;
-  for (size_t i = 0; i < f.pixels.size(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      const double r = reference.pixels[i].mean[c], d = f.pixels[i].mean[c] - r;
-      sum += d * d / (r * r + 0.01);
-    }
-  return sum / double(f.pixels.size() * 3) - reference_var_term;
-}
-
 // Seconds for an independent render to reach `target` relMSE against `reference`,
 // interpolated in log-log between the spp counts bracketing it; -1 if not reached by max_spp.
-double time_to_error(const sc::Scene& s, const sc::Camera& cam, ref::RenderSettings rs, const ref::Film& reference,
+double time_to_error(const sc::Scene& s, const sc::Camera& cam, ref::RenderSettings rs, const giq::bench::LongRender& reference,
                      double target, uint32_t max_spp, uint32_t& spp_reached) {
-  double var_term = 0.0;
-  for (const auto& p : reference.pixels)
-    for (int c = 0; c < 3; ++c) var_term += p.variance_of_mean(c) / (p.mean[c] * p.mean[c] + 0.01);
-  var_term /= double(reference.pixels.size() * 3);
-  rs.seed = reference.pixels.empty() ? 0 : 12345;
+  rs.seed = 12345;
   ref::Renderer r(s, cam, rs);
   ref::Film f = r.make_film();
   const Clock::time_point t0 = Clock::now();
   double prev_t = 0.0, prev_e = 0.0;
   for (uint32_t spp = 1; spp <= max_spp; spp *= 2) {
     r.render(f, spp);
-    const double t = seconds_since(t0), e = rel_mse(f, reference, var_term);
+    const double t = seconds_since(t0), e = reference.rel_mse(f);
     if (e <= target) {
       spp_reached = spp;
       if (prev_t <= 0.0 || prev_e <= e) return t;
@@ -149,6 +138,9 @@ int main(int argc, char** argv) {
   double seconds = 5.0, target = 1e-3;
   uint32_t ref_spp = 4096, max_spp = 4096;
   std::vector<size_t> triangles = {10000, 100000, 1000000};
+  std::vector<std::string> names = {"cornell", "leak", "sunroom", "movinglight"};
+  std::string references;
+  bool scaling = true;
   app.add_option("--scenes", scenes_dir, "Folder of the built-in scenes")->capture_default_str();
   app.add_option("--size", size, "Image width and height")->capture_default_str();
   app.add_option("--threads", threads, "Threads (0 = all cores)")->capture_default_str();
@@ -157,6 +149,10 @@ int main(int argc, char** argv) {
   app.add_option("--target", target, "relMSE target of the time-to-error measurement")->capture_default_str();
   app.add_option("--max-spp", max_spp, "Give up time-to-error beyond this spp")->capture_default_str();
   app.add_option("--triangles", triangles, "Triangle counts of the scaling test")->capture_default_str();
+  app.add_option("--only", names, "Built-in scenes to measure")->capture_default_str();
+  app.add_option("--references", references,
+                 "Folder of long renders <scene>.exr: used when present (same size), else rendered and written there");
+  app.add_flag("!--no-scaling", scaling, "Skip the triangle-count scaling test");
   CLI11_PARSE(app, argc, argv);
 
   ref::RenderSettings rs;
@@ -164,11 +160,11 @@ int main(int argc, char** argv) {
   rs.threads = threads;
   std::printf("Machine: %u hardware threads; image %dx%d; threads %s\n\n", std::thread::hardware_concurrency(), size, size,
               threads == 0 ? "all" : std::to_string(threads).c_str());
-  std::printf("| scene | features (mask) | Msamples/s | Mrays/s | generic Msamples/s | specialisation saving | time to relMSE %.0e | spp |\n",
+  std::printf("| scene | features (mask) | Msamples/s | Mrays/s | generic Msamples/s | specialisation saving | time to relMSE %.0e | spp | long render spp |\n",
               target);
-  std::printf("|---|---|---|---|---|---|---|---|\n");
-  for (const char* name : {"cornell", "leak", "sunroom", "movinglight"}) {
-    const std::filesystem::path path = std::filesystem::path(scenes_dir) / (std::string(name) + ".gltf");
+  std::printf("|---|---|---|---|---|---|---|---|---|\n");
+  for (const std::string& name : names) {
+    const std::filesystem::path path = std::filesystem::path(scenes_dir) / (name + ".gltf");
     const sc::Scene s = sc::load(path);
     const sc::Camera cam = s.views.at(0).camera;
     const Throughput spec = measure(s, cam, rs, seconds);
@@ -178,9 +174,27 @@ int main(int argc, char** argv) {
     const ref::Renderer probe(s, cam, rs);
     ref::RenderSettings long_rs = rs;
     long_rs.seed = 777;
-    const ref::Renderer long_r(s, cam, long_rs);
-    ref::Film reference = long_r.make_film();
-    long_r.render(reference, ref_spp);
+    const std::filesystem::path cached =
+        references.empty() ? std::filesystem::path() : std::filesystem::path(references) / (name + ".exr");
+    giq::bench::LongRender reference;
+    if (!cached.empty() && std::filesystem::exists(cached)) reference = giq::bench::LongRender::from_exr(cached);
+    // A cached file counts only for the same scene content, view and image-determining settings.
+    if (reference.scene_hash != s.content_hash || reference.view != s.views.at(0).name ||
+        reference.settings != ref::settings_json(long_rs)) {
+      const ref::Renderer long_r(s, cam, long_rs);
+      ref::Film film = long_r.make_film();
+      long_r.render(film, ref_spp);
+      if (!cached.empty()) {
+        std::filesystem::create_directories(cached.parent_path());
+        ref::ReferenceMetadata meta;
+        meta.scene = path.string();
+        meta.scene_hash = s.content_hash;
+        meta.view = s.views.at(0).name;
+        meta.camera = cam;
+        giq::image::write_exr(ref::reference_image(film, long_rs, meta), cached);
+      }
+      reference = giq::bench::LongRender::from_film(film);
+    }
     uint32_t spp_reached = 0;
     const double tte = time_to_error(s, cam, rs, reference, target, max_spp, spp_reached);
     std::string feats;
@@ -190,11 +204,12 @@ int main(int argc, char** argv) {
       std::snprintf(tte_text, sizeof tte_text, "%.2f s", tte);
     else
       std::snprintf(tte_text, sizeof tte_text, "not within %u spp", max_spp);
-    std::printf("| %s | %s (%u) | %.3f | %.3f | %.3f | %.1f %% | %s | %u |\n", name, feats.c_str(), probe.feature_mask(),
+    std::printf("| %s | %s (%u) | %.3f | %.3f | %.3f | %.1f %% | %s | %u | %.0f |\n", name.c_str(), feats.c_str(), probe.feature_mask(),
                 spec.samples_per_s / 1e6, spec.rays_per_s / 1e6, gen.samples_per_s / 1e6,
-                100.0 * (1.0 - gen.samples_per_s / spec.samples_per_s), tte_text, spp_reached);
+                100.0 * (1.0 - gen.samples_per_s / spec.samples_per_s), tte_text, spp_reached, reference.spp);
     std::fflush(stdout);
   }
+  if (!scaling) return 0;
   std::printf("\n| triangles | BVH build s | Msamples/s | Mrays/s |\n|---|---|---|---|\n");
   for (size_t n : triangles) {
     const sc::Scene s = tessellated(n);
