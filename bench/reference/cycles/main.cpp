@@ -1,13 +1,16 @@
 // giq-bench-cycles: giq's reference path tracer against Blender's Cycles (CPU) on the same
 // Lambertian glTF scene, at the same size and spp, both measured against giq's long render.
 //
-// For each repetition, Cycles (render_cycles.py inside `blender -b`, one process rendering
-// every spp count) and giq (in this process) render one independent image per spp count;
-// the two alternate which goes first, so slow phases of a shared machine hit both alike.
+// For each repetition, Cycles (render_cycles.py inside `blender -b`, one process that renders
+// on request) and giq (in this process) render one independent image per spp count, one
+// right after the other, alternating which goes first, so that the slow phases of a shared
+// machine hit both alike.
 // Each image's relMSE against the long render (its own variance subtracted, long_render.h)
 // and its render time give a curve error(time) per renderer and repetition; the time to reach
 // a relMSE is interpolated on it in log-log. The ratio Cycles time / giq time at equal error
-// is taken within each repetition, then the median over repetitions is reported.
+// is taken within each repetition, then the median over repetitions is reported; so is the
+// median over image pairs of the ratio of time x relMSE (equal to the time ratio at equal
+// error when relMSE ~ 1/time, which the reported slopes check).
 //
 // Whether the two renderers compute the same image is checked, not assumed: the mean of every
 // channel over the image, and an estimate of the squared bias of Cycles' image against giq's
@@ -28,6 +31,10 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <csignal>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "giq/base/error.h"
 #include "giq/image/io.h"
@@ -147,6 +154,73 @@ std::array<double, 3> channel_means(const std::vector<double>& im) {
   return m;
 }
 
+// Blender running render_cycles.py with --spp stdin: each render() asks for one image and
+// waits for its line; Blender's own output goes to the log.
+class CyclesProcess {
+ public:
+  CyclesProcess(const std::string& command, std::ofstream& log, const fs::path& log_path)
+      : log_(log), log_path_(log_path) {
+    int in[2], out[2];
+    if (pipe(in) != 0 || pipe(out) != 0) throw giq::InputError("", "", "cannot create pipes for Blender");
+    pid_ = fork();
+    if (pid_ == 0) {
+      dup2(in[0], 0);
+      dup2(out[1], 1);
+      dup2(out[1], 2);
+      close(in[0]), close(in[1]), close(out[0]), close(out[1]);
+      execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    close(in[0]), close(out[1]);
+    to_ = fdopen(in[1], "w");
+    from_ = fdopen(out[0], "r");
+    wait_for("giq-cycles ready");
+  }
+  ~CyclesProcess() { close_and_wait(); }
+  CyclesProcess(const CyclesProcess&) = delete;
+  CyclesProcess& operator=(const CyclesProcess&) = delete;
+
+  std::string render(uint32_t spp) {
+    std::fprintf(to_, "%u\n", spp);
+    std::fflush(to_);
+    return wait_for("giq-cycles spp=");
+  }
+  // Ends Blender (end of its input) and throws if it failed.
+  void finish() {
+    if (!close_and_wait()) throw giq::InputError(log_path_.string(), "", "Blender failed; its output is in this file");
+  }
+
+ private:
+  bool close_and_wait() {
+    if (pid_ <= 0) return true;
+    std::fclose(to_);
+    char buf[4096];
+    while (std::fgets(buf, sizeof buf, from_)) log_ << buf;
+    std::fclose(from_);
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    pid_ = -1;
+    log_.flush();
+    return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  }
+
+  std::string wait_for(const std::string& prefix) {
+    char buf[4096];
+    while (std::fgets(buf, sizeof buf, from_)) {
+      log_ << buf;
+      if (std::string(buf).rfind(prefix, 0) == 0) return buf;
+    }
+    log_.flush();
+    throw giq::InputError(log_path_.string(), "", "Blender ended early; its output is in this file");
+  }
+
+  std::ofstream& log_;
+  fs::path log_path_;
+  pid_t pid_ = -1;
+  FILE* to_ = nullptr;
+  FILE* from_ = nullptr;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -188,6 +262,7 @@ int main(int argc, char** argv) try {
     return 2;
   }
   if (threads == 0) threads = int(std::thread::hardware_concurrency());
+  std::signal(SIGPIPE, SIG_IGN);  // a Blender that died is reported from its log instead
   fs::create_directories(work);
 
   const sc::Scene scene = sc::load(scene_path);
@@ -237,75 +312,69 @@ int main(int argc, char** argv) try {
 
   // giq's camera in the glTF's frame for render_cycles.py.
   const glm::dvec3 eye = glm::dvec3(cam.position) + scene.origin;
-  std::ostringstream camera_arg, spp_arg;
+  std::ostringstream camera_arg;
   camera_arg.precision(9);
   camera_arg << eye.x << ',' << eye.y << ',' << eye.z << ',' << cam.forward.x << ',' << cam.forward.y << ','
              << cam.forward.z << ',' << cam.up.x << ',' << cam.up.y << ',' << cam.up.z << ',' << cam.yfov;
-  for (size_t k = 0; k < spps.size(); ++k) spp_arg << (k ? "," : "") << spps[k];
 
   std::vector<std::vector<Point>> giq_curves(static_cast<size_t>(reps)), cycles_curves(static_cast<size_t>(reps));
   std::vector<std::vector<double>> giq_last, cycles_last;  // images at the largest spp, per rep
   const fs::path log_path = fs::path(work) / "blender.log";
   std::ofstream blender_log(log_path);
 
-  const auto run_cycles = [&](int rep) {
-    const std::string cmd = quote(blender) + " -b --factory-startup --python-exit-code 2 --python " + quote(script) +
-                            " -- --gltf " + quote(scene_path) + " --out " + quote(work) + " --size " +
-                            std::to_string(size) + " --threads " + std::to_string(threads) + " --seed " +
-                            std::to_string(rep + 1) + " --max-bounces " + std::to_string(max_bounces) + " --spp " + spp_arg.str() + " --camera " + camera_arg.str() +
-                            " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) throw giq::InputError(blender, "", "cannot start Blender");
-    char buf[4096];
-    while (std::fgets(buf, sizeof buf, p)) {
-      const std::string line = buf;
-      blender_log << line;
-      if (line.rfind("giq-cycles ", 0) != 0) continue;
-      Point pt;
-      char file[2048] = {0};
-      if (std::sscanf(line.c_str(), "giq-cycles spp=%u seconds=%lf file=%2047s", &pt.spp, &pt.seconds, file) != 3)
-        throw giq::InputError(log_path.string(), "", "unreadable line from render_cycles.py: " + line);
-      const giq::image::Image img = giq::image::read_image(file);
-      pt.error = lr.rel_mse(img, file);
-      cycles_curves[size_t(rep)].push_back(pt);
-      if (pt.spp == spps.back()) cycles_last.push_back(beauty(img));
-    }
-    blender_log.flush();
-    if (pclose(p) != 0 || cycles_curves[size_t(rep)].size() != spps.size())
-      throw giq::InputError(log_path.string(), "", "Blender failed; its output is in this file");
-  };
-  const auto run_giq = [&](int rep) {
+  const auto render_giq = [&](int rep, uint32_t spp) {
     ref::RenderSettings s = rs;
     s.seed = 1000 + uint64_t(rep);
-    for (uint32_t spp : spps) {
-      // Timed like Cycles' render call: the renderer (BVH, lights) is built for each image.
-      const Clock::time_point t0 = Clock::now();
-      const ref::Renderer r(scene, cam, s);
-      ref::Film film = r.make_film();
-      r.render(film, spp);
-      const double t = seconds_since(t0);
-      giq_curves[size_t(rep)].push_back({spp, t, lr.rel_mse(film)});
-      if (spp == spps.back()) giq_last.push_back(beauty(film));
-    }
+    // Timed like Cycles' render call: the renderer (BVH, lights) is built for each image.
+    const Clock::time_point t0 = Clock::now();
+    const ref::Renderer r(scene, cam, s);
+    ref::Film film = r.make_film();
+    r.render(film, spp);
+    const double t = seconds_since(t0);
+    giq_curves[size_t(rep)].push_back({spp, t, lr.rel_mse(film)});
+    if (spp == spps.back()) giq_last.push_back(beauty(film));
+  };
+  const auto render_cycles = [&](int rep, CyclesProcess& blender_process, uint32_t spp) {
+    const std::string line = blender_process.render(spp);
+    Point pt;
+    char file[2048] = {0};
+    if (std::sscanf(line.c_str(), "giq-cycles spp=%u seconds=%lf file=%2047s", &pt.spp, &pt.seconds, file) != 3 ||
+        pt.spp != spp)
+      throw giq::InputError(log_path.string(), "", "unexpected line from render_cycles.py: " + line);
+    const giq::image::Image img = giq::image::read_image(file);
+    pt.error = lr.rel_mse(img, file);
+    cycles_curves[size_t(rep)].push_back(pt);
+    if (spp == spps.back()) cycles_last.push_back(beauty(img));
   };
 
-  std::printf("| rep | first | load avg | spp | giq s | giq relMSE | Cycles s | Cycles relMSE |\n");
-  std::printf("|---|---|---|---|---|---|---|---|\n");
+  // One Blender process per repetition renders on request, so each Cycles image is taken
+  // right next to giq's image of the same spp; which of the two goes first alternates.
+  std::printf("| rep | spp | first | load avg | giq s | giq relMSE | Cycles s | Cycles relMSE | Cycles / giq time x "
+              "relMSE |\n|---|---|---|---|---|---|---|---|---|\n");
+  std::vector<double> pair_ratios;
   for (int rep = 0; rep < reps; ++rep) {
-    const std::string load = load_average();
-    if (rep % 2 == 0) {
-      run_cycles(rep);
-      run_giq(rep);
-    } else {
-      run_giq(rep);
-      run_cycles(rep);
-    }
+    CyclesProcess blender_process(quote(blender) + " -b --factory-startup --python-exit-code 2 --python " +
+                                      quote(script) + " -- --gltf " + quote(scene_path) + " --out " + quote(work) +
+                                      " --size " + std::to_string(size) + " --threads " + std::to_string(threads) +
+                                      " --seed " + std::to_string(rep + 1) + " --max-bounces " +
+                                      std::to_string(max_bounces) + " --spp stdin --camera " + camera_arg.str(),
+                                  blender_log, log_path);
     for (size_t k = 0; k < spps.size(); ++k) {
+      const std::string load = load_average();
+      const bool cycles_first = (size_t(rep) + k) % 2 == 0;
+      if (cycles_first) render_cycles(rep, blender_process, spps[k]);
+      render_giq(rep, spps[k]);
+      if (!cycles_first) render_cycles(rep, blender_process, spps[k]);
       const Point &g = giq_curves[size_t(rep)][k], &c = cycles_curves[size_t(rep)][k];
-      std::printf("| %d | %s | %s | %u | %.3f | %.4g | %.3f | %.4g |\n", rep, rep % 2 == 0 ? "Cycles" : "giq",
-                  load.c_str(), g.spp, g.seconds, g.error, c.seconds, c.error);
+      // For unbiased estimators relMSE x time is constant: its ratio is the ratio of the
+      // times to any equal error, measured on two images taken one after the other.
+      pair_ratios.push_back(c.seconds * c.error / (g.seconds * g.error));
+      std::printf("| %d | %u | %s | %s | %.3f | %.4g | %.3f | %.4g | %.2f |\n", rep, g.spp,
+                  cycles_first ? "Cycles" : "giq", load.c_str(), g.seconds, g.error, c.seconds, c.error,
+                  pair_ratios.back());
+      std::fflush(stdout);
     }
-    std::fflush(stdout);
+    blender_process.finish();
   }
 
   // Medians over repetitions, per spp.
@@ -354,6 +423,9 @@ int main(int argc, char** argv) try {
       target, reps, any_extra ? ", extrapolated beyond the measured spp" : "", median(tg), median(tc), median(ratio));
   for (double r : ratio) std::printf(" %.2f", r);
   std::printf("); the goal is >= 2.\n");
+  std::printf("Median over all %zu image pairs of Cycles / giq time x relMSE (the time ratio at equal error when relMSE "
+              "~ 1/time): %.2f\n",
+              pair_ratios.size(), median(pair_ratios));
 
   // Do the renderers agree? Channel means and the squared-bias estimate at the largest spp.
   std::array<double, 3> ref_mean{0, 0, 0}, ref_se{0, 0, 0};

@@ -13,6 +13,10 @@
 #
 #   giq-cycles spp=N seconds=T file=PATH
 #
+# after a line "giq-cycles ready" once the warm-up render is done. With --spp stdin the
+# sample counts come one per line on standard input, so that a driver can alternate renders
+# of another renderer with Cycles' own, one at a time, on a shared machine.
+#
 # Settings are chosen to compute what giq's reference renderer computes (docs/reference.md):
 #  - materials are rebuilt from the glTF's own JSON: Diffuse BSDF with roughness 0 (Lambert)
 #    of the base colour, plus an Emission of emissiveFactor x KHR_materials_emissive_strength
@@ -61,17 +65,18 @@ def parse_args():
     p.add_argument("--size", type=int, default=512)
     p.add_argument("--threads", type=int, default=0, help="0 = all cores")
     p.add_argument("--seed", type=int, default=0)
-    p.add_argument("--spp", required=True, help="comma-separated sample counts")
+    p.add_argument("--spp", required=True,
+                   help="comma-separated sample counts, or 'stdin': one count per line of standard input")
     p.add_argument("--max-bounces", type=int, default=64, help="giq's convention, >= 1")
     p.add_argument("--camera", required=True, help="px,py,pz,fx,fy,fz,ux,uy,uz,yfov (glTF frame)")
     p.add_argument("--tag", default="cycles", help="file name prefix")
     a = p.parse_args(argv)
     try:
-        a.spp = [int(s) for s in a.spp.split(",")]
+        a.spp = None if a.spp == "stdin" else [int(s) for s in a.spp.split(",")]
         a.camera = [float(v) for v in a.camera.split(",")]
     except ValueError:
         fail(f"--spp and --camera take comma-separated numbers, got '{a.spp}' and '{a.camera}'")
-    if len(a.camera) != 10 or any(s < 1 for s in a.spp) or a.size < 1 or a.max_bounces < 1:
+    if len(a.camera) != 10 or any(s < 1 for s in a.spp or []) or a.size < 1 or a.max_bounces < 1:
         fail("--camera needs 10 numbers, --spp counts >= 1, --size >= 1, --max-bounces >= 1")
     return a
 
@@ -227,7 +232,12 @@ def main():
     # count when use_persistent_data keeps the previous render's session.
     scene.cycles.samples = 1
     bpy.ops.render.render()
-    for spp in a.spp:
+    # With --spp stdin, the caller interleaves its own renders between Cycles' renders: each
+    # line read is rendered, answered, and the next is awaited.
+    print("giq-cycles ready", flush=True)
+    for spp in a.spp or (int(line) for line in sys.stdin if line.strip()):
+        if spp < 1:
+            fail(f"sample count {spp} read from stdin, expected >= 1")
         scene.cycles.samples = spp
         t0 = time.perf_counter()
         bpy.ops.render.render()
