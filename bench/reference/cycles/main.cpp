@@ -206,12 +206,17 @@ class CyclesProcess {
 
   std::string wait_for(const std::string& prefix) {
     char buf[4096];
+    std::string reason;  // render_cycles.py's own message, if it gave one
     while (std::fgets(buf, sizeof buf, from_)) {
       log_ << buf;
       if (std::string(buf).rfind(prefix, 0) == 0) return buf;
+      if (std::string(buf).rfind("render_cycles.py: ", 0) == 0) reason = buf;
     }
     log_.flush();
-    throw giq::InputError(log_path_.string(), "", "Blender ended early; its output is in this file");
+    while (!reason.empty() && reason.back() == '\n') reason.pop_back();
+    throw giq::InputError(log_path_.string(), "",
+                          "Blender ended early" + (reason.empty() ? std::string() : " (" + reason + ")") +
+                              "; its output is in this file");
   }
 
   std::ofstream& log_;

@@ -91,6 +91,11 @@ def lambert_materials(gltf_path):
         doc = json.load(f)
     if doc.get("textures"):
         fail(f"{gltf_path}: textures: the Cycles comparison supports untextured Lambert scenes only")
+    # Light comes from emissive meshes only: the importer converts punctual lights with its own
+    # photometric units, and giq's constant environment (extras.giq.environment) is not imported.
+    if "KHR_lights_punctual" in doc.get("extensionsUsed", []) or "environment" in doc.get("extras", {}).get("giq", {}):
+        fail(f"{gltf_path}: KHR_lights_punctual or extras.giq.environment: the Cycles comparison "
+             f"supports scenes lit by emissive meshes only")
     result = {}
     for i, m in enumerate(doc.get("materials", [])):
         name = m.get("name", f"material_{i}")
