@@ -18,12 +18,15 @@
 // same spp measure: E[(c1 - c2)^2] = 2 Var(c)). The same estimate for giq's own images shows
 // the noise of that estimate.
 
-#include <CLI/CLI.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -31,10 +34,6 @@
 #include <string>
 #include <thread>
 #include <vector>
-
-#include <csignal>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "giq/base/error.h"
 #include "giq/image/io.h"
@@ -50,7 +49,9 @@ namespace sc = giq::scenes;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 struct Point {
   uint32_t spp = 0;
@@ -66,7 +67,8 @@ double time_to(const std::vector<Point>& c, double target, bool& extrapolated) {
   while (k + 1 < c.size() && c[k].error > target) ++k;
   extrapolated = !(c[k - 1].error >= target && c[k].error <= target);
   const double a = std::log(c[k - 1].error / target) / std::log(c[k - 1].error / c[k].error);
-  return std::exp(std::log(c[k - 1].seconds) + a * (std::log(c[k].seconds) - std::log(c[k - 1].seconds)));
+  return std::exp(std::log(c[k - 1].seconds) +
+                  a * (std::log(c[k].seconds) - std::log(c[k - 1].seconds)));
 }
 
 double median(std::vector<double> v) {
@@ -128,9 +130,11 @@ std::vector<double> beauty(const ref::Film& f) {
 struct BiasEstimate {
   double error = 0.0, own_variance = 0.0, bias2 = 0.0;
 };
-BiasEstimate bias_estimate(const std::vector<std::vector<double>>& images, const giq::bench::LongRender& lr) {
+BiasEstimate bias_estimate(const std::vector<std::vector<double>>& images,
+                           const giq::bench::LongRender& lr) {
   BiasEstimate b;
-  for (const auto& im : images) b.error += lr.rel_mse_of([&](size_t i, int c) { return im[3 * i + size_t(c)]; });
+  for (const auto& im : images)
+    b.error += lr.rel_mse_of([&](size_t i, int c) { return im[3 * i + size_t(c)]; });
   b.error /= double(images.size());
   int pairs = 0;
   for (size_t a = 0; a < images.size(); ++a)
@@ -161,7 +165,8 @@ class CyclesProcess {
   CyclesProcess(const std::string& command, std::ofstream& log, const fs::path& log_path)
       : log_(log), log_path_(log_path) {
     int in[2], out[2];
-    if (pipe(in) != 0 || pipe(out) != 0) throw giq::InputError("", "", "cannot create pipes for Blender");
+    if (pipe(in) != 0 || pipe(out) != 0)
+      throw giq::InputError("", "", "cannot create pipes for Blender");
     pid_ = fork();
     if (pid_ == 0) {
       dup2(in[0], 0);
@@ -187,7 +192,8 @@ class CyclesProcess {
   }
   // Ends Blender (end of its input) and throws if it failed.
   void finish() {
-    if (!close_and_wait()) throw giq::InputError(log_path_.string(), "", "Blender failed; its output is in this file");
+    if (!close_and_wait())
+      throw giq::InputError(log_path_.string(), "", "Blender failed; its output is in this file");
   }
 
  private:
@@ -215,7 +221,8 @@ class CyclesProcess {
     log_.flush();
     while (!reason.empty() && reason.back() == '\n') reason.pop_back();
     throw giq::InputError(log_path_.string(), "",
-                          "Blender ended early" + (reason.empty() ? std::string() : " (" + reason + ")") +
+                          "Blender ended early" +
+                              (reason.empty() ? std::string() : " (" + reason + ")") +
                               "; its output is in this file");
   }
 
@@ -229,41 +236,54 @@ class CyclesProcess {
 }  // namespace
 
 int main(int argc, char** argv) try {
-  CLI::App app{"giq's reference path tracer against Blender's Cycles at equal error (Markdown on stdout)",
-               "giq-bench-cycles"};
+  CLI::App app{
+      "giq's reference path tracer against Blender's Cycles at equal error (Markdown on stdout)",
+      "giq-bench-cycles"};
   std::string scene_path = "scenes/cornell.gltf", blender = "blender", script = GIQ_CYCLES_SCRIPT,
               work = "/tmp/giq-bench-cycles", reference_path;
   int size = 512, threads = 0, reps = 3, max_bounces = 64;
   uint32_t ref_spp = 1024;
   double target = 1e-3;
   std::vector<uint32_t> spps = {16, 32, 64, 128, 256};
-  app.add_option("--scene", scene_path, "A Lambertian glTF scene (its first view is rendered)")->capture_default_str();
+  app.add_option("--scene", scene_path, "A Lambertian glTF scene (its first view is rendered)")
+      ->capture_default_str();
   app.add_option("--size", size, "Image width and height")->capture_default_str();
   app.add_option("--spp", spps, "Sample counts, increasing; each is an independent render")
       ->delimiter(',')
       ->capture_default_str();
   app.add_option("--reps", reps, "Repetitions (medians are reported)")->capture_default_str();
-  app.add_option("--ref-spp", ref_spp, "Samples per pixel of giq's long render")->capture_default_str();
-  app.add_option("--reference", reference_path,
-                 "giq's long render: read when it matches (scene, view, size), else rendered and written there "
-                 "(default WORK/<scene>-<size>.exr)");
-  app.add_option("--target", target, "relMSE of the time-to-error comparison")->capture_default_str();
-  app.add_option("--max-bounces", max_bounces, "Scattering events per path of both renderers (1 = direct light)")
+  app.add_option("--ref-spp", ref_spp, "Samples per pixel of giq's long render")
       ->capture_default_str();
-  app.add_option("--threads", threads, "Threads of both renderers (0 = all cores)")->capture_default_str();
+  app.add_option("--reference", reference_path,
+                 "giq's long render: read when it matches (scene, view, size), else rendered and "
+                 "written there "
+                 "(default WORK/<scene>-<size>.exr)");
+  app.add_option("--target", target, "relMSE of the time-to-error comparison")
+      ->capture_default_str();
+  app.add_option("--max-bounces", max_bounces,
+                 "Scattering events per path of both renderers (1 = direct light)")
+      ->capture_default_str();
+  app.add_option("--threads", threads, "Threads of both renderers (0 = all cores)")
+      ->capture_default_str();
   app.add_option("--blender", blender, "Blender executable")->capture_default_str();
   app.add_option("--script", script, "render_cycles.py")->capture_default_str();
-  app.add_option("--work", work, "Folder for Cycles' images and the long render")->capture_default_str();
+  app.add_option("--work", work, "Folder for Cycles' images and the long render")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
-  if (spps.size() < 2 || !std::is_sorted(spps.begin(), spps.end()) || spps.front() < 1 || reps < 1 || size < 1)
-    throw giq::InputError("", "--spp/--reps/--size", "at least two increasing spp counts >= 1, reps >= 1, size >= 1");
+  if (spps.size() < 2 || !std::is_sorted(spps.begin(), spps.end()) || spps.front() < 1 ||
+      reps < 1 || size < 1)
+    throw giq::InputError("", "--spp/--reps/--size",
+                          "at least two increasing spp counts >= 1, reps >= 1, size >= 1");
 
-  const std::string version = first_line_of(quote(blender) + " -b --factory-startup --version 2>/dev/null");
+  const std::string version =
+      first_line_of(quote(blender) + " -b --factory-startup --version 2>/dev/null");
   if (version.empty()) {
-    std::fprintf(stderr,
-                 "giq-bench-cycles: '%s' does not run. Install Blender and the numpy its glTF importer needs:\n"
-                 "  apt-get install -y blender python3-numpy   (or tools/bootstrap --with-blender)\n",
-                 blender.c_str());
+    std::fprintf(
+        stderr,
+        "giq-bench-cycles: '%s' does not run. Install Blender and the numpy its glTF importer "
+        "needs:\n"
+        "  apt-get install -y blender python3-numpy   (or tools/bootstrap --with-blender)\n",
+        blender.c_str());
     return 2;
   }
   if (threads == 0) threads = int(std::thread::hardware_concurrency());
@@ -278,28 +298,33 @@ int main(int argc, char** argv) try {
   rs.threads = threads;
   rs.max_bounces = max_bounces;
 
-  std::printf("# giq reference vs Blender Cycles: %s, %dx%d, max bounces %d\n\n", scene_path.c_str(), size, size,
-              max_bounces);
-  std::printf("Machine: %s, %u hardware threads; both renderers on %d threads; %s; load average at start %s\n\n",
-              cpu_model().c_str(), std::thread::hardware_concurrency(), threads, version.c_str(),
-              load_average().c_str());
+  std::printf("# giq reference vs Blender Cycles: %s, %dx%d, max bounces %d\n\n",
+              scene_path.c_str(), size, size, max_bounces);
+  std::printf(
+      "Machine: %s, %u hardware threads; both renderers on %d threads; %s; load average at start "
+      "%s\n\n",
+      cpu_model().c_str(), std::thread::hardware_concurrency(), threads, version.c_str(),
+      load_average().c_str());
   std::fflush(stdout);
 
   // giq's long render, the ground truth of both.
-  if (reference_path.empty()) reference_path = (fs::path(work) / (fs::path(scene_path).stem().string() + "-" +
-                                                                   std::to_string(size) + ".exr"))
-                                                   .string();
+  if (reference_path.empty())
+    reference_path = (fs::path(work) /
+                      (fs::path(scene_path).stem().string() + "-" + std::to_string(size) + ".exr"))
+                         .string();
   ref::RenderSettings long_rs = rs;
   long_rs.seed = 777;
   giq::bench::LongRender lr;
   if (fs::exists(reference_path)) lr = giq::bench::LongRender::from_exr(reference_path);
   // A file counts only for the same scene content, view and image-determining settings.
-  if (lr.scene_hash != scene.content_hash || lr.view != view.name || lr.settings != ref::settings_json(long_rs)) {
+  if (lr.scene_hash != scene.content_hash || lr.view != view.name ||
+      lr.settings != ref::settings_json(long_rs)) {
     const ref::Renderer r(scene, cam, long_rs);
     ref::Film film = r.make_film();
     const Clock::time_point t0 = Clock::now();
     r.render(film, ref_spp);
-    std::printf("Long render: %u spp in %.1f s, written to %s\n", ref_spp, seconds_since(t0), reference_path.c_str());
+    std::printf("Long render: %u spp in %.1f s, written to %s\n", ref_spp, seconds_since(t0),
+                reference_path.c_str());
     ref::ReferenceMetadata meta;
     meta.scene = scene_path;
     meta.scene_hash = scene.content_hash;
@@ -311,18 +336,22 @@ int main(int argc, char** argv) try {
     lr.view = view.name;
     lr.settings = ref::settings_json(long_rs);
   }
-  std::printf("Long render (giq, %s): %.0f spp; its own relMSE contribution %.3g (subtracted from every error)\n\n",
-              reference_path.c_str(), lr.spp, lr.variance_term);
+  std::printf(
+      "Long render (giq, %s): %.0f spp; its own relMSE contribution %.3g (subtracted from every "
+      "error)\n\n",
+      reference_path.c_str(), lr.spp, lr.variance_term);
   std::fflush(stdout);
 
   // giq's camera in the glTF's frame for render_cycles.py.
   const glm::dvec3 eye = glm::dvec3(cam.position) + scene.origin;
   std::ostringstream camera_arg;
   camera_arg.precision(9);
-  camera_arg << eye.x << ',' << eye.y << ',' << eye.z << ',' << cam.forward.x << ',' << cam.forward.y << ','
-             << cam.forward.z << ',' << cam.up.x << ',' << cam.up.y << ',' << cam.up.z << ',' << cam.yfov;
+  camera_arg << eye.x << ',' << eye.y << ',' << eye.z << ',' << cam.forward.x << ','
+             << cam.forward.y << ',' << cam.forward.z << ',' << cam.up.x << ',' << cam.up.y << ','
+             << cam.up.z << ',' << cam.yfov;
 
-  std::vector<std::vector<Point>> giq_curves(static_cast<size_t>(reps)), cycles_curves(static_cast<size_t>(reps));
+  std::vector<std::vector<Point>> giq_curves(static_cast<size_t>(reps)),
+      cycles_curves(static_cast<size_t>(reps));
   std::vector<std::vector<double>> giq_last, cycles_last;  // images at the largest spp, per rep
   const fs::path log_path = fs::path(work) / "blender.log";
   std::ofstream blender_log(log_path);
@@ -343,9 +372,11 @@ int main(int argc, char** argv) try {
     const std::string line = blender_process.render(spp);
     Point pt;
     char file[2048] = {0};
-    if (std::sscanf(line.c_str(), "giq-cycles spp=%u seconds=%lf file=%2047s", &pt.spp, &pt.seconds, file) != 3 ||
+    if (std::sscanf(line.c_str(), "giq-cycles spp=%u seconds=%lf file=%2047s", &pt.spp, &pt.seconds,
+                    file) != 3 ||
         pt.spp != spp)
-      throw giq::InputError(log_path.string(), "", "unexpected line from render_cycles.py: " + line);
+      throw giq::InputError(log_path.string(), "",
+                            "unexpected line from render_cycles.py: " + line);
     const giq::image::Image img = giq::image::read_image(file);
     pt.error = lr.rel_mse(img, file);
     cycles_curves[size_t(rep)].push_back(pt);
@@ -354,16 +385,19 @@ int main(int argc, char** argv) try {
 
   // One Blender process per repetition renders on request, so each Cycles image is taken
   // right next to giq's image of the same spp; which of the two goes first alternates.
-  std::printf("| rep | spp | first | load avg | giq s | giq relMSE | Cycles s | Cycles relMSE | Cycles / giq time x "
-              "relMSE |\n|---|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| rep | spp | first | load avg | giq s | giq relMSE | Cycles s | Cycles relMSE | Cycles / "
+      "giq time x "
+      "relMSE |\n|---|---|---|---|---|---|---|---|---|\n");
   std::vector<double> pair_ratios;
   for (int rep = 0; rep < reps; ++rep) {
-    CyclesProcess blender_process(quote(blender) + " -b --factory-startup --python-exit-code 2 --python " +
-                                      quote(script) + " -- --gltf " + quote(scene_path) + " --out " + quote(work) +
-                                      " --size " + std::to_string(size) + " --threads " + std::to_string(threads) +
-                                      " --seed " + std::to_string(rep + 1) + " --max-bounces " +
-                                      std::to_string(max_bounces) + " --spp stdin --camera " + camera_arg.str(),
-                                  blender_log, log_path);
+    CyclesProcess blender_process(
+        quote(blender) + " -b --factory-startup --python-exit-code 2 --python " + quote(script) +
+            " -- --gltf " + quote(scene_path) + " --out " + quote(work) + " --size " +
+            std::to_string(size) + " --threads " + std::to_string(threads) + " --seed " +
+            std::to_string(rep + 1) + " --max-bounces " + std::to_string(max_bounces) +
+            " --spp stdin --camera " + camera_arg.str(),
+        blender_log, log_path);
     for (size_t k = 0; k < spps.size(); ++k) {
       const std::string load = load_average();
       const bool cycles_first = (size_t(rep) + k) % 2 == 0;
@@ -375,8 +409,8 @@ int main(int argc, char** argv) try {
       // times to any equal error, measured on two images taken one after the other.
       pair_ratios.push_back(c.seconds * c.error / (g.seconds * g.error));
       std::printf("| %d | %u | %s | %s | %.3f | %.4g | %.3f | %.4g | %.2f |\n", rep, g.spp,
-                  cycles_first ? "Cycles" : "giq", load.c_str(), g.seconds, g.error, c.seconds, c.error,
-                  pair_ratios.back());
+                  cycles_first ? "Cycles" : "giq", load.c_str(), g.seconds, g.error, c.seconds,
+                  c.error, pair_ratios.back());
       std::fflush(stdout);
     }
     blender_process.finish();
@@ -386,14 +420,17 @@ int main(int argc, char** argv) try {
   const double pixels = double(size) * double(size);
   std::printf("\nMedians over %d repetitions (Msamples/s = camera paths per second):\n\n", reps);
   std::printf(
-      "| spp | giq s | giq Msamples/s | giq relMSE | Cycles s | Cycles Msamples/s | Cycles relMSE | Cycles s at giq's "
+      "| spp | giq s | giq Msamples/s | giq relMSE | Cycles s | Cycles Msamples/s | Cycles relMSE "
+      "| Cycles s at giq's "
       "relMSE | Cycles / giq time at equal error |\n|---|---|---|---|---|---|---|---|---|\n");
   std::vector<Point> giq_median, cycles_median;
   for (size_t k = 0; k < spps.size(); ++k) {
     std::vector<double> gt, ge, ct, ce;
     for (int rep = 0; rep < reps; ++rep) {
-      gt.push_back(giq_curves[size_t(rep)][k].seconds), ge.push_back(giq_curves[size_t(rep)][k].error);
-      ct.push_back(cycles_curves[size_t(rep)][k].seconds), ce.push_back(cycles_curves[size_t(rep)][k].error);
+      gt.push_back(giq_curves[size_t(rep)][k].seconds),
+          ge.push_back(giq_curves[size_t(rep)][k].error);
+      ct.push_back(cycles_curves[size_t(rep)][k].seconds),
+          ce.push_back(cycles_curves[size_t(rep)][k].error);
     }
     giq_median.push_back({spps[k], median(gt), median(ge)});
     cycles_median.push_back({spps[k], median(ct), median(ce)});
@@ -402,15 +439,18 @@ int main(int argc, char** argv) try {
     const Point &g = giq_median[k], &c = cycles_median[k];
     bool extra = false;
     const double tc = time_to(cycles_median, g.error, extra);
-    std::printf("| %u | %.3f | %.3f | %.4g | %.3f | %.3f | %.4g | %.3f%s | %.2f |\n", g.spp, g.seconds,
-                pixels * g.spp / g.seconds / 1e6, g.error, c.seconds, pixels * c.spp / c.seconds / 1e6, c.error, tc,
-                extra ? " (extrapolated)" : "", tc / g.seconds);
+    std::printf("| %u | %.3f | %.3f | %.4g | %.3f | %.3f | %.4g | %.3f%s | %.2f |\n", g.spp,
+                g.seconds, pixels * g.spp / g.seconds / 1e6, g.error, c.seconds,
+                pixels * c.spp / c.seconds / 1e6, c.error, tc, extra ? " (extrapolated)" : "",
+                tc / g.seconds);
   }
   const auto slope = [](const std::vector<Point>& m) {
-    return std::log(m.back().error / m.front().error) / std::log(m.back().seconds / m.front().seconds);
+    return std::log(m.back().error / m.front().error) /
+           std::log(m.back().seconds / m.front().seconds);
   };
-  std::printf("\nSlope of log relMSE over log time (-1 for unbiased Monte Carlo): giq %.3f, Cycles %.3f\n",
-              slope(giq_median), slope(cycles_median));
+  std::printf(
+      "\nSlope of log relMSE over log time (-1 for unbiased Monte Carlo): giq %.3f, Cycles %.3f\n",
+      slope(giq_median), slope(cycles_median));
 
   // Time to the target, per repetition (interleaved pairs), then medians.
   std::vector<double> tg, tc, ratio;
@@ -423,24 +463,31 @@ int main(int argc, char** argv) try {
     any_extra = any_extra || eg || ec;
   }
   std::printf(
-      "\nTime to relMSE %.0e (median of %d repetitions%s): giq %.2f s, Cycles %.2f s; Cycles / giq = %.2f "
+      "\nTime to relMSE %.0e (median of %d repetitions%s): giq %.2f s, Cycles %.2f s; Cycles / giq "
+      "= %.2f "
       "(per repetition:",
-      target, reps, any_extra ? ", extrapolated beyond the measured spp" : "", median(tg), median(tc), median(ratio));
+      target, reps, any_extra ? ", extrapolated beyond the measured spp" : "", median(tg),
+      median(tc), median(ratio));
   for (double r : ratio) std::printf(" %.2f", r);
   std::printf("); the goal is >= 2.\n");
-  std::printf("Median over all %zu image pairs of Cycles / giq time x relMSE (the time ratio at equal error when relMSE "
-              "~ 1/time): %.2f\n",
-              pair_ratios.size(), median(pair_ratios));
+  std::printf(
+      "Median over all %zu image pairs of Cycles / giq time x relMSE (the time ratio at equal "
+      "error when relMSE "
+      "~ 1/time): %.2f\n",
+      pair_ratios.size(), median(pair_ratios));
 
   // Do the renderers agree? Channel means and the squared-bias estimate at the largest spp.
   std::array<double, 3> ref_mean{0, 0, 0}, ref_se{0, 0, 0};
-  for (size_t j = 0; j < lr.mean.size(); ++j) ref_mean[j % 3] += lr.mean[j], ref_se[j % 3] += lr.variance[j];
+  for (size_t j = 0; j < lr.mean.size(); ++j)
+    ref_mean[j % 3] += lr.mean[j], ref_se[j % 3] += lr.variance[j];
   const double n_px = double(lr.mean.size() / 3);
-  std::printf("\nAgreement at %u spp (%d images each):\n\n| | mean R | mean G | mean B |\n|---|---|---|---|\n",
-              spps.back(), reps);
-  std::printf("| giq long render | %.5f +- %.5f | %.5f +- %.5f | %.5f +- %.5f |\n", ref_mean[0] / n_px,
-              std::sqrt(ref_se[0]) / n_px, ref_mean[1] / n_px, std::sqrt(ref_se[1]) / n_px, ref_mean[2] / n_px,
-              std::sqrt(ref_se[2]) / n_px);
+  std::printf(
+      "\nAgreement at %u spp (%d images each):\n\n| | mean R | mean G | mean B "
+      "|\n|---|---|---|---|\n",
+      spps.back(), reps);
+  std::printf("| giq long render | %.5f +- %.5f | %.5f +- %.5f | %.5f +- %.5f |\n",
+              ref_mean[0] / n_px, std::sqrt(ref_se[0]) / n_px, ref_mean[1] / n_px,
+              std::sqrt(ref_se[1]) / n_px, ref_mean[2] / n_px, std::sqrt(ref_se[2]) / n_px);
   for (const auto* set : {&giq_last, &cycles_last}) {
     std::array<double, 3> m{0, 0, 0}, m2{0, 0, 0};
     for (const auto& im : *set) {
@@ -450,17 +497,22 @@ int main(int argc, char** argv) try {
     const double n = double(set->size());
     std::printf("| %s | ", set == &giq_last ? "giq" : "Cycles");
     for (int c = 0; c < 3; ++c) {
-      const double mean = m[c] / n, sd = n > 1 ? std::sqrt(std::max(0.0, (m2[c] - n * mean * mean) / (n - 1))) : 0.0;
+      const double mean = m[c] / n,
+                   sd = n > 1 ? std::sqrt(std::max(0.0, (m2[c] - n * mean * mean) / (n - 1))) : 0.0;
       std::printf("%.5f +- %.5f | ", mean, sd / std::sqrt(n));
     }
     std::printf("\n");
   }
-  std::printf("\n(+- one standard error: the long render's from its pixel variances, the others' from the spread of "
-              "their repetitions)\n\n| renderer | relMSE vs long render | own variance (from pairs) | squared bias "
-              "estimate |\n|---|---|---|---|\n");
+  std::printf(
+      "\n(+- one standard error: the long render's from its pixel variances, the others' from the "
+      "spread of "
+      "their repetitions)\n\n| renderer | relMSE vs long render | own variance (from pairs) | "
+      "squared bias "
+      "estimate |\n|---|---|---|---|\n");
   for (const auto* set : {&giq_last, &cycles_last}) {
     const BiasEstimate b = bias_estimate(*set, lr);
-    std::printf("| %s | %.4g | %.4g | %.3g |\n", set == &giq_last ? "giq" : "Cycles", b.error, b.own_variance, b.bias2);
+    std::printf("| %s | %.4g | %.4g | %.3g |\n", set == &giq_last ? "giq" : "Cycles", b.error,
+                b.own_variance, b.bias2);
   }
   std::printf("\nLoad average at the end: %s\n", load_average().c_str());
   return 0;
