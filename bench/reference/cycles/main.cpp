@@ -244,7 +244,7 @@ int main(int argc, char** argv) try {
   int size = 512, threads = 0, reps = 3, max_bounces = 64;
   uint32_t ref_spp = 1024;
   double target = 1e-3;
-  std::vector<uint32_t> spps = {16, 32, 64, 128, 256};
+  std::vector<uint32_t> spps = {32, 64, 128, 256};
   app.add_option("--scene", scene_path, "A Lambertian glTF scene (its first view is rendered)")
       ->capture_default_str();
   app.add_option("--size", size, "Image width and height")->capture_default_str();
