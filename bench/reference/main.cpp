@@ -8,7 +8,6 @@
 //  3. scaling with triangle count: a Cornell-like box holding a sphere of 10k to 1M triangles.
 
 #include <CLI/CLI.hpp>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,8 +16,11 @@
 #include <thread>
 #include <vector>
 
+#include "giq/image/io.h"
+#include "giq/reference/reference_exr.h"
 #include "giq/reference/renderer.h"
 #include "giq/scenes/scene.h"
+#include "long_render.h"
 
 namespace {
 
@@ -26,14 +28,17 @@ namespace ref = giq::reference;
 namespace sc = giq::scenes;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 struct Throughput {
   double samples_per_s = 0.0, rays_per_s = 0.0;
 };
 
 // Renders passes until `seconds` have passed; rate over the whole run.
-Throughput measure(const sc::Scene& s, const sc::Camera& cam, ref::RenderSettings rs, double seconds) {
+Throughput measure(const sc::Scene& s, const sc::Camera& cam, ref::RenderSettings rs,
+                   double seconds) {
   ref::Renderer r(s, cam, rs);
   ref::Film f = r.make_film();
   ref::RenderStats stats;
@@ -44,32 +49,19 @@ Throughput measure(const sc::Scene& s, const sc::Camera& cam, ref::RenderSetting
   return {double(stats.samples) / t, double(stats.rays) / t};
 }
 
-double rel_mse(const ref::Film& f, const ref::Film& reference, double reference_var_term) {
-  double sum = 0.0;
-  for (size_t i = 0; i < f.pixels.size(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      const double r = reference.pixels[i].mean[c], d = f.pixels[i].mean[c] - r;
-      sum += d * d / (r * r + 0.01);
-    }
-  return sum / double(f.pixels.size() * 3) - reference_var_term;
-}
-
 // Seconds for an independent render to reach `target` relMSE against `reference`,
 // interpolated in log-log between the spp counts bracketing it; -1 if not reached by max_spp.
-double time_to_error(const sc::Scene& s, const sc::Camera& cam, ref::RenderSettings rs, const ref::Film& reference,
-                     double target, uint32_t max_spp, uint32_t& spp_reached) {
-  double var_term = 0.0;
-  for (const auto& p : reference.pixels)
-    for (int c = 0; c < 3; ++c) var_term += p.variance_of_mean(c) / (p.mean[c] * p.mean[c] + 0.01);
-  var_term /= double(reference.pixels.size() * 3);
-  rs.seed = reference.pixels.empty() ? 0 : 12345;
+double time_to_error(const sc::Scene& s, const sc::Camera& cam, ref::RenderSettings rs,
+                     const giq::bench::LongRender& reference, double target, uint32_t max_spp,
+                     uint32_t& spp_reached) {
+  rs.seed = 12345;
   ref::Renderer r(s, cam, rs);
   ref::Film f = r.make_film();
   const Clock::time_point t0 = Clock::now();
   double prev_t = 0.0, prev_e = 0.0;
   for (uint32_t spp = 1; spp <= max_spp; spp *= 2) {
     r.render(f, spp);
-    const double t = seconds_since(t0), e = rel_mse(f, reference, var_term);
+    const double t = seconds_since(t0), e = reference.rel_mse(f);
     if (e <= target) {
       spp_reached = spp;
       if (prev_t <= 0.0 || prev_e <= e) return t;
@@ -93,8 +85,8 @@ sc::Scene tessellated(size_t n) {
     m.emissive = e;
     return m;
   };
-  s.materials = {diffuse(glm::vec3(0.73f)), diffuse({0.63f, 0.065f, 0.05f}), diffuse({0.14f, 0.45f, 0.09f}),
-                 diffuse(glm::vec3(0.0f), {17.0f, 12.0f, 4.0f})};
+  s.materials = {diffuse(glm::vec3(0.73f)), diffuse({0.63f, 0.065f, 0.05f}),
+                 diffuse({0.14f, 0.45f, 0.09f}), diffuse(glm::vec3(0.0f), {17.0f, 12.0f, 4.0f})};
   const auto quad = [&](int m, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
     sc::Mesh mesh;
     mesh.material = m;
@@ -110,7 +102,8 @@ sc::Scene tessellated(size_t n) {
   quad(0, {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1});
   quad(1, {-1, -1, 1}, {-1, -1, -1}, {-1, 1, -1}, {-1, 1, 1});
   quad(2, {1, -1, -1}, {1, -1, 1}, {1, 1, 1}, {1, 1, -1});
-  quad(3, {-0.25f, 0.99f, -0.25f}, {0.25f, 0.99f, -0.25f}, {0.25f, 0.99f, 0.25f}, {-0.25f, 0.99f, 0.25f});
+  quad(3, {-0.25f, 0.99f, -0.25f}, {0.25f, 0.99f, -0.25f}, {0.25f, 0.99f, 0.25f},
+       {-0.25f, 0.99f, 0.25f});
   // UV sphere: rings x segments x 2 triangles ~ n.
   const int seg = std::max(8, int(std::sqrt(double(n))));
   const int rings = std::max(4, int(n / (2 * size_t(seg))));
@@ -120,7 +113,8 @@ sc::Scene tessellated(size_t n) {
   const glm::vec3 c(0.1f, -0.5f, 0.0f);
   for (int i = 0; i <= rings; ++i)
     for (int j = 0; j <= seg; ++j) {
-      const float th = 3.14159265f * float(i) / float(rings), ph = 6.2831853f * float(j) / float(seg);
+      const float th = 3.14159265f * float(i) / float(rings),
+                  ph = 6.2831853f * float(j) / float(seg);
       const glm::vec3 nrm(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
       sphere.positions.push_back(c + 0.45f * nrm);
       sphere.normals.push_back(nrm);
@@ -143,32 +137,48 @@ sc::Scene tessellated(size_t n) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Benchmarks of the reference path tracer (Markdown on stdout)", "giq-bench-reference"};
+  CLI::App app{"Benchmarks of the reference path tracer (Markdown on stdout)",
+               "giq-bench-reference"};
   std::string scenes_dir = "scenes";
   int size = 512, threads = 0;
   double seconds = 5.0, target = 1e-3;
   uint32_t ref_spp = 4096, max_spp = 4096;
   std::vector<size_t> triangles = {10000, 100000, 1000000};
+  std::vector<std::string> names = {"cornell", "leak", "sunroom", "movinglight"};
+  std::string references;
+  bool scaling = true;
   app.add_option("--scenes", scenes_dir, "Folder of the built-in scenes")->capture_default_str();
   app.add_option("--size", size, "Image width and height")->capture_default_str();
   app.add_option("--threads", threads, "Threads (0 = all cores)")->capture_default_str();
   app.add_option("--seconds", seconds, "Seconds per throughput measurement")->capture_default_str();
-  app.add_option("--ref-spp", ref_spp, "Samples per pixel of the long renders")->capture_default_str();
-  app.add_option("--target", target, "relMSE target of the time-to-error measurement")->capture_default_str();
-  app.add_option("--max-spp", max_spp, "Give up time-to-error beyond this spp")->capture_default_str();
-  app.add_option("--triangles", triangles, "Triangle counts of the scaling test")->capture_default_str();
+  app.add_option("--ref-spp", ref_spp, "Samples per pixel of the long renders")
+      ->capture_default_str();
+  app.add_option("--target", target, "relMSE target of the time-to-error measurement")
+      ->capture_default_str();
+  app.add_option("--max-spp", max_spp, "Give up time-to-error beyond this spp")
+      ->capture_default_str();
+  app.add_option("--triangles", triangles, "Triangle counts of the scaling test")
+      ->capture_default_str();
+  app.add_option("--only", names, "Built-in scenes to measure")->capture_default_str();
+  app.add_option("--references", references,
+                 "Folder of long renders <scene>.exr: used when present (same size), else rendered "
+                 "and written there");
+  app.add_flag("!--no-scaling", scaling, "Skip the triangle-count scaling test");
   CLI11_PARSE(app, argc, argv);
 
   ref::RenderSettings rs;
   rs.width = rs.height = size;
   rs.threads = threads;
-  std::printf("Machine: %u hardware threads; image %dx%d; threads %s\n\n", std::thread::hardware_concurrency(), size, size,
+  std::printf("Machine: %u hardware threads; image %dx%d; threads %s\n\n",
+              std::thread::hardware_concurrency(), size, size,
               threads == 0 ? "all" : std::to_string(threads).c_str());
-  std::printf("| scene | features (mask) | Msamples/s | Mrays/s | generic Msamples/s | specialisation saving | time to relMSE %.0e | spp |\n",
-              target);
-  std::printf("|---|---|---|---|---|---|---|---|\n");
-  for (const char* name : {"cornell", "leak", "sunroom", "movinglight"}) {
-    const std::filesystem::path path = std::filesystem::path(scenes_dir) / (std::string(name) + ".gltf");
+  std::printf(
+      "| scene | features (mask) | Msamples/s | Mrays/s | generic Msamples/s | specialisation "
+      "saving | time to relMSE %.0e | spp | long render spp |\n",
+      target);
+  std::printf("|---|---|---|---|---|---|---|---|---|\n");
+  for (const std::string& name : names) {
+    const std::filesystem::path path = std::filesystem::path(scenes_dir) / (name + ".gltf");
     const sc::Scene s = sc::load(path);
     const sc::Camera cam = s.views.at(0).camera;
     const Throughput spec = measure(s, cam, rs, seconds);
@@ -178,9 +188,29 @@ int main(int argc, char** argv) {
     const ref::Renderer probe(s, cam, rs);
     ref::RenderSettings long_rs = rs;
     long_rs.seed = 777;
-    const ref::Renderer long_r(s, cam, long_rs);
-    ref::Film reference = long_r.make_film();
-    long_r.render(reference, ref_spp);
+    const std::filesystem::path cached = references.empty()
+                                             ? std::filesystem::path()
+                                             : std::filesystem::path(references) / (name + ".exr");
+    giq::bench::LongRender reference;
+    if (!cached.empty() && std::filesystem::exists(cached))
+      reference = giq::bench::LongRender::from_exr(cached);
+    // A cached file counts only for the same scene content, view and image-determining settings.
+    if (reference.scene_hash != s.content_hash || reference.view != s.views.at(0).name ||
+        reference.settings != ref::settings_json(long_rs)) {
+      const ref::Renderer long_r(s, cam, long_rs);
+      ref::Film film = long_r.make_film();
+      long_r.render(film, ref_spp);
+      if (!cached.empty()) {
+        std::filesystem::create_directories(cached.parent_path());
+        ref::ReferenceMetadata meta;
+        meta.scene = path.string();
+        meta.scene_hash = s.content_hash;
+        meta.view = s.views.at(0).name;
+        meta.camera = cam;
+        giq::image::write_exr(ref::reference_image(film, long_rs, meta), cached);
+      }
+      reference = giq::bench::LongRender::from_film(film);
+    }
     uint32_t spp_reached = 0;
     const double tte = time_to_error(s, cam, rs, reference, target, max_spp, spp_reached);
     std::string feats;
@@ -190,11 +220,14 @@ int main(int argc, char** argv) {
       std::snprintf(tte_text, sizeof tte_text, "%.2f s", tte);
     else
       std::snprintf(tte_text, sizeof tte_text, "not within %u spp", max_spp);
-    std::printf("| %s | %s (%u) | %.3f | %.3f | %.3f | %.1f %% | %s | %u |\n", name, feats.c_str(), probe.feature_mask(),
-                spec.samples_per_s / 1e6, spec.rays_per_s / 1e6, gen.samples_per_s / 1e6,
-                100.0 * (1.0 - gen.samples_per_s / spec.samples_per_s), tte_text, spp_reached);
+    std::printf("| %s | %s (%u) | %.3f | %.3f | %.3f | %.1f %% | %s | %u | %.0f |\n", name.c_str(),
+                feats.c_str(), probe.feature_mask(), spec.samples_per_s / 1e6,
+                spec.rays_per_s / 1e6, gen.samples_per_s / 1e6,
+                100.0 * (1.0 - gen.samples_per_s / spec.samples_per_s), tte_text, spp_reached,
+                reference.spp);
     std::fflush(stdout);
   }
+  if (!scaling) return 0;
   std::printf("\n| triangles | BVH build s | Msamples/s | Mrays/s |\n|---|---|---|---|\n");
   for (size_t n : triangles) {
     const sc::Scene s = tessellated(n);
@@ -202,7 +235,8 @@ int main(int argc, char** argv) {
     const ref::Renderer r(s, s.views[0].camera, rs);
     const double build = seconds_since(t0);
     const Throughput t = measure(s, s.views[0].camera, rs, seconds);
-    std::printf("| %zu | %.3f | %.3f | %.3f |\n", s.stats.triangles, build, t.samples_per_s / 1e6, t.rays_per_s / 1e6);
+    std::printf("| %zu | %.3f | %.3f | %.3f |\n", s.stats.triangles, build, t.samples_per_s / 1e6,
+                t.rays_per_s / 1e6);
     std::fflush(stdout);
   }
   return 0;
