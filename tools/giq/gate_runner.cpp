@@ -181,8 +181,13 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
     std::error_code ec;
     fs::remove_all(dir, ec);
     fs::create_directories(dir);
+    // giq reference runs in the config's folder with the scene path relative to it, the path
+    // the manifest records: the EXR header names the scene by that path, so the golden files
+    // are the same bytes whatever the checkout's location or the directory update runs in.
+    const fs::path config_dir = fs::absolute(config.file).parent_path();
+    const std::string scene = fs::absolute(c.scene).lexically_relative(config_dir).generic_string();
     std::vector<std::string> a = {t.giq.string(), "reference",
-                                  "--scene",      c.scene.string(),
+                                  "--scene",      scene,
                                   "--view",       c.view,
                                   "--frames",     frames_arg(c.first_frame, c.golden_last_frame()),
                                   "--width",      std::to_string(c.width),
@@ -193,19 +198,17 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
     else
       a.insert(a.end(), {"--rel-error", std::to_string(*c.golden.rel_error)});
     if (c.golden.half) a.push_back("--half");
-    a.insert(a.end(), {"--out", (dir / "frame_####.exr").string()});
+    a.insert(a.end(), {"--out", (fs::absolute(dir) / "frame_####.exr").string()});
     const fs::path log = config.golden_dir / (g.key + ".log");
     std::ofstream(log, std::ios::trunc) << "giq golden update: " << g.key << '\n';
-    const ProcessResult r = run_process(a, log);
+    const ProcessResult r = run_process(a, log, config_dir);
     if (r.exit_code != 0)
       throw InputError(c.scene.string(), "golden",
                        "giq reference failed (exit " + std::to_string(r.exit_code) + "; log " +
                            log.string() + "): " + r.log_tail);
     fs::remove(log, ec);
     gate::GoldenEntry e;
-    e.scene = fs::absolute(c.scene)
-                  .lexically_relative(fs::absolute(config.file).parent_path())
-                  .generic_string();
+    e.scene = scene;
     e.scene_hash = hash;
     e.settings = gate::golden_settings(c);
     e.render_seconds = r.seconds;
