@@ -25,19 +25,22 @@ using giq::test::Agreement;
 namespace {
 
 constexpr const char* kGolden = "cornell_0_f0-0";
-// 256 spp: a 64x64 render takes about a second, and a pixel mean of 256 paths is close enough
-// to Gaussian that the z-scores below follow the normal tail (measured: see the bounds).
+// 256 spp: a 64x64 render takes about a second, and with the pooled variance of
+// noise_agreement.h a pixel mean of 256 paths gives z-scores close to standard normal
+// (measured on the committed golden: mean z^2 0.975, 4 of 12288 values beyond 4 sigma).
 constexpr int kSpp = 256;
 
 // The acceptance rule for n compared values (pixel-channels with a variance):
 // - |z| > 4: a normal variable exceeds 4 with probability p = 6.33e-5, so the count is about
 //   Binomial(n, p) (mean n p, 0.78 for 64x64x3). Pixel means of 256 light paths have heavier
 //   tails than the normal (a rare bright path in one of the renders), so the bound allows ten
-//   times the Gaussian rate plus five standard deviations of that count: a wrong renderer
-//   moves whole regions, hundreds of values, beyond 4 sigma.
+//   times the Gaussian rate plus five standard deviations of that count (22 for 64x64x3); a
+//   renderer 5 % too bright puts about a hundred values beyond 4 sigma.
 // - mean z: each z has unit variance; the three channels of a pixel come from the same paths,
 //   so at worst they are one sample, and the mean over n/3 independent pixels has standard
-//   deviation sqrt(3/n). |mean z| must stay within 5 of those (2.0 for 64x64).
+//   deviation sqrt(3/n). |mean z| must stay within 5 of those (0.078 for 64x64x3).
+// - sum test: per channel, the summed difference over its standard deviation is a standard
+//   normal for agreeing renders; |D| <= 5 (a false alarm once in 1.7 million runs).
 bool agrees(const Agreement& a, std::string* why) {
   const double n = double(a.with_variance);
   const double expected = 10.0 * 6.33e-5 * n;
