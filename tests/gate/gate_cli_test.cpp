@@ -253,4 +253,35 @@ TEST_F(GateCli, SequenceCaseScoresEveryFrame) {
       << status("seq", "flicker");
 }
 
+// A still golden: one image of the first frame, shared with the single-frame case, scored
+// against every frame of the sequence; asked of an animated scene it is refused.
+TEST_F(GateCli, StillGoldenServesEveryFrameOfAStaticScene) {
+  config(json::array({{{"name", "one"}, {"technique", "pt"}, {"bounds", {{"relmse", 0.1}}}},
+                      {{"name", "seq"},
+                       {"technique", "pt"},
+                       {"frames", "0:3"},
+                       {"golden", {{"still", true}}},
+                       {"bounds", {{"flicker", 0.03}}}}}));
+  behave({{"seq", {{"raw", {{"sequence", {{"flicker", {{"value", 0.02}}}}}}}}}});
+  ASSERT_EQ(update().code, 0);
+  EXPECT_EQ(calls("reference"), 1);  // the two cases share one golden
+  EXPECT_TRUE(fs::exists(dir_ / "refs" / "cornell_0_f0-0" / "frame_0000.exr"));
+  EXPECT_FALSE(fs::exists(dir_ / "refs" / "cornell_0_f0-0" / "frame_0001.exr"));
+  const Result r = gate();
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_EQ(calls("--warmup 0 --frames 4"), 1);
+  EXPECT_EQ(calls("cornell_0_f0-0/frame_0000.exr --test"), 2);  // one image for the sequence too
+  EXPECT_EQ(status("seq", "flicker").rfind("PASS", 0), 0u) << status("seq", "flicker");
+
+  config(json::array({{{"name", "anim"},
+                       {"scene", std::string(GIQ_SCENES_DIR) + "/movinglight.gltf"},
+                       {"technique", "pt"},
+                       {"frames", "28:31"},
+                       {"golden", {{"still", true}}},
+                       {"bounds", {{"flicker", 0.03}}}}}));
+  const Result u = update();
+  EXPECT_EQ(u.code, 1);
+  EXPECT_NE(u.out.find("static scenes only"), std::string::npos) << u.out;
+}
+
 }  // namespace

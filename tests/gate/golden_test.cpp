@@ -112,6 +112,32 @@ TEST_F(GoldenManifest, ConflictingCasesAndMalformedFiles) {
   EXPECT_TRUE(giq::gate::read_manifest(dir_ / "absent.json").entries.empty());
 }
 
+// A still golden is one image of the first frame: a flicker case over frames 0:7 shares the
+// golden of the single-frame case of frame 0 and needs only frame_0000.exr; float16 storage is
+// part of the settings, so switching it makes the golden stale.
+TEST(GoldenKey, StillAndHalfGoldens) {
+  const auto config = giq::gate::parse_config(
+      R"({"version": 1, "defaults": {"golden": {"spp": 64, "half": true}}, "cases": [
+          {"name": "one", "scene": "box.gltf", "technique": "t", "bounds": {"relmse": 1}},
+          {"name": "seq", "scene": "box.gltf", "technique": "t", "frames": "0:7", "golden": {"still": true},
+           "bounds": {"flicker": 1}},
+          {"name": "anim", "scene": "box.gltf", "technique": "t", "frames": "0:7", "bounds": {"flicker": 1}}]})",
+      "gate.json");
+  const auto& c = config.cases;
+  EXPECT_TRUE(c[1].golden.still && c[1].golden.half && c[1].golden.spp == 64u);
+  EXPECT_EQ(c[1].golden_last_frame(), 0);
+  EXPECT_EQ(c[2].golden_last_frame(), 7);
+  EXPECT_EQ(giq::gate::golden_key(c[0]), "box_0_f0-0");
+  EXPECT_EQ(giq::gate::golden_key(c[1]), "box_0_f0-0");
+  EXPECT_EQ(giq::gate::golden_key(c[2]), "box_0_f0-7");
+  EXPECT_EQ(giq::gate::golden_settings(c[1]), giq::gate::golden_settings(c[0]));
+  EXPECT_EQ(giq::gate::golden_settings(c[1])["half"], true);
+  EXPECT_NO_THROW(giq::gate::check_golden_conflicts(config));
+  giq::gate::Case f32 = c[0];
+  f32.golden.half = false;
+  EXPECT_FALSE(giq::gate::golden_settings(f32).contains("half"));
+}
+
 TEST(GateEscape, HtmlAndBase64) {
   EXPECT_EQ(giq::gate::html_escape("<script>alert('x&y')</script>\""),
             "&lt;script&gt;alert(&#39;x&amp;y&#39;)&lt;/script&gt;&quot;");

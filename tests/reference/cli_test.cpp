@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -137,6 +138,37 @@ TEST(ReferenceCli, WritesEveryLayerWithBeautyEqualToDirectPlusIndirect) {
   EXPECT_EQ(img.metadata.at("giq.spp"), "16");
   EXPECT_EQ(img.metadata.at("giq.nonFiniteSamples"), "0");
   EXPECT_EQ(img.metadata.at("giq.view"), "cam");
+}
+
+// --half: the colour layers are the float32 render rounded to float16 (within half an ulp:
+// 2^(e - 11) for a value in [2^e, 2^(e+1))), every other channel is bit-identical, and the file
+// is smaller.
+TEST(ReferenceCli, HalfStoresColourLayersAsFloat16AndTheRestExactly) {
+  const fs::path scene = write_scene(), f32 = work_dir() / "f32.exr", f16 = work_dir() / "f16.exr";
+  ASSERT_EQ(giq(render_args(scene, f32, 16, 2)), 0);
+  std::vector<std::string> args = render_args(scene, f16, 16, 2);
+  args.insert(args.end() - 2, "--half");
+  ASSERT_EQ(giq(args), 0);
+  const giq::image::Image a = giq::image::read_image(f32), b = giq::image::read_image(f16);
+  ASSERT_EQ(a.channel_names().size(), b.channel_names().size());
+  size_t rounded = 0;
+  for (const std::string& c : a.channel_names()) {
+    const bool colour = c.size() == 1 ? (c == "R" || c == "G" || c == "B")
+                                      : c.rfind("direct.", 0) == 0 || c.rfind("indirect.", 0) == 0 ||
+                                            c.rfind("albedo.", 0) == 0;
+    for (size_t k = 0; k < a.pixel_count(); ++k) {
+      const float x = a.channel(c)[k], y = b.channel(c)[k];
+      if (!colour) {
+        ASSERT_EQ(x, y) << c << " pixel " << k;
+        continue;
+      }
+      const float ulp = x == 0.0f ? 0.0f : std::ldexp(1.0f, std::ilogb(std::max(std::fabs(x), 6.103515625e-05f)) - 10);
+      ASSERT_LE(std::fabs(x - y), 0.5f * ulp) << c << " pixel " << k;
+      rounded += x != y;
+    }
+  }
+  EXPECT_GT(rounded, 0u);  // float16 is really used
+  EXPECT_LT(fs::file_size(f16), fs::file_size(f32));
 }
 
 TEST(ReferenceCli, FilesAreByteIdenticalAcrossThreadsAndAfterKillAndResume) {

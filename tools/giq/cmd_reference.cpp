@@ -65,6 +65,7 @@ struct Options {
   double checkpoint_interval = 60.0;
   bool resume = false;
   bool record_time = false;
+  bool half = false;
 };
 
 glm::dvec3 parse_vec3(const std::string& key, const std::string& text) {
@@ -139,6 +140,28 @@ fs::path frame_path(const std::string& pattern, int frame, bool several) {
   char num[16];
   std::snprintf(num, sizeof num, ".%04d", frame);
   return p.parent_path() / (p.stem().string() + num + p.extension().string());
+}
+
+// --half: the colour layers (beauty, direct, indirect, albedo) as float16, a third of the
+// size of float32 with zip compression on noisy data. Half keeps 11 significant bits, a
+// relative rounding error of at most 2^-11 (4.9e-4), far below the per-pixel noise of any
+// finite-spp render (golden/README.md has the measured ratio). The variance layer stays
+// float32: it spans many decades and is squared into z-scores and noise floors; so do depth,
+// normals, object ids and the sample count. A channel with a finite value beyond half's range
+// (65504) stays float32 rather than turn into infinity.
+image::ExrOptions exr_options(const image::Image& img, bool half) {
+  image::ExrOptions opts;
+  if (!half) return opts;
+  for (const char* layer : {"", "direct", "indirect", "albedo"}) {
+    if (!img.has_layer(layer)) continue;
+    for (const std::string& name : img.layer_channels(layer)) {
+      const float* c = img.channel(name);
+      bool fits = true;
+      for (size_t i = 0; i < img.pixel_count() && fits; ++i) fits = !(std::fabs(c[i]) > 65504.0f);
+      if (fits) opts.half_channels.insert(name);
+    }
+  }
+  return opts;
 }
 
 std::string format_seconds(double s) {
@@ -218,7 +241,8 @@ int run(const Options& o) {
       return 130;
     }
     meta.render_seconds = o.record_time ? r.elapsed_seconds : -1.0;
-    image::write_exr(ref::reference_image(r.film, settings, meta), out);
+    const image::Image img = ref::reference_image(r.film, settings, meta);
+    image::write_exr(img, out, exr_options(img, o.half));
     fs::remove(po.checkpoint);
     const uint64_t nonfinite = r.film.nonfinite_samples();
     std::printf("reference %s: %dx%d, view %s, frame %d, %u spp, %.2f s%s, rel.err %.3g%%, %llu non-finite samples\n",
@@ -252,6 +276,7 @@ void add_reference_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", o.out, "Output EXR path")->required();
   cmd->add_option("--checkpoint-interval", o.checkpoint_interval, "Seconds between checkpoints (OUT.checkpoint)")->capture_default_str();
   cmd->add_flag("--resume", o.resume, "Continue from OUT.checkpoint when it exists");
+  cmd->add_flag("--half", o.half, "Store the colour layers as float16 (variance, depth, ids stay float32)");
   cmd->add_flag("--record-time", o.record_time, "Write the render time into the header (the file then differs run to run)");
   cmd->callback([&exit_code] { exit_code = run(o); });
 }

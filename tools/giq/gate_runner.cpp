@@ -75,6 +75,20 @@ std::string scene_hash(const fs::path& scene) {
   return scenes::load(scene).content_hash;
 }
 
+namespace {
+
+// The scene's content hash, after checking that a still golden is asked for a static scene
+// only: one image cannot stand for the frames of an animation.
+std::string checked_scene_hash(const gate::Case& c) {
+  const scenes::Scene scene = scenes::load(c.scene);
+  if (c.golden.still && scene.features.animation)
+    throw InputError(c.scene.string(), "cases." + c.name + ".golden.still",
+                     "the scene is animated; a still golden serves static scenes only");
+  return scene.content_hash;
+}
+
+}  // namespace
+
 CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& config,
                  const gate::Manifest& manifest, const fs::path& out_dir) {
   CaseRun run;
@@ -85,7 +99,7 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
     fs::create_directories(run.dir);
     const fs::path log = run.dir / "log.txt";
     std::ofstream(log, std::ios::trunc) << "giq gate: case " << c.name << '\n';
-    const std::string hash = scene_hash(c.scene);
+    const std::string hash = checked_scene_hash(c);
     const gate::Freshness fresh = gate::check_golden(manifest, config.golden_dir, c, hash);
     if (fresh.state != gate::Freshness::State::Fresh)
       throw InputError(c.scene.string(), "golden", fresh.reason);
@@ -121,8 +135,11 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
 
     const fs::path score = run.dir / "score";
     std::vector<std::string> sc = {t.giq.string(), "score"};
+    // A still golden is one image that giq score compares with every frame of the range.
+    const std::string ref_frames =
+        c.golden.still ? gate::golden_frame_name(c.first_frame) : "frame_%04d.exr";
     if (c.sequence())
-      sc.insert(sc.end(), {"--ref", (golden / "frame_%04d.exr").string(), "--test",
+      sc.insert(sc.end(), {"--ref", (golden / ref_frames).string(), "--test",
                            (tech / "frame_%04d.exr").string(), "--frames",
                            frames_arg(c.first_frame, c.last_frame)});
     else
@@ -151,7 +168,7 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
   GoldenRun g;
   g.key = gate::golden_key(c);
   try {
-    const std::string hash = scene_hash(c.scene);
+    const std::string hash = checked_scene_hash(c);
     {
       std::lock_guard<std::mutex> guard(lock);
       const gate::Freshness f = gate::check_golden(manifest, config.golden_dir, c, hash);
@@ -164,10 +181,15 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
     std::error_code ec;
     fs::remove_all(dir, ec);
     fs::create_directories(dir);
+    // giq reference runs in the config's folder with the scene path relative to it, the path
+    // the manifest records: the EXR header names the scene by that path, so the golden files
+    // are the same bytes whatever the checkout's location or the directory update runs in.
+    const fs::path config_dir = fs::absolute(config.file).parent_path();
+    const std::string scene = fs::absolute(c.scene).lexically_relative(config_dir).generic_string();
     std::vector<std::string> a = {t.giq.string(), "reference",
-                                  "--scene",      c.scene.string(),
+                                  "--scene",      scene,
                                   "--view",       c.view,
-                                  "--frames",     frames_arg(c.first_frame, c.last_frame),
+                                  "--frames",     frames_arg(c.first_frame, c.golden_last_frame()),
                                   "--width",      std::to_string(c.width),
                                   "--height",     std::to_string(c.height),
                                   "--seed",       std::to_string(c.golden.seed)};
@@ -175,24 +197,23 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
       a.insert(a.end(), {"--spp", std::to_string(*c.golden.spp)});
     else
       a.insert(a.end(), {"--rel-error", std::to_string(*c.golden.rel_error)});
-    a.insert(a.end(), {"--out", (dir / "frame_####.exr").string()});
+    if (c.golden.half) a.push_back("--half");
+    a.insert(a.end(), {"--out", (fs::absolute(dir) / "frame_####.exr").string()});
     const fs::path log = config.golden_dir / (g.key + ".log");
     std::ofstream(log, std::ios::trunc) << "giq golden update: " << g.key << '\n';
-    const ProcessResult r = run_process(a, log);
+    const ProcessResult r = run_process(a, log, config_dir);
     if (r.exit_code != 0)
       throw InputError(c.scene.string(), "golden",
                        "giq reference failed (exit " + std::to_string(r.exit_code) + "; log " +
                            log.string() + "): " + r.log_tail);
     fs::remove(log, ec);
     gate::GoldenEntry e;
-    e.scene = fs::absolute(c.scene)
-                  .lexically_relative(fs::absolute(config.file).parent_path())
-                  .generic_string();
+    e.scene = scene;
     e.scene_hash = hash;
     e.settings = gate::golden_settings(c);
     e.render_seconds = r.seconds;
     e.giq_version = giq::version();
-    for (int f = c.first_frame; f <= c.last_frame; ++f) {
+    for (int f = c.first_frame; f <= c.golden_last_frame(); ++f) {
       const fs::path p = dir / gate::golden_frame_name(f);
       if (!fs::exists(p))
         throw InputError(p.string(), "", "giq reference did not write this frame");

@@ -42,10 +42,12 @@ std::string command_line(const std::vector<std::string>& argv) {
   return s;
 }
 
-ProcessResult run_process(const std::vector<std::string>& argv, const fs::path& log_file) {
+ProcessResult run_process(const std::vector<std::string>& argv, const fs::path& log_file,
+                          const fs::path& cwd) {
   if (argv.empty()) throw InputError("", "command", "empty command");
   {
     std::ofstream log(log_file, std::ios::app);
+    if (!cwd.empty()) log << "$ cd " << command_line({cwd.string()}) << '\n';
     log << "$ " << command_line(argv) << '\n';
   }
   const int fd = ::open(log_file.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
@@ -57,6 +59,7 @@ ProcessResult run_process(const std::vector<std::string>& argv, const fs::path& 
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_adddup2(&actions, fd, STDOUT_FILENO);
   posix_spawn_file_actions_adddup2(&actions, fd, STDERR_FILENO);
+  if (!cwd.empty()) posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str());
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);

@@ -16,10 +16,12 @@ struct ProcessResult {
   std::string log_tail;  // the last lines of its output, for messages
 };
 
-// Runs argv[0] (a path) with arguments, stdout and stderr appended to `log_file`. Throws
-// InputError when the program cannot be started.
+// Runs argv[0] (a path) with arguments, stdout and stderr appended to `log_file`, in the
+// working directory `cwd` (empty: this process's). Throws InputError when the program cannot
+// be started.
 ProcessResult run_process(const std::vector<std::string>& argv,
-                          const std::filesystem::path& log_file);
+                          const std::filesystem::path& log_file,
+                          const std::filesystem::path& cwd = {});
 
 // A shell-quoted command line, for logs and messages.
 std::string command_line(const std::vector<std::string>& argv);

@@ -137,7 +137,7 @@ class Parser {
   }
 
   void golden(GoldenSpec& g, const json& v, const std::string& f) const {
-    only_keys(v, {"spp", "rel_error", "seed"}, f);
+    only_keys(v, {"spp", "rel_error", "seed", "half", "still"}, f);
     if (v.contains("spp") || v.contains("rel_error")) g.spp.reset(), g.rel_error.reset();
     if (v.contains("spp")) g.spp = uint32_t(integer(v["spp"], f + ".spp", 1, 1 << 30));
     if (v.contains("rel_error")) {
@@ -148,6 +148,13 @@ class Parser {
     }
     if (g.spp && g.rel_error) fail(f, "give spp or rel_error, not both");
     if (v.contains("seed")) g.seed = uint64_t(integer(v["seed"], f + ".seed", 0, 2147483647));
+    if (v.contains("half")) g.half = boolean(v["half"], f + ".half");
+    if (v.contains("still")) g.still = boolean(v["still"], f + ".still");
+  }
+
+  bool boolean(const json& v, const std::string& field) const {
+    if (!v.is_boolean()) fail(field, show(v) + " is not true or false");
+    return v.get<bool>();
   }
 
   Bound bound(const std::string& metric, const json& v, const std::string& f) const {

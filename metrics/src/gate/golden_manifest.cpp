@@ -27,16 +27,18 @@ std::string sanitize(const std::string& s) {
 
 std::string golden_key(const Case& c) {
   return sanitize(c.scene.stem().string() + "_" + c.view + "_f" + std::to_string(c.first_frame) +
-                  "-" + std::to_string(c.last_frame));
+                  "-" + std::to_string(c.golden_last_frame()));
 }
 
 json golden_settings(const Case& c) {
   json s = {{"view", c.view},
-            {"frames", {c.first_frame, c.last_frame}},
+            {"frames", {c.first_frame, c.golden_last_frame()}},
             {"resolution", {c.width, c.height}},
             {"seed", c.golden.seed}};
   if (c.golden.spp) s["spp"] = *c.golden.spp;
   if (c.golden.rel_error) s["rel_error"] = *c.golden.rel_error;
+  // Only when set, so the manifests of float32 goldens written before the option stay fresh.
+  if (c.golden.half) s["half"] = true;
   return s;
 }
 
@@ -127,7 +129,7 @@ Freshness check_golden(const Manifest& manifest, const fs::path& golden_dir, con
                ", the config asks for " + want.dump() + "; run giq golden update";
     return f;
   }
-  for (int frame = c.first_frame; frame <= c.last_frame; ++frame) {
+  for (int frame = c.first_frame; frame <= c.golden_last_frame(); ++frame) {
     const std::string name = golden_frame_name(frame);
     const fs::path p = golden_dir / key / name;
     const auto h = g.files.find(name);

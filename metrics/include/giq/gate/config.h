@@ -16,11 +16,19 @@ namespace giq::gate {
 
 // How a golden reference is rendered: stop at `spp` samples per pixel or at a mean relative
 // standard error `rel_error` (exactly one of the two), with a fixed seed so that re-rendering
-// gives the same file.
+// gives the same file. `half` stores the colour layers as float16 (`giq reference --half`:
+// the variance, depth and id channels stay float32). `still` renders one image, of the
+// case's first frame, for a static scene and camera; a frame range is then scored against
+// that one image, which is the right comparison for flicker: identical golden frames would
+// share one noise sample, and subtracting their noise from the technique's temporal variance
+// as if it were independent every frame would hide real flicker (docs/metrics.md,
+// "Sequences").
 struct GoldenSpec {
   std::optional<uint32_t> spp;
   std::optional<double> rel_error;
   uint64_t seed = 1;
+  bool half = false;
+  bool still = false;
 };
 
 enum class Better { Lower, Higher };
@@ -57,6 +65,8 @@ struct Case {
   std::vector<Bound> bounds;
 
   bool sequence() const { return last_frame > first_frame; }
+  // The frames the golden holds: [first, last], or [first, first] for a still golden.
+  int golden_last_frame() const { return golden.still ? first_frame : last_frame; }
   bool needs_timing() const;
 };
 

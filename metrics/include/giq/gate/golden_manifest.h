@@ -33,9 +33,10 @@ struct Manifest {
   std::map<std::string, GoldenEntry> entries;  // by golden_key
 };
 
-// "<scene stem>_<view>_f<A>-<B>", with characters other than [A-Za-z0-9._-] replaced by '_'.
+// "<scene stem>_<view>_f<A>-<B>", with characters other than [A-Za-z0-9._-] replaced by '_'
+// (B = A for a still golden, which a single-frame case of frame A shares).
 std::string golden_key(const Case& c);
-// {"view", "frames": [A, B], "resolution": [W, H], "spp" or "rel_error", "seed"}
+// {"view", "frames": [A, B], "resolution": [W, H], "spp" or "rel_error", "seed"[, "half"]}
 nlohmann::json golden_settings(const Case& c);
 // frame_NNNN.exr, as `giq reference --out <dir>/frame_####.exr` names frame N.
 std::string golden_frame_name(int frame);
