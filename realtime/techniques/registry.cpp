@@ -3,6 +3,7 @@
 #include "giq/realtime/technique.h"
 #include "techniques/direct/direct.h"
 #include "techniques/pt/pt.h"
+#include "techniques/vct/vct.h"
 
 namespace giq::realtime {
 
@@ -10,6 +11,7 @@ const std::vector<TechniqueInfo>& techniques() {
   static const std::vector<TechniqueInfo> all = {
       direct_technique(),
       pt_technique(),
+      vct_technique(),
   };
   return all;
 }

@@ -1,0 +1,144 @@
+#version 460
+// Voxel cone tracing at the G-buffer texels (seed 000 ch. IV, VoxelConeTracingPS.hlsl; Crassin
+// et al. 2011): per low-resolution pixel, `cone count` diffuse cones of aperture tan 30 deg
+// around the shading normal and one specular cone along the reflection direction, each
+// marched front to back through the voxel mips.
+//
+// Units: the voxels hold outgoing radiance, so a cone returns the radiance arriving from its
+// solid angle. The diffuse cone weights are the cones' shares of the cosine-weighted
+// hemisphere (the thesis's 0.25 for the 30 deg cone on the normal is exactly
+// int_cap cos / pi = sin^2 30 deg; the five others share the remaining 0.75), so
+// irradiance = pi sum_i w_i L_i and the outgoing diffuse radiance is f_d pi sum_i w_i L_i
+// with f_d the diffuse BRDF (albedo / pi for Lambert).
+//
+// The thesis's table places its side cones at 60 deg from the normal in a frame where y is
+// the normal, but its shader adds only their x and z parts to the normal (with weight 1, not
+// 0.5), which tilts them to 40 deg; here each direction is x right + y normal + z up.
+#extension GL_GOOGLE_include_directive : require
+
+#include "shaders/scene.glsl"
+#include "shaders/brdf.glsl"
+#include "techniques/vct/vct_shared.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 0, rgba32f) uniform readonly image2D gb_position;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 1, rgba32f) uniform readonly image2D gb_normal;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 2, rgba32ui) uniform readonly uimage2D gb_ids;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 3) uniform sampler3D base;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 4) uniform sampler3D chain_px;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 5) uniform sampler3D chain_nx;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 6) uniform sampler3D chain_py;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 7) uniform sampler3D chain_ny;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 8) uniform sampler3D chain_pz;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 9) uniform sampler3D chain_nz;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 10, rgba32f) uniform writeonly image2D out_low;
+layout(push_constant) uniform Push { VctConePush pc; };
+
+// GetAnisotropicSample of the thesis, with a fractional level between the chain's mips (the
+// thesis truncates it to an integer). lod is in base voxels: chain level 0 is lod 1.
+vec4 sample_voxels(vec3 uvw, vec3 dir, float lod) {
+  vec3 w = dir * dir;
+  float l = max(lod - 1.0, 0.0);
+  vec4 s = w.x * (dir.x > 0.0 ? textureLod(chain_px, uvw, l) : textureLod(chain_nx, uvw, l)) +
+           w.y * (dir.y > 0.0 ? textureLod(chain_py, uvw, l) : textureLod(chain_ny, uvw, l)) +
+           w.z * (dir.z > 0.0 ? textureLod(chain_pz, uvw, l) : textureLod(chain_nz, uvw, l));
+  if (lod < 1.0) s = mix(textureLod(base, uvw, 0.0), s, clamp(lod, 0.0, 1.0));
+  return s;
+}
+
+// TraceCone of the thesis: front-to-back compositing, the sample spacing a fraction
+// (step factor) of the cone's diameter. Each sample stands for a segment of length
+// step = step factor x diameter while a voxel of that diameter holds the opacity of a
+// segment one diameter long, so opacity is corrected to 1 - (1 - a)^(step factor)
+// (Crassin 2011, sec. 4.1). Returns premultiplied radiance (stored units) and alpha; occlusion
+// follows the thesis's AO with falloff 1 / (1 + falloff x diameter in voxels).
+vec4 trace_cone(vec3 p, vec3 dir, float aperture, out float occlusion) {
+  float voxel = pc.grid.origin.w;
+  float inv_extent = 1.0 / (voxel * float(pc.grid.size.x));
+  float max_lod = float(pc.grid.size.y);
+  float dist = voxel;
+  vec4 acc = vec4(0.0);
+  occlusion = 0.0;
+  while (dist < pc.cone.y && acc.a < 0.99) {
+    float diameter = max(2.0 * aperture * dist, voxel);
+    float lod = min(log2(diameter / voxel), max_lod);
+    vec3 uvw = (p + dist * dir - pc.grid.origin.xyz) * inv_extent;
+    if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break;
+    vec4 s = sample_voxels(uvw, dir, lod);
+    if (s.a > 0.0) {
+      float a = 1.0 - pow(max(1.0 - s.a, 0.0), pc.cone.z);
+      s = vec4(s.rgb * (a / s.a), a);
+      acc += (1.0 - acc.a) * s;
+      occlusion += (1.0 - occlusion) * s.a / (1.0 + pc.params.z * diameter / voxel);
+    }
+    dist += diameter * pc.cone.z;
+  }
+  return acc;
+}
+
+void main() {
+  ivec2 lp = ivec2(gl_GlobalInvocationID.xy);
+  if (lp.x >= int(pc.viewport.z) || lp.y >= int(pc.viewport.w)) return;
+  int k = int(pc.params.y);
+  ivec2 px = min(k * lp + k / 2, ivec2(pc.viewport.xy) - 1);
+  uvec4 ids = imageLoad(gb_ids, px);
+  vec4 result = vec4(0.0, 0.0, 0.0, 1.0);
+  if (ids.x != 0u) {
+    GpuMaterial mat = scene_materials[ids.y];
+    if (ids.w == 0u || mat.params.w != 0.0) {  // the back of a one-sided material is black
+      vec3 p = imageLoad(gb_position, px).xyz;
+      vec3 n = imageLoad(gb_normal, px).xyz;
+      vec3 wo = normalize(pc.eye.xyz - p);
+      Surface s = make_surface(mat, n);
+      vec3 start = p + n * (pc.cone.w * pc.grid.origin.w);
+
+      // The thesis's frame: right from a fixed up axis, then up = right x normal... with the
+      // fallback when the normal is (anti)parallel to it.
+      vec3 ref = abs(n.y) > 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(0.0, 1.0, 0.0);
+      vec3 right = normalize(ref - dot(n, ref) * n);
+      vec3 up = cross(right, n);
+      uint cones = pc.grid.size.z;
+      vec3 diffuse_sum = vec3(0.0);
+      float occlusion_sum = 0.0;
+      for (uint i = 0u; i < cones; ++i) {
+        // Cone 0 along the normal (weight 0.25); the others on a ring at 60 deg from it,
+        // sharing 0.75. For 6 cones the azimuths 90 - 72 i deg reproduce the thesis's table
+        // ((0, .5, .866), (.824, .5, .268), (.509, .5, -.701), ...).
+        vec3 dir;
+        float weight;
+        if (i == 0u) {
+          dir = n;
+          weight = cones == 1u ? 1.0 : 0.25;
+        } else {
+          float phi = radians(90.0 - 360.0 / float(cones - 1u) * float(i - 1u));
+          vec3 t = vec3(0.866025 * cos(phi), 0.5, 0.866025 * sin(phi));
+          dir = normalize(t.x * right + t.y * n + t.z * up);
+          weight = 0.75 / float(cones - 1u);
+        }
+        float occ;
+        diffuse_sum += weight * trace_cone(start, dir, pc.cone.x, occ).rgb;
+        occlusion_sum += weight * occ;
+      }
+      vec3 fd, fs;
+      brdf_parts(s, wo, n, fd, fs);
+      vec3 radiance = fd * PI * diffuse_sum;
+#ifdef GIQ_SPECULAR
+      // One cone along the mirror direction whose aperture follows the GGX lobe width
+      // (tan of the half angle ~ alpha), at least the thesis's 5 degrees; weighted by the
+      // lobe's Fresnel reflectance at the viewing angle.
+      vec3 r = reflect(-wo, n);
+      if (dot(r, n) > 0.0) {
+        float aperture = clamp(s.alpha, 0.0875, 1.0);
+        float occ;
+        vec3 ls = trace_cone(start, r, aperture, occ).rgb;
+        float nv = max(dot(n, wo), 0.0);
+        vec3 f = (1.0 - s.metallic) * schlick(dielectric_f0(s), vec3(s.specular), nv) +
+                 s.metallic * schlick(s.base_color, vec3(1.0), nv);
+        radiance += f * ls;
+      }
+#endif
+      result = vec4(radiance * pc.params.x, 1.0 - occlusion_sum);
+    }
+  }
+  imageStore(out_low, lp, result);
+}
