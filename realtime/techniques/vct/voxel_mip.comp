@@ -30,7 +30,6 @@ layout(binding = 12, r32ui) uniform uimage3D out5;
 layout(push_constant) uniform Push { VctVoxelPush pc; };
 
 vec4 child(int d, ivec3 p, int level) {
-  if (level < 0) return texelFetch(base, p, 0);
   switch (d) {
     case 0: return texelFetch(chain0, p, level);
     case 1: return texelFetch(chain1, p, level);
@@ -69,6 +68,10 @@ void main() {
   ivec3 cell = ivec3(gl_GlobalInvocationID);
   if (any(greaterThanEqual(cell, ivec3(size)))) return;
   ivec3 first = 2 * cell;
+  // The isotropic base is shared by all six directions: fetch its eight children once.
+  vec4 base_children[8];
+  if (level == 0)
+    for (int i = 0; i < 8; ++i) base_children[i] = texelFetch(base, first + ivec3(i & 1, (i >> 1) & 1, i >> 2), 0);
   for (int d = 0; d < GIQ_VCT_DIRECTIONS; ++d) {
     int axis = d / 2;
     bool positive = (d % 2) == 0;
@@ -82,8 +85,14 @@ void main() {
         o_far[axis] = 1 - near_o;
         o_near[(axis + 1) % 3] = o_far[(axis + 1) % 3] = i;
         o_near[(axis + 2) % 3] = o_far[(axis + 2) % 3] = j;
-        vec4 n = child(d, first + o_near, level - 1);
-        vec4 f = child(d, first + o_far, level - 1);
+        vec4 n, f;
+        if (level == 0) {
+          n = base_children[o_near.x + 2 * o_near.y + 4 * o_near.z];
+          f = base_children[o_far.x + 2 * o_far.y + 4 * o_far.z];
+        } else {
+          n = child(d, first + o_near, level - 1);
+          f = child(d, first + o_far, level - 1);
+        }
         sum += n + (1.0 - n.a) * f;
       }
     vec4 v = 0.25 * sum;
