@@ -34,47 +34,11 @@ layout(binding = GIQ_SCENE_BINDING_COUNT + 9) uniform sampler3D chain_nz;
 layout(binding = GIQ_SCENE_BINDING_COUNT + 10, rgba32f) uniform writeonly image2D out_low;
 layout(push_constant) uniform Push { VctConePush pc; };
 
-// GetAnisotropicSample of the thesis, with a fractional level between the chain's mips (the
-// thesis truncates it to an integer). lod is in base voxels: chain level 0 is lod 1.
-vec4 sample_voxels(vec3 uvw, vec3 dir, float lod) {
-  vec3 w = dir * dir;
-  float l = max(lod - 1.0, 0.0);
-  vec4 s = w.x * (dir.x > 0.0 ? textureLod(chain_px, uvw, l) : textureLod(chain_nx, uvw, l)) +
-           w.y * (dir.y > 0.0 ? textureLod(chain_py, uvw, l) : textureLod(chain_ny, uvw, l)) +
-           w.z * (dir.z > 0.0 ? textureLod(chain_pz, uvw, l) : textureLod(chain_nz, uvw, l));
-  if (lod < 1.0) s = mix(textureLod(base, uvw, 0.0), s, clamp(lod, 0.0, 1.0));
-  return s;
-}
-
-// TraceCone of the thesis: front-to-back compositing, the sample spacing a fraction
-// (step factor) of the cone's diameter. Each sample stands for a segment of length
-// step = step factor x diameter while a voxel of that diameter holds the opacity of a
-// segment one diameter long, so opacity is corrected to 1 - (1 - a)^(step factor)
-// (Crassin 2011, sec. 4.1). Returns premultiplied radiance (stored units) and alpha; occlusion
-// follows the thesis's AO with falloff 1 / (1 + falloff x diameter in voxels).
-vec4 trace_cone(vec3 p, vec3 dir, float aperture, out float occlusion) {
-  float voxel = pc.grid.origin.w;
-  float inv_extent = 1.0 / (voxel * float(pc.grid.size.x));
-  float max_lod = float(pc.grid.size.y);
-  float dist = voxel;
-  vec4 acc = vec4(0.0);
-  occlusion = 0.0;
-  while (dist < pc.cone.y && acc.a < 0.99) {
-    float diameter = max(2.0 * aperture * dist, voxel);
-    float lod = min(log2(diameter / voxel), max_lod);
-    vec3 uvw = (p + dist * dir - pc.grid.origin.xyz) * inv_extent;
-    if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break;
-    vec4 s = sample_voxels(uvw, dir, lod);
-    if (s.a > 0.0) {
-      float a = 1.0 - pow(max(1.0 - s.a, 0.0), pc.cone.z);
-      s = vec4(s.rgb * (a / s.a), a);
-      acc += (1.0 - acc.a) * s;
-      occlusion += (1.0 - occlusion) * s.a / (1.0 + pc.params.z * diameter / voxel);
-    }
-    dist += diameter * pc.cone.z;
-  }
-  return acc;
-}
+#define VCT_GRID pc.grid
+#define VCT_MAX_DISTANCE pc.cone.y
+#define VCT_STEP_FACTOR pc.cone.z
+#define VCT_AO_FALLOFF pc.params.z
+#include "techniques/vct/cone.glsl"
 
 void main() {
   ivec2 lp = ivec2(gl_GlobalInvocationID.xy);
@@ -92,29 +56,13 @@ void main() {
       Surface s = make_surface(mat, n);
       vec3 start = p + n * (pc.cone.w * pc.grid.origin.w);
 
-      // The thesis's frame: right from a fixed up axis, then up = right x normal... with the
-      // fallback when the normal is (anti)parallel to it.
-      vec3 ref = abs(n.y) > 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(0.0, 1.0, 0.0);
-      vec3 right = normalize(ref - dot(n, ref) * n);
-      vec3 up = cross(right, n);
       uint cones = pc.grid.size.z;
       vec3 diffuse_sum = vec3(0.0);
       float occlusion_sum = 0.0;
       for (uint i = 0u; i < cones; ++i) {
-        // Cone 0 along the normal (weight 0.25); the others on a ring at 60 deg from it,
-        // sharing 0.75. For 6 cones the azimuths 90 - 72 i deg reproduce the thesis's table
-        // ((0, .5, .866), (.824, .5, .268), (.509, .5, -.701), ...).
         vec3 dir;
         float weight;
-        if (i == 0u) {
-          dir = n;
-          weight = cones == 1u ? 1.0 : 0.25;
-        } else {
-          float phi = radians(90.0 - 360.0 / float(cones - 1u) * float(i - 1u));
-          vec3 t = vec3(0.866025 * cos(phi), 0.5, 0.866025 * sin(phi));
-          dir = normalize(t.x * right + t.y * n + t.z * up);
-          weight = 0.75 / float(cones - 1u);
-        }
+        diffuse_cone(i, cones, n, dir, weight);
         float occ;
         diffuse_sum += weight * trace_cone(start, dir, pc.cone.x, occ).rgb;
         occlusion_sum += weight * occ;

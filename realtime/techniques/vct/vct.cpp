@@ -62,11 +62,18 @@ class Vct : public Technique {
     const auto& p = ci.parameters;
     resolution_ = voxel_resolution(p);
     cone_count_ = uint32_t(p.get_int("cone_count"));
+    bounces_ = uint32_t(p.get_int("bounces"));
     aperture_ = float(p.get("cone_aperture"));
     max_distance_ = float(p.get("max_distance"));
     step_factor_ = float(p.get("step_factor"));
     start_offset_ = float(p.get("start_offset"));
     history_ = float(p.get("temporal_blend"));
+    // The blend mixes the new level-0 chains with what they held before: the previous frame's
+    // only when a single bounce rebuilds them once per frame.
+    if (history_ > 0.0f && bounces_ > 1)
+      throw InputError("", "--param", "temporal_blend=" + std::to_string(history_) +
+                                          " with bounces=" + std::to_string(bounces_) +
+                                          ": the temporal blend needs bounces=1");
     ao_ = p.get_int("ao") != 0;
     blur_ = p.get_int("blur") != 0;
     ao_falloff_ = float(p.get("ao_falloff"));
@@ -90,7 +97,7 @@ class Vct : public Technique {
     emitter_buffer_ = Buffer(ci.ctx, std::max<uint64_t>(16, emitters_.size() * sizeof(gpu::VctEmitter)),
                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
     upload_emitters();
-    scale_ = voxel_radiance_scale(ci.scene, emitters_);
+    scale_ = voxel_radiance_scale(ci.scene, emitters_) / float(bounces_);
 
     const ImageDesc low{upsample_.low_width(), upsample_.low_height(), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
                         VK_IMAGE_USAGE_STORAGE_BIT};
@@ -108,6 +115,7 @@ class Vct : public Technique {
     voxelize_ = Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/vct/voxelize.comp", defines), b,
                                   sizeof(gpu::VctVoxelPush));
     b.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    b.insert(b.end(), 6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     light_ = Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/vct/voxel_light.comp", defines), b,
                                sizeof(gpu::VctVoxelPush));
     std::vector<VkDescriptorType> mb(1 + 6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
@@ -123,8 +131,10 @@ class Vct : public Technique {
   }
 
   std::vector<std::string> passes() const override {
-    std::vector<std::string> p = {"shadow_maps", "gbuffer",    "direct_lighting", "voxelize",
-                                  "voxel_light", "voxel_mips", "cone_trace",      "upsample"};
+    std::vector<std::string> p = {"shadow_maps", "gbuffer", "direct_lighting"};
+    for (uint32_t b = 0; b < bounces_; ++b)
+      for (const char* pass : {"voxelize", "voxel_light", "voxel_mips"}) p.push_back(bounce_pass(pass, b));
+    p.insert(p.end(), {"cone_trace", "upsample"});
     if (blur_on()) p.push_back("blur");
     if (ao_) {
       p.push_back("upsample");
@@ -140,12 +150,14 @@ class Vct : public Technique {
         emitters_ = voxel_emitters(in.scene);
         upload_emitters();
       }
-      scale_ = voxel_radiance_scale(in.scene, emitters_);
+      // Each bounce adds at most the direct light's bound again (albedo <= 1, cone weights
+      // sum to 1), so n bounces stay below n times it.
+      scale_ = voxel_radiance_scale(in.scene, emitters_) / float(bounces_);
     }
     lighting_.record_shadows(in);
     gbuffer_.record(in.cmd, in.camera, in.timer);
     lighting_.record_lighting(in, gbuffer_);
-    record_voxels(in);
+    for (uint32_t b = 0; b < bounces_; ++b) record_voxels(in, b);
     record_cones(in);
     upsample_.record(in.cmd, low_, gbuffer_, in.timer);
     if (ao_) ao_upsample_->record(in.cmd, ao_low_, gbuffer_, in.timer);
@@ -161,15 +173,21 @@ class Vct : public Technique {
 
  private:
   bool blur_on() const { return blur_; }
+  static std::string bounce_pass(const char* pass, uint32_t bounce) {
+    return bounce == 0 ? std::string(pass) : std::string(pass) + "_" + std::to_string(bounce + 1);
+  }
 
   void upload_emitters() {
     if (!emitters_.empty())
       std::memcpy(emitter_buffer_.mapped(), emitters_.data(), emitters_.size() * sizeof(gpu::VctEmitter));
   }
 
-  void record_voxels(const FrameInput& in) {
+  // One bounce: voxelise, light the voxels (adding, after the first, what they receive from
+  // the previous bounce's mips), rebuild the mips.
+  void record_voxels(const FrameInput& in, uint32_t bounce) {
     VkCommandBuffer cmd = in.cmd;
-    in.timer.begin(cmd, "voxelize");
+    for (auto& c : chains_) c.make_general(cmd);
+    in.timer.begin(cmd, bounce_pass("voxelize", bounce));
     base_.clear(cmd, GIQ_VCT_EMPTY);
     full_barrier(cmd);
     gpu::VctVoxelPush pc{};
@@ -189,23 +207,24 @@ class Vct : public Technique {
     full_barrier(cmd);
     in.timer.end(cmd);
 
-    in.timer.begin(cmd, "voxel_light");
+    in.timer.begin(cmd, bounce_pass("voxel_light", bounce));
     light_.bind(cmd);
     auto d = scene_gpu_.descriptors();
     d.push_back(base_.storage(0));
     d.push_back(Descriptor::storage(emitter_buffer_));
+    for (auto& c : chains_) d.push_back(c.sampled());
     light_.push_descriptors(cmd, d);
     pc.grid.size.z = scene_gpu_.light_count();
     pc.grid.size.w = uint32_t(emitters_.size());
-    pc.params = glm::vec4(scale_, ray_offset_, 0.0f, 0.0f);
+    pc.params = glm::vec4(scale_, ray_offset_, float(cone_count_), bounce > 0 ? 1.0f : 0.0f);
+    pc.cone = glm::vec4(aperture_, max_distance_ * grid_.origin.w * float(resolution_), step_factor_, start_offset_);
     light_.push_constants(cmd, pc);
     const uint32_t g = (resolution_ + 3) / 4;
     vkCmdDispatch(cmd, g, g, g);
     full_barrier(cmd);
     in.timer.end(cmd);
 
-    in.timer.begin(cmd, "voxel_mips");
-    for (auto& c : chains_) c.make_general(cmd);
+    in.timer.begin(cmd, bounce_pass("voxel_mips", bounce));
     mip_.bind(cmd);
     // The previous frame's voxels are blended in only when there are some and they were
     // encoded with the same scale (a light that changed brightness restarts the history).
@@ -265,7 +284,7 @@ class Vct : public Technique {
   UpsamplePass upsample_;
   std::unique_ptr<UpsamplePass> ao_upsample_;
   CompositePass composite_;
-  uint32_t resolution_ = 256, cone_count_ = 6;
+  uint32_t resolution_ = 256, cone_count_ = 6, bounces_ = 1;
   float aperture_ = 0.577f, max_distance_ = 1.0f, step_factor_ = 0.5f, start_offset_ = 1.0f;
   float history_ = 0.0f, ao_falloff_ = 0.0f, ray_offset_ = 0.0f;
   bool ao_ = false, blur_ = true;
@@ -290,6 +309,8 @@ TechniqueInfo vct_technique() {
       {"max_distance", 1.0, 0.01, 2.0, false, "cone length, as a fraction of the voxel cube's side"},
       {"step_factor", 0.5, 0.1, 2.0, false, "march step as a fraction of the cone's diameter there"},
       {"start_offset", 1.0, 0.0, 4.0, false, "cone apex offset along the normal, in base voxels"},
+      {"bounces", 1, 1, 4, true,
+       "diffuse bounces: 1 as seed 000; each more re-voxelises and cone-traces from every voxel (seed 001)"},
       {"temporal_blend", 0.0, 0.0, 0.95, false,
        "weight of the previous frame's voxels (0: re-voxelised from scratch every frame)"},
       {"ao", 0, 0, 1, true, "1: also output the cones' ambient occlusion as layer 'ao'"},

@@ -22,12 +22,15 @@ struct VctGrid {
 
 // voxelize.comp: size.z triangle count, size.w column slices (workgroups per triangle).
 // voxel_light.comp: size.z punctual lights, size.w emitters; params.x = encode scale (stored
-// value = radiance * scale), params.y = shadow-ray origin offset (world units).
+// value = radiance * scale), params.y = shadow-ray origin offset (world units), params.z =
+// diffuse cone count, params.w = 1 to add the light the voxel's surface receives from the
+// current mips (one more bounce); cone = aperture, max distance, step factor, start offset.
 // voxel_mip.comp: size.z target anisotropic level, size.w 1 = blend with the previous frame;
 // params.x = weight of the new voxels.
 struct VctVoxelPush {
   VctGrid grid;
   vec4 params;
+  vec4 cone;
 };
 
 // An emissive mesh for voxel lighting: a cosine-weighted emitter at its area-weighted

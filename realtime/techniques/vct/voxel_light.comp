@@ -9,6 +9,10 @@
 // Shadows are BVH shadow rays, not shadow maps: the sun's cascades cover only the camera's
 // frustum while voxels fill the whole scene, and only surface voxels (a few percent of the
 // grid) run this code.
+// With more than one bounce the pass runs again after the mips are built, and each voxel adds
+// the light its surface receives through the diffuse cones from those mips (seed 001, part 1:
+// "we can dispatch additional cone tracing compute shader passes for the whole structure").
+// Those cones read only the anisotropic chains, never the base level this pass writes.
 // Light types: punctual lights exactly (glTF units); an emissive mesh as one cosine-weighted
 // emitter at its centroid, E = P.cos_e cos_r / (d^2 + A/pi) with P = sum L A (the + A/pi keeps
 // the irradiance of a disc of area A on its axis finite and exact; far away it is the point
@@ -25,7 +29,20 @@
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = GIQ_SCENE_BINDING_COUNT + 0, r32ui) uniform uimage3D voxels;
 layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 1) readonly buffer Emitters { VctEmitter emitters[]; };
+layout(binding = GIQ_SCENE_BINDING_COUNT + 2) uniform sampler3D chain_px;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 3) uniform sampler3D chain_nx;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 4) uniform sampler3D chain_py;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 5) uniform sampler3D chain_ny;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 6) uniform sampler3D chain_pz;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 7) uniform sampler3D chain_nz;
 layout(push_constant) uniform Push { VctVoxelPush pc; };
+
+#define GIQ_VCT_CHAINS_ONLY
+#define VCT_GRID pc.grid
+#define VCT_MAX_DISTANCE pc.cone.y
+#define VCT_STEP_FACTOR pc.cone.z
+#define VCT_AO_FALLOFF 0.0
+#include "techniques/vct/cone.glsl"
 
 // The point of triangle (a, b, c) closest to q (Ericson 2004, "Real-Time Collision
 // Detection", 5.1.5; the same routine as passes/direct_light.comp's).
@@ -101,6 +118,20 @@ void main() {
     // Stop short of the emitter so that its own triangles do not shadow it.
     e += em.power.rgb * (cos_e * cos_r / (d2 + em.power.w / PI)) * visible(p, ng, wi, dist * 0.999);
   }
-  vec3 radiance = fd * e;
-  imageStore(voxels, cell, uvec4(pack_voxel(vec4(radiance * pc.params.x, 1.0))));
+  vec3 stored = fd * e * pc.params.x;
+  if (pc.params.w != 0.0) {
+    // The surface's side that faces the voxel centre (a one-sided surface: its front).
+    vec3 n = two_sided && dot(centre - p, ng) < 0.0 ? -ng : ng;
+    vec3 start = p + n * (pc.cone.w * pc.grid.origin.w);
+    uint cones = uint(pc.params.z);
+    vec3 sum = vec3(0.0);
+    for (uint i = 0u; i < cones; ++i) {
+      vec3 dir;
+      float weight, occ;
+      diffuse_cone(i, cones, n, dir, weight);
+      sum += weight * trace_cone(start, dir, pc.cone.x, occ).rgb;
+    }
+    stored += fd * PI * sum;  // already in stored units
+  }
+  imageStore(voxels, cell, uvec4(pack_voxel(vec4(stored, 1.0))));
 }
