@@ -2,7 +2,8 @@
 // (cone_trace.comp) and the voxels' own bounce (voxel_light.comp). The includer declares the
 // samplers `chain_px` .. `chain_nz` (the six anisotropic chains) and, unless
 // GIQ_VCT_CHAINS_ONLY is defined, `base`; and defines VCT_GRID (a VctGrid), VCT_MAX_DISTANCE,
-// VCT_STEP_FACTOR and VCT_AO_FALLOFF.
+// VCT_STEP_FACTOR, VCT_AO_FALLOFF, VCT_START (the apex's distance from the surface) and
+// VCT_GUARD (the footprint guard).
 #ifndef GIQ_VCT_CONE_GLSL
 #define GIQ_VCT_CONE_GLSL
 
@@ -35,7 +36,13 @@ vec4 trace_cone(vec3 p, vec3 dir, float aperture, out float occlusion) {
   occlusion = 0.0;
   while (dist < VCT_MAX_DISTANCE && acc.a < 0.99) {
     float diameter = max(2.0 * aperture * dist, voxel);
-    float lod = min(log2(diameter / voxel), max_lod);
+    // The footprint guard: a cell of the level sampled, with the trilinear filter's reach of
+    // about 1.5 cells, must not extend behind the surface the cone leaves, or a thick wall's
+    // far (possibly sunlit) face is composited first by the directional mips and leaks in.
+    // The cell size is capped at (distance from the surface) / guard; guard 0 = seed 000's
+    // level log2(diameter / voxel).
+    float cell = VCT_GUARD > 0.0 ? min(diameter, max((dist + VCT_START) / VCT_GUARD, voxel)) : diameter;
+    float lod = min(log2(cell / voxel), max_lod);
     vec3 uvw = (p + dist * dir - VCT_GRID.origin.xyz) * inv_extent;
     if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break;
     vec4 s = sample_voxels(uvw, dir, lod);

@@ -38,6 +38,8 @@ layout(push_constant) uniform Push { VctConePush pc; };
 #define VCT_MAX_DISTANCE pc.cone.y
 #define VCT_STEP_FACTOR pc.cone.z
 #define VCT_AO_FALLOFF pc.params.z
+#define VCT_START (pc.cone.w * pc.grid.origin.w)
+#define VCT_GUARD pc.params.w
 #include "techniques/vct/cone.glsl"
 
 void main() {

@@ -67,6 +67,7 @@ class Vct : public Technique {
     max_distance_ = float(p.get("max_distance"));
     step_factor_ = float(p.get("step_factor"));
     start_offset_ = float(p.get("start_offset"));
+    guard_ = float(p.get("footprint_guard"));
     history_ = float(p.get("temporal_blend"));
     // The blend mixes the new level-0 chains with what they held before: the previous frame's
     // only when a single bounce rebuilds them once per frame.
@@ -218,6 +219,7 @@ class Vct : public Technique {
     pc.grid.size.w = uint32_t(emitters_.size());
     pc.params = glm::vec4(scale_, ray_offset_, float(cone_count_), bounce > 0 ? 1.0f : 0.0f);
     pc.cone = glm::vec4(aperture_, max_distance_ * grid_.origin.w * float(resolution_), step_factor_, start_offset_);
+    pc.guard = glm::vec4(guard_, 0.0f, 0.0f, 0.0f);
     light_.push_constants(cmd, pc);
     const uint32_t g = (resolution_ + 3) / 4;
     vkCmdDispatch(cmd, g, g, g);
@@ -269,7 +271,7 @@ class Vct : public Technique {
     const float side = grid_.origin.w * float(resolution_);
     pc.viewport = glm::vec4(float(width_), float(height_), float(upsample_.low_width()), float(upsample_.low_height()));
     pc.cone = glm::vec4(aperture_, max_distance_ * side, step_factor_, start_offset_);
-    pc.params = glm::vec4(1.0f / scale_, float(upsample_.factor()), ao_falloff_, 0.0f);
+    pc.params = glm::vec4(1.0f / scale_, float(upsample_.factor()), ao_falloff_, guard_);
     cone_.push_constants(cmd, pc);
     cone_.dispatch_2d(cmd, upsample_.low_width(), upsample_.low_height());
     full_barrier(cmd);
@@ -286,7 +288,7 @@ class Vct : public Technique {
   CompositePass composite_;
   uint32_t resolution_ = 256, cone_count_ = 6, bounces_ = 1;
   float aperture_ = 0.577f, max_distance_ = 1.0f, step_factor_ = 0.5f, start_offset_ = 1.0f;
-  float history_ = 0.0f, ao_falloff_ = 0.0f, ray_offset_ = 0.0f;
+  float history_ = 0.0f, ao_falloff_ = 0.0f, ray_offset_ = 0.0f, guard_ = 1.5f;
   bool ao_ = false, blur_ = true;
   gpu::VctGrid grid_{};
   Volume base_;
@@ -309,6 +311,9 @@ TechniqueInfo vct_technique() {
       {"max_distance", 1.0, 0.01, 2.0, false, "cone length, as a fraction of the voxel cube's side"},
       {"step_factor", 0.5, 0.1, 2.0, false, "march step as a fraction of the cone's diameter there"},
       {"start_offset", 1.0, 0.0, 4.0, false, "cone apex offset along the normal, in base voxels"},
+      {"footprint_guard", 1.5, 0.0, 4.0, false,
+       "cap on the sampled cell size: distance from the surface / guard, so that no cone sees behind its "
+       "surface (0: seed 000's log2(diameter / voxel))"},
       {"bounces", 1, 1, 4, true,
        "diffuse bounces: 1 as seed 000; each more re-voxelises and cone-traces from every voxel (seed 001)"},
       {"temporal_blend", 0.0, 0.0, 0.95, false,

@@ -24,13 +24,15 @@ struct VctGrid {
 // voxel_light.comp: size.z punctual lights, size.w emitters; params.x = encode scale (stored
 // value = radiance * scale), params.y = shadow-ray origin offset (world units), params.z =
 // diffuse cone count, params.w = 1 to add the light the voxel's surface receives from the
-// current mips (one more bounce); cone = aperture, max distance, step factor, start offset.
+// current mips (one more bounce); cone = aperture, max distance, step factor, start offset;
+// guard.x = footprint guard (cone.glsl).
 // voxel_mip.comp: size.z target anisotropic level, size.w 1 = blend with the previous frame;
 // params.x = weight of the new voxels.
 struct VctVoxelPush {
   VctGrid grid;
   vec4 params;
   vec4 cone;
+  vec4 guard;
 };
 
 // An emissive mesh for voxel lighting: a cosine-weighted emitter at its area-weighted
@@ -47,7 +49,8 @@ struct VctConePush {
   vec4 viewport;    // x full width, y full height, z low width, w low height
   vec4 cone;        // x diffuse aperture (tan of the half angle), y max distance (world),
                     // z step factor, w start offset (voxels)
-  vec4 params;      // x decode scale (radiance = stored / scale), y k, z AO falloff
+  vec4 params;      // x decode scale (radiance = stored / scale), y k, z AO falloff,
+                    // w footprint guard (cone.glsl)
 };
 
 #ifdef __cplusplus

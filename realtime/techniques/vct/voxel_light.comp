@@ -42,6 +42,8 @@ layout(push_constant) uniform Push { VctVoxelPush pc; };
 #define VCT_MAX_DISTANCE pc.cone.y
 #define VCT_STEP_FACTOR pc.cone.z
 #define VCT_AO_FALLOFF 0.0
+#define VCT_START (pc.cone.w * pc.grid.origin.w)
+#define VCT_GUARD pc.guard.x
 #include "techniques/vct/cone.glsl"
 
 // The point of triangle (a, b, c) closest to q (Ericson 2004, "Real-Time Collision
