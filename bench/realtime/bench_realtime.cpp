@@ -1,5 +1,6 @@
-// giq-bench-realtime: GPU milliseconds per pass of `direct` and `pt` (1 path per pixel per
-// frame) on the Cornell box at 720p, 1080p and 4K, and at 1080p as the triangle count grows
+// giq-bench-realtime: GPU milliseconds per pass of `direct`, `pt` (1 path per pixel per
+// frame) and `vct` (defaults: 256^3 voxels re-voxelised every frame, k = 2; and 2 bounces) on
+// the Cornell box at 720p, 1080p and 4K, and at 1080p as the triangle count grows
 // (the box plus a tessellated sphere of about 10k, 100k and 1M triangles). Scenes are built
 // in code, so the benchmark runs without the glTF loader; --scene adds glTF scenes.
 //
@@ -81,8 +82,14 @@ int main(int argc, char** argv) {
     // `direct` twice: with the rasterised G-buffer (the default) and with the ray-traced one
     // (same image; on GPUs with few graphics units, such as the H100, much faster).
     const std::vector<std::pair<std::string, std::vector<std::string>>> variants = {
-        {"direct", {}}, {"direct", {"gbuffer_ray_traced=1"}}, {"pt", {}}};
-    for (const auto& [t, params] : variants) {
+        {"direct", {}},
+        {"direct", {"gbuffer_ray_traced=1"}},
+        {"pt", {}},
+        {"vct", {"gbuffer_ray_traced=1"}},
+        {"vct", {"gbuffer_ray_traced=1", "bounces=2"}}};
+    for (auto [t, params] : variants) {
+      // A CPU device voxelises 256^3 in seconds: the smoke test uses a small grid.
+      if (quick && t == "vct") params.push_back("voxel_resolution=64");
       for (const auto& sz : sizes) {
         if (quick && sz[0] > 1280) break;
         cases.push_back({"cornell", &scenes_owned[0].second, t, quick ? sz[0] / 8 : sz[0], quick ? sz[1] / 8 : sz[1], params});

@@ -20,7 +20,8 @@ namespace {
 class VctTest : public test::VulkanTest {
  protected:
   // Renders `frames` frames of view 0; returns the last.
-  image::Image render(const scenes::Scene& s, uint32_t size, std::vector<std::string> params, int frames = 1) {
+  image::Image render(const scenes::Scene& s, uint32_t size, std::vector<std::string> params,
+                      int frames = 1) {
     RenderOptions o;
     o.technique = "vct";
     o.view = "0";
@@ -40,7 +41,9 @@ scenes::Scene builtin(const std::string& name) {
 
 const char* const kRgb[3] = {"R", "G", "B"};
 
-std::string layer(const std::string& name, int c) { return name.empty() ? kRgb[c] : name + "." + kRgb[c]; }
+std::string layer(const std::string& name, int c) {
+  return name.empty() ? kRgb[c] : name + "." + kRgb[c];
+}
 
 double mean(const image::Image& img, const std::string& channel) {
   double sum = 0.0;
@@ -55,11 +58,12 @@ TEST_P(VctSceneTest, RendersFiniteIndirectLightAndComposesTheBeauty) {
   const scenes::Scene scene = builtin(GetParam());
   // A small grid keeps lavapipe fast; two frames with the temporal blend and AO on run every
   // code path (the second frame blends with the first).
-  const image::Image img =
-      render(scene, 32, {"voxel_resolution=32", "temporal_blend=0.5", "ao=1"}, scene.features.animation ? 2 : 1);
+  const image::Image img = render(scene, 32, {"voxel_resolution=32", "temporal_blend=0.5", "ao=1"},
+                                  scene.features.animation ? 2 : 1);
   double indirect = 0.0;
   for (const auto& name : img.channel_names())
-    for (size_t i = 0; i < img.pixel_count(); ++i) ASSERT_TRUE(std::isfinite(img.channel(name)[i])) << name << " " << i;
+    for (size_t i = 0; i < img.pixel_count(); ++i)
+      ASSERT_TRUE(std::isfinite(img.channel(name)[i])) << name << " " << i;
   for (int c = 0; c < 3; ++c) {
     const float *beauty = img.channel(layer("", c)), *direct = img.channel(layer("direct", c)),
                 *ind = img.channel(layer("indirect", c)), *ao = img.channel(layer("ao", c));
@@ -76,7 +80,8 @@ TEST_P(VctSceneTest, RendersFiniteIndirectLightAndComposesTheBeauty) {
   EXPECT_GT(indirect, 0.0) << GetParam();
 }
 
-INSTANTIATE_TEST_SUITE_P(BuiltinScenes, VctSceneTest, ::testing::Values("cornell", "leak", "movinglight", "sunroom"));
+INSTANTIATE_TEST_SUITE_P(BuiltinScenes, VctSceneTest,
+                         ::testing::Values("cornell", "leak", "movinglight", "sunroom"));
 
 TEST_F(VctTest, CornellIndirectLightIsWithinMeasuredBoundsOfTheReference) {
   const scenes::Scene scene = builtin("cornell");
@@ -100,17 +105,18 @@ TEST_F(VctTest, CornellIndirectLightIsWithinMeasuredBoundsOfTheReference) {
   //     1 bounce  0.868 0.903 1.062    2 bounces 0.903 0.966 1.223
   //   against the reference with all bounces:
   //     1 bounce  0.420 0.473 0.652    2 bounces 0.662 0.744 1.041
-  // Within 14% of the same-bounce reference (22% for blue with two bounces): the units are right (a factor pi, a missing
-  // albedo or a lost cone would be off by far more). What remains is VCT's own error: cones
-  // that see the surface's own voxels add light (most in blue, where the white walls that see
-  // themselves dominate), coarse samples that step over thin walls lose some. Each bound is
-  // the measured ratio +-12%: the reference's means have a relative standard error under
-  // 0.5% at 512 paths per pixel over 2304 pixels, so the margin is for legitimate changes of
-  // the sampling, not noise.
+  // Within 14% of the same-bounce reference (22% for blue with two bounces): the units are right (a
+  // factor pi, a missing albedo or a lost cone would be off by far more). What remains is VCT's own
+  // error: cones that see the surface's own voxels add light (most in blue, where the white walls
+  // that see themselves dominate), coarse samples that step over thin walls lose some. Each bound
+  // is the measured ratio +-12%: the reference's means have a relative standard error under 0.5% at
+  // 512 paths per pixel over 2304 pixels, so the margin is for legitimate changes of the sampling,
+  // not noise.
   const double same_ratio[2][3] = {{0.868, 0.903, 1.062}, {0.903, 0.966, 1.223}};
   const double all_ratio[2][3] = {{0.420, 0.473, 0.652}, {0.662, 0.744, 1.041}};
   for (int bounces = 1; bounces <= 2; ++bounces) {
-    const image::Image v = render(scene, size, {"voxel_resolution=64", "bounces=" + std::to_string(bounces)});
+    const image::Image v =
+        render(scene, size, {"voxel_resolution=64", "bounces=" + std::to_string(bounces)});
     const image::Image same = reference(bounces + 1);
     for (int c = 0; c < 3; ++c) {
       const std::string ch = layer("indirect", c);
@@ -118,7 +124,8 @@ TEST_F(VctTest, CornellIndirectLightIsWithinMeasuredBoundsOfTheReference) {
       EXPECT_NEAR(m / m_same, same_ratio[bounces - 1][c], 0.12 * same_ratio[bounces - 1][c])
           << bounces << " bounce(s), " << kRgb[c] << ": vct " << m << ", reference " << m_same;
       EXPECT_NEAR(m / m_all, all_ratio[bounces - 1][c], 0.12 * all_ratio[bounces - 1][c])
-          << bounces << " bounce(s), " << kRgb[c] << ": vct " << m << ", reference (all bounces) " << m_all;
+          << bounces << " bounce(s), " << kRgb[c] << ": vct " << m << ", reference (all bounces) "
+          << m_all;
     }
   }
 }
@@ -136,7 +143,8 @@ TEST_F(VctTest, WithTheLightOffIndirectLightIsExactlyZero) {
   scene.derive();
   const image::Image img = render(scene, 24, {"voxel_resolution=32"});
   for (int c = 0; c < 3; ++c)
-    for (size_t i = 0; i < img.pixel_count(); ++i) ASSERT_EQ(img.channel(layer("indirect", c))[i], 0.0f) << i;
+    for (size_t i = 0; i < img.pixel_count(); ++i)
+      ASSERT_EQ(img.channel(layer("indirect", c))[i], 0.0f) << i;
 }
 
 TEST_F(VctTest, AWallOneVoxelThickLeaksLessThanNoWall) {
@@ -201,7 +209,8 @@ TEST_F(VctTest, LightsBeyondFloat16RangeScaleLinearly) {
   scenes::Scene bright = dim;
   for (auto& m : bright.materials) m.emissive *= 1e6f;
   bright.derive();
-  const image::Image a = render(dim, 24, {"voxel_resolution=32"}), b = render(bright, 24, {"voxel_resolution=32"});
+  const image::Image a = render(dim, 24, {"voxel_resolution=32"}),
+                     b = render(bright, 24, {"voxel_resolution=32"});
   size_t off = 0;
   for (int c = 0; c < 3; ++c) {
     const std::string ch = layer("indirect", c);
@@ -219,15 +228,18 @@ TEST_F(VctTest, RenderingIsDeterministic) {
   // Voxelisation keeps the smallest triangle index per voxel (an atomic minimum): no voxel
   // depends on the order in which the GPU runs the triangles, so two renders agree bit for bit.
   const scenes::Scene scene = builtin("cornell");
-  const image::Image a = render(scene, 24, {"voxel_resolution=32"}), b = render(scene, 24, {"voxel_resolution=32"});
-  for (size_t i = 0; i < a.pixel_count(); ++i) ASSERT_EQ(a.channel("indirect.G")[i], b.channel("indirect.G")[i]);
+  const image::Image a = render(scene, 24, {"voxel_resolution=32"}),
+                     b = render(scene, 24, {"voxel_resolution=32"});
+  for (size_t i = 0; i < a.pixel_count(); ++i)
+    ASSERT_EQ(a.channel("indirect.G")[i], b.channel("indirect.G")[i]);
 }
 
 TEST_F(VctTest, InvalidParameterCombinationsAreInputErrors) {
   const scenes::Scene scene = builtin("cornell");
   EXPECT_THROW(render(scene, 8, {"voxel_resolution=48"}), InputError);
   // The temporal blend needs the mips rebuilt once per frame.
-  EXPECT_THROW(render(scene, 8, {"voxel_resolution=16", "bounces=2", "temporal_blend=0.5"}), InputError);
+  EXPECT_THROW(render(scene, 8, {"voxel_resolution=16", "bounces=2", "temporal_blend=0.5"}),
+               InputError);
 }
 
 }  // namespace

@@ -32,14 +32,16 @@
 namespace giq::realtime {
 namespace {
 
-constexpr uint32_t kColumnSlices = 8;      // workgroups sharing one triangle's footprint
-constexpr uint32_t kMaxGroupsX = 65535;    // minimum maxComputeWorkGroupCount[0]
+constexpr uint32_t kColumnSlices = 8;       // workgroups sharing one triangle's footprint
+constexpr uint32_t kMaxGroupsX = 65535;     // minimum maxComputeWorkGroupCount[0]
 constexpr uint32_t kCoarsestChainSize = 4;  // seed 000 ch. V: chains stop at 4^3
 
 uint32_t voxel_resolution(const ParameterValues& p) {
   const int r = p.get_int("voxel_resolution");
   if (r < 8 || (r & (r - 1)) != 0)
-    throw InputError("", "--param", "voxel_resolution=" + std::to_string(r) + ": expected a power of two from 8 to 512");
+    throw InputError(
+        "", "--param",
+        "voxel_resolution=" + std::to_string(r) + ": expected a power of two from 8 to 512");
   return uint32_t(r);
 }
 
@@ -52,11 +54,15 @@ uint32_t chain_levels(uint32_t resolution) {
 class Vct : public Technique {
  public:
   explicit Vct(const TechniqueCreateInfo& ci)
-      : ctx_(ci.ctx), scene_gpu_(ci.scene_gpu), width_(ci.width), height_(ci.height),
+      : ctx_(ci.ctx),
+        scene_gpu_(ci.scene_gpu),
+        width_(ci.width),
+        height_(ci.height),
         gbuffer_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.features, ci.width, ci.height,
                  ci.parameters.get_int("gbuffer_ray_traced") != 0),
         lighting_(ci),
-        upsample_(ci.ctx, ci.compiler, ci.width, ci.height, uint32_t(ci.parameters.get_int("downsample")),
+        upsample_(ci.ctx, ci.compiler, ci.width, ci.height,
+                  uint32_t(ci.parameters.get_int("downsample")),
                   ci.parameters.get_int("blur") != 0),
         composite_(ci.ctx, ci.compiler, ci.width, ci.height) {
     const auto& p = ci.parameters;
@@ -72,9 +78,9 @@ class Vct : public Technique {
     // The blend mixes the new level-0 chains with what they held before: the previous frame's
     // only when a single bounce rebuilds them once per frame.
     if (history_ > 0.0f && bounces_ > 1)
-      throw InputError("", "--param", "temporal_blend=" + std::to_string(history_) +
-                                          " with bounces=" + std::to_string(bounces_) +
-                                          ": the temporal blend needs bounces=1");
+      throw InputError("", "--param",
+                       "temporal_blend=" + std::to_string(history_) + " with bounces=" +
+                           std::to_string(bounces_) + ": the temporal blend needs bounces=1");
     ao_ = p.get_int("ao") != 0;
     blur_ = p.get_int("blur") != 0;
     ao_falloff_ = float(p.get("ao_falloff"));
@@ -95,46 +101,52 @@ class Vct : public Technique {
     base_ = Volume(ci.ctx, resolution_, 1);
     for (auto& c : chains_) c = Volume(ci.ctx, resolution_ / 2, grid_.size.y);
     emitters_ = voxel_emitters(ci.scene);
-    emitter_buffer_ = Buffer(ci.ctx, std::max<uint64_t>(16, emitters_.size() * sizeof(gpu::VctEmitter)),
-                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
+    emitter_buffer_ =
+        Buffer(ci.ctx, std::max<uint64_t>(16, emitters_.size() * sizeof(gpu::VctEmitter)),
+               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
     upload_emitters();
     scale_ = voxel_radiance_scale(ci.scene, emitters_) / float(bounces_);
 
-    const ImageDesc low{upsample_.low_width(), upsample_.low_height(), 1, VK_FORMAT_R32G32B32A32_SFLOAT,
-                        VK_IMAGE_USAGE_STORAGE_BIT};
+    const ImageDesc low{upsample_.low_width(), upsample_.low_height(), 1,
+                        VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT};
     low_ = Image(ci.ctx, low);
     if (ao_) {
       ao_low_ = Image(ci.ctx, low);
-      ao_upsample_ = std::make_unique<UpsamplePass>(ci.ctx, ci.compiler, width_, height_, upsample_.factor(),
-                                                    ci.parameters.get_int("blur") != 0);
+      ao_upsample_ =
+          std::make_unique<UpsamplePass>(ci.ctx, ci.compiler, width_, height_, upsample_.factor(),
+                                         ci.parameters.get_int("blur") != 0);
     }
 
     const auto defines = feature_defines(ci.scene.features);
     auto scene_bindings = SceneGpu::binding_types();
     auto b = scene_bindings;
     b.push_back(VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
-    voxelize_ = Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/vct/voxelize.comp", defines), b,
-                                  sizeof(gpu::VctVoxelPush));
+    voxelize_ =
+        Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/vct/voxelize.comp", defines), b,
+                          sizeof(gpu::VctVoxelPush));
     b.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     b.insert(b.end(), 6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
-    light_ = Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/vct/voxel_light.comp", defines), b,
-                               sizeof(gpu::VctVoxelPush));
+    light_ =
+        Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/vct/voxel_light.comp", defines),
+                          b, sizeof(gpu::VctVoxelPush));
     std::vector<VkDescriptorType> mb(1 + 6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     mb.insert(mb.end(), 6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
-    mip_ = Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/vct/voxel_mip.comp", defines), mb,
-                             sizeof(gpu::VctVoxelPush));
+    mip_ = Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/vct/voxel_mip.comp", defines),
+                             mb, sizeof(gpu::VctVoxelPush));
     b = scene_bindings;
     b.insert(b.end(), 3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
     b.insert(b.end(), 7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     b.insert(b.end(), 2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
-    cone_ = Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/vct/cone_trace.comp", defines), b,
-                              sizeof(gpu::VctConePush));
+    cone_ =
+        Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/vct/cone_trace.comp", defines), b,
+                          sizeof(gpu::VctConePush));
   }
 
   std::vector<std::string> passes() const override {
     std::vector<std::string> p = {"shadow_maps", "gbuffer", "direct_lighting"};
     for (uint32_t b = 0; b < bounces_; ++b)
-      for (const char* pass : {"voxelize", "voxel_light", "voxel_mips"}) p.push_back(bounce_pass(pass, b));
+      for (const char* pass : {"voxelize", "voxel_light", "voxel_mips"})
+        p.push_back(bounce_pass(pass, b));
     p.insert(p.end(), {"cone_trace", "upsample"});
     if (blur_on()) p.push_back("blur");
     if (ao_) {
@@ -166,8 +178,9 @@ class Vct : public Technique {
   }
 
   std::vector<std::pair<std::string, Image*>> outputs() override {
-    std::vector<std::pair<std::string, Image*>> o = {
-        {"", &composite_.output()}, {"direct", &lighting_.output()}, {"indirect", &upsample_.output()}};
+    std::vector<std::pair<std::string, Image*>> o = {{"", &composite_.output()},
+                                                     {"direct", &lighting_.output()},
+                                                     {"indirect", &upsample_.output()}};
     if (ao_) o.push_back({"ao", &ao_upsample_->output()});
     return o;
   }
@@ -180,7 +193,8 @@ class Vct : public Technique {
 
   void upload_emitters() {
     if (!emitters_.empty())
-      std::memcpy(emitter_buffer_.mapped(), emitters_.data(), emitters_.size() * sizeof(gpu::VctEmitter));
+      std::memcpy(emitter_buffer_.mapped(), emitters_.data(),
+                  emitters_.size() * sizeof(gpu::VctEmitter));
   }
 
   // One bounce: voxelise, light the voxels (adding, after the first, what they receive from
@@ -218,7 +232,8 @@ class Vct : public Technique {
     pc.grid.size.z = scene_gpu_.light_count();
     pc.grid.size.w = uint32_t(emitters_.size());
     pc.params = glm::vec4(scale_, ray_offset_, float(cone_count_), bounce > 0 ? 1.0f : 0.0f);
-    pc.cone = glm::vec4(aperture_, max_distance_ * grid_.origin.w * float(resolution_), step_factor_, start_offset_);
+    pc.cone = glm::vec4(aperture_, max_distance_ * grid_.origin.w * float(resolution_),
+                        step_factor_, start_offset_);
     pc.guard = glm::vec4(guard_, 0.0f, 0.0f, 0.0f);
     light_.push_constants(cmd, pc);
     const uint32_t g = (resolution_ + 3) / 4;
@@ -269,7 +284,8 @@ class Vct : public Technique {
     pc.grid.size.z = cone_count_;
     pc.grid.size.w = ao_ ? 1u : 0u;
     const float side = grid_.origin.w * float(resolution_);
-    pc.viewport = glm::vec4(float(width_), float(height_), float(upsample_.low_width()), float(upsample_.low_height()));
+    pc.viewport = glm::vec4(float(width_), float(height_), float(upsample_.low_width()),
+                            float(upsample_.low_height()));
     pc.cone = glm::vec4(aperture_, max_distance_ * side, step_factor_, start_offset_);
     pc.params = glm::vec4(1.0f / scale_, float(upsample_.factor()), ao_falloff_, guard_);
     cone_.push_constants(cmd, pc);
@@ -306,28 +322,37 @@ TechniqueInfo vct_technique() {
   std::vector<Parameter> parameters = {
       {"voxel_resolution", 256, 8, 512, true, "voxels per side of the base level (a power of two)"},
       {"cone_count", 6, 1, 16, true,
-       "diffuse cones: one along the normal (weight 1/4) and the rest on a ring at 60 deg (seed 000's table for 6)"},
-      {"cone_aperture", 0.577, 0.05, 1.5, false, "diffuse cones' tan(half angle); tan 30 deg in seed 000"},
-      {"max_distance", 1.0, 0.01, 2.0, false, "cone length, as a fraction of the voxel cube's side"},
-      {"step_factor", 0.5, 0.1, 2.0, false, "march step as a fraction of the cone's diameter there"},
+       "diffuse cones: one along the normal (weight 1/4) and the rest on a ring at 60 deg (seed "
+       "000's table for 6)"},
+      {"cone_aperture", 0.577, 0.05, 1.5, false,
+       "diffuse cones' tan(half angle); tan 30 deg in seed 000"},
+      {"max_distance", 1.0, 0.01, 2.0, false,
+       "cone length, as a fraction of the voxel cube's side"},
+      {"step_factor", 0.5, 0.1, 2.0, false,
+       "march step as a fraction of the cone's diameter there"},
       {"start_offset", 1.0, 0.0, 4.0, false, "cone apex offset along the normal, in base voxels"},
       {"footprint_guard", 1.5, 0.0, 4.0, false,
-       "cap on the sampled cell size: distance from the surface / guard, so that no cone sees behind its "
+       "cap on the sampled cell size: distance from the surface / guard, so that no cone sees "
+       "behind its "
        "surface (0: seed 000's log2(diameter / voxel))"},
       {"bounces", 1, 1, 4, true,
-       "diffuse bounces: 1 as seed 000; each more re-voxelises and cone-traces from every voxel (seed 001)"},
+       "diffuse bounces: 1 as seed 000; each more re-voxelises and cone-traces from every voxel "
+       "(seed 001)"},
       {"temporal_blend", 0.0, 0.0, 0.95, false,
        "weight of the previous frame's voxels (0: re-voxelised from scratch every frame)"},
       {"ao", 0, 0, 1, true, "1: also output the cones' ambient occlusion as layer 'ao'"},
-      {"ao_falloff", 0.05, 0.0, 10.0, false, "AO attenuation with cone diameter (per voxel), seed 000's AOFalloff"},
+      {"ao_falloff", 0.05, 0.0, 10.0, false,
+       "AO attenuation with cone diameter (per voxel), seed 000's AOFalloff"},
   };
   for (auto& p : UpsamplePass::parameters(2)) parameters.push_back(std::move(p));
   for (auto& p : DirectLightPass::parameters()) parameters.push_back(std::move(p));
   parameters.push_back(GBufferPass::ray_traced_parameter());
   return {"vct",
-          "voxel cone tracing: conservative compute voxelisation of albedo x shadowed direct light, 6 anisotropic "
+          "voxel cone tracing: conservative compute voxelisation of albedo x shadowed direct "
+          "light, 6 anisotropic "
           "mip chains, 6 diffuse cones + 1 specular cone at 1/k resolution, edge-aware upsample",
-          std::move(parameters), [](const TechniqueCreateInfo& ci) { return std::make_unique<Vct>(ci); }};
+          std::move(parameters),
+          [](const TechniqueCreateInfo& ci) { return std::make_unique<Vct>(ci); }};
 }
 
 }  // namespace giq::realtime

@@ -8,7 +8,8 @@
 
 namespace giq::realtime {
 
-Volume::Volume(Context& ctx, uint32_t size, uint32_t levels) : ctx_(&ctx), size_(size), levels_(levels) {
+Volume::Volume(Context& ctx, uint32_t size, uint32_t levels)
+    : ctx_(&ctx), size_(size), levels_(levels) {
   // Both formats are 32-bit, so they are view-compatible under MUTABLE_FORMAT; the sRGB view
   // is restricted to sampling (sRGB formats have no storage support).
   const VkFormat formats[2] = {VK_FORMAT_R32_UINT, VK_FORMAT_R8G8B8A8_SRGB};
@@ -25,14 +26,16 @@ Volume::Volume(Context& ctx, uint32_t size, uint32_t levels) : ctx_(&ctx), size_
   ci.arrayLayers = 1;
   ci.samples = VK_SAMPLE_COUNT_1_BIT;
   ci.tiling = VK_IMAGE_TILING_OPTIMAL;
-  ci.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  ci.usage =
+      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   vk_check(vkCreateImage(ctx.device(), &ci, nullptr, &image_), "vkCreateImage");
   try {
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(ctx.device(), image_, &req);
     alloc_ = ctx.allocator().allocate(req, MemoryUsage::Device, false);
-    vk_check(vkBindImageMemory(ctx.device(), image_, alloc_.memory, alloc_.offset), "vkBindImageMemory");
+    vk_check(vkBindImageMemory(ctx.device(), image_, alloc_.memory, alloc_.offset),
+             "vkBindImageMemory");
 
     VkImageViewUsageCreateInfo sampled_usage{VK_STRUCTURE_TYPE_IMAGE_VIEW_USAGE_CREATE_INFO};
     sampled_usage.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
@@ -69,7 +72,9 @@ Volume::Volume(Context& ctx, uint32_t size, uint32_t levels) : ctx_(&ctx), size_
   }
 }
 
-Volume::~Volume() { release(); }
+Volume::~Volume() {
+  release();
+}
 
 void Volume::release() {
   if (!ctx_) return;
@@ -80,10 +85,13 @@ void Volume::release() {
   if (sampled_view_) vkDestroyImageView(d, sampled_view_, nullptr);
   if (image_) vkDestroyImage(d, image_, nullptr);
   ctx_->allocator().free(alloc_);
-  sampler_ = VK_NULL_HANDLE, sampled_view_ = VK_NULL_HANDLE, image_ = VK_NULL_HANDLE, ctx_ = nullptr;
+  sampler_ = VK_NULL_HANDLE, sampled_view_ = VK_NULL_HANDLE, image_ = VK_NULL_HANDLE,
+  ctx_ = nullptr;
 }
 
-Volume::Volume(Volume&& o) noexcept { *this = std::move(o); }
+Volume::Volume(Volume&& o) noexcept {
+  *this = std::move(o);
+}
 
 Volume& Volume::operator=(Volume&& o) noexcept {
   if (this != &o) {

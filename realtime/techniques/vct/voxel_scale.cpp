@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-
 #include <glm/geometric.hpp>
+#include <limits>
 
 namespace giq::realtime {
 namespace {
@@ -33,7 +32,9 @@ float distance2_to_triangle(glm::vec3 q, glm::vec3 a, glm::vec3 b, glm::vec3 c) 
   return d2of(a + ab * (vb * denom) + ac * (vc * denom));
 }
 
-float max_channel(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
+float max_channel(glm::vec3 v) {
+  return std::max(v.x, std::max(v.y, v.z));
+}
 
 }  // namespace
 
@@ -66,7 +67,8 @@ std::vector<gpu::VctEmitter> voxel_emitters(const scenes::Scene& scene) {
   return out;
 }
 
-float voxel_radiance_scale(const scenes::Scene& scene, const std::vector<gpu::VctEmitter>& emitters) {
+float voxel_radiance_scale(const scenes::Scene& scene,
+                           const std::vector<gpu::VctEmitter>& emitters) {
   double irradiance = 0.0;
   for (const auto& l : scene.lights) {
     const float intensity = max_channel(l.radiant());
@@ -78,14 +80,15 @@ float voxel_radiance_scale(const scenes::Scene& scene, const std::vector<gpu::Vc
     float d2 = std::numeric_limits<float>::infinity();
     for (const auto& mesh : scene.meshes)
       for (const auto& t : mesh.triangles)
-        d2 = std::min(d2, distance2_to_triangle(l.position, mesh.positions[t.x], mesh.positions[t.y],
-                                                mesh.positions[t.z]));
+        d2 = std::min(d2, distance2_to_triangle(l.position, mesh.positions[t.x],
+                                                mesh.positions[t.y], mesh.positions[t.z]));
     // A light on a surface: no finite bound; the smallest normal float keeps the scale finite
     // (the voxels right at the light clip, every other is still represented).
     irradiance += double(intensity) / std::max(double(d2), 1e-30);
   }
   for (const auto& e : emitters)
-    if (e.power.w > 0.0f) irradiance += double(max_channel(glm::vec3(e.power))) * M_PI / double(e.power.w);
+    if (e.power.w > 0.0f)
+      irradiance += double(max_channel(glm::vec3(e.power))) * M_PI / double(e.power.w);
   const double radiance = irradiance / M_PI;
   if (!(radiance > 0.0)) return 1.0f;
   return float(std::clamp(1.0 / radiance, 1e-30, 1e30));

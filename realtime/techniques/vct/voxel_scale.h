@@ -23,6 +23,7 @@ namespace giq::realtime {
 std::vector<gpu::VctEmitter> voxel_emitters(const scenes::Scene& scene);
 
 // 1 / (bound on the voxel radiance); 1 when nothing emits.
-float voxel_radiance_scale(const scenes::Scene& scene, const std::vector<gpu::VctEmitter>& emitters);
+float voxel_radiance_scale(const scenes::Scene& scene,
+                           const std::vector<gpu::VctEmitter>& emitters);
 
 }  // namespace giq::realtime
