@@ -61,6 +61,7 @@ TEST_P(VctSceneTest, RendersFiniteIndirectLightAndComposesTheBeauty) {
   const image::Image img = render(scene, 32, {"voxel_resolution=32", "temporal_blend=0.5", "ao=1"},
                                   scene.features.animation ? 2 : 1);
   double indirect = 0.0;
+  float max_ao = 0.0f;
   for (const auto& name : img.channel_names())
     for (size_t i = 0; i < img.pixel_count(); ++i)
       ASSERT_TRUE(std::isfinite(img.channel(name)[i])) << name << " " << i;
@@ -73,11 +74,16 @@ TEST_P(VctSceneTest, RendersFiniteIndirectLightAndComposesTheBeauty) {
       ASSERT_EQ(beauty[i], direct[i] + ind[i]) << i;
       ASSERT_GE(ao[i], 0.0f);
       ASSERT_LE(ao[i], 1.0f + 1e-6f);
+      max_ao = std::max(max_ao, ao[i]);
       indirect += ind[i];
     }
   }
   // Every built-in scene has lit surfaces facing each other: some light must bounce.
   EXPECT_GT(indirect, 0.0) << GetParam();
+  // Every view shows surfaces meeting at a corner or an object on the floor: somewhere the
+  // cones are mostly occluded (measured maxima 0.74 to 0.88 at 32^3 voxels; a layer left
+  // unwritten reads 0).
+  EXPECT_GT(max_ao, 0.5f) << GetParam();
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltinScenes, VctSceneTest,

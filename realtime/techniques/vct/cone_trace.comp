@@ -32,6 +32,7 @@ layout(binding = GIQ_SCENE_BINDING_COUNT + 7) uniform sampler3D chain_ny;
 layout(binding = GIQ_SCENE_BINDING_COUNT + 8) uniform sampler3D chain_pz;
 layout(binding = GIQ_SCENE_BINDING_COUNT + 9) uniform sampler3D chain_nz;
 layout(binding = GIQ_SCENE_BINDING_COUNT + 10, rgba32f) uniform writeonly image2D out_low;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 11, rgba32f) uniform writeonly image2D out_ao;
 layout(push_constant) uniform Push { VctConePush pc; };
 
 #define VCT_GRID pc.grid
@@ -48,7 +49,7 @@ void main() {
   int k = int(pc.params.y);
   ivec2 px = min(k * lp + k / 2, ivec2(pc.viewport.xy) - 1);
   uvec4 ids = imageLoad(gb_ids, px);
-  vec4 result = vec4(0.0, 0.0, 0.0, 1.0);
+  vec4 result = vec4(0.0);
   if (ids.x != 0u) {
     GpuMaterial mat = scene_materials[ids.y];
     if (ids.w == 0u || mat.params.w != 0.0) {  // the back of a one-sided material is black
@@ -87,8 +88,11 @@ void main() {
         radiance += f * ls;
       }
 #endif
-      result = vec4(radiance * pc.params.x, 1.0 - occlusion_sum);
+      result = vec4(radiance * pc.params.x, occlusion_sum);
     }
   }
-  imageStore(out_low, lp, result);
+  imageStore(out_low, lp, vec4(result.rgb, 1.0));
+  // Ambient occlusion as a grey image for its own upsample: the share of the cosine-weighted
+  // hemisphere occluded (0 = open, as where nothing was hit and the upsample writes 0).
+  if (pc.grid.size.w != 0u) imageStore(out_ao, lp, vec4(vec3(result.a), 1.0));
 }

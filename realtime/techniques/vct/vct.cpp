@@ -54,8 +54,7 @@ uint32_t chain_levels(uint32_t resolution) {
 class Vct : public Technique {
  public:
   explicit Vct(const TechniqueCreateInfo& ci)
-      : ctx_(ci.ctx),
-        scene_gpu_(ci.scene_gpu),
+      : scene_gpu_(ci.scene_gpu),
         width_(ci.width),
         height_(ci.height),
         gbuffer_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.features, ci.width, ci.height,
@@ -294,7 +293,6 @@ class Vct : public Technique {
     in.timer.end(cmd);
   }
 
-  Context& ctx_;
   const SceneGpu& scene_gpu_;
   uint32_t width_, height_;
   GBufferPass gbuffer_;
@@ -340,7 +338,7 @@ TechniqueInfo vct_technique() {
        "(seed 001)"},
       {"temporal_blend", 0.0, 0.0, 0.95, false,
        "weight of the previous frame's voxels (0: re-voxelised from scratch every frame)"},
-      {"ao", 0, 0, 1, true, "1: also output the cones' ambient occlusion as layer 'ao'"},
+      {"ao", 0, 0, 1, true, "1: also output the cones' ambient occlusion (occluded share, 0 = open) as layer 'ao'"},
       {"ao_falloff", 0.05, 0.0, 10.0, false,
        "AO attenuation with cone diameter (per voxel), seed 000's AOFalloff"},
   };
