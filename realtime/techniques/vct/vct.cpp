@@ -104,7 +104,7 @@ class Vct : public Technique {
         Buffer(ci.ctx, std::max<uint64_t>(16, emitters_.size() * sizeof(gpu::VctEmitter)),
                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
     upload_emitters();
-    scale_ = voxel_radiance_scale(ci.scene, emitters_) / float(bounces_);
+    scale_ = voxel_radiance_scale(ci.scene, emitters_, int(bounces_));
 
     const ImageDesc low{upsample_.low_width(), upsample_.low_height(), 1,
                         VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT};
@@ -162,9 +162,7 @@ class Vct : public Technique {
         emitters_ = voxel_emitters(in.scene);
         upload_emitters();
       }
-      // Each bounce adds at most the direct light's bound again (albedo <= 1, cone weights
-      // sum to 1), so n bounces stay below n times it.
-      scale_ = voxel_radiance_scale(in.scene, emitters_) / float(bounces_);
+      scale_ = voxel_radiance_scale(in.scene, emitters_, int(bounces_));
     }
     lighting_.record_shadows(in);
     gbuffer_.record(in.cmd, in.camera, in.timer);
@@ -338,7 +336,8 @@ TechniqueInfo vct_technique() {
        "(seed 001)"},
       {"temporal_blend", 0.0, 0.0, 0.95, false,
        "weight of the previous frame's voxels (0: re-voxelised from scratch every frame)"},
-      {"ao", 0, 0, 1, true, "1: also output the cones' ambient occlusion (occluded share, 0 = open) as layer 'ao'"},
+      {"ao", 0, 0, 1, true,
+       "1: also output the cones' ambient occlusion (occluded share, 0 = open) as layer 'ao'"},
       {"ao_falloff", 0.05, 0.0, 10.0, false,
        "AO attenuation with cone diameter (per voxel), seed 000's AOFalloff"},
   };

@@ -67,8 +67,8 @@ std::vector<gpu::VctEmitter> voxel_emitters(const scenes::Scene& scene) {
   return out;
 }
 
-float voxel_radiance_scale(const scenes::Scene& scene,
-                           const std::vector<gpu::VctEmitter>& emitters) {
+float voxel_radiance_scale(const scenes::Scene& scene, const std::vector<gpu::VctEmitter>& emitters,
+                           int bounces) {
   double irradiance = 0.0;
   for (const auto& l : scene.lights) {
     const float intensity = max_channel(l.radiant());
@@ -89,9 +89,11 @@ float voxel_radiance_scale(const scenes::Scene& scene,
   for (const auto& e : emitters)
     if (e.power.w > 0.0f)
       irradiance += double(max_channel(glm::vec3(e.power))) * M_PI / double(e.power.w);
-  const double radiance = irradiance / M_PI;
+  // Each bounce adds at most the direct light's bound again (albedo <= 1, cone weights sum
+  // to 1), so n bounces stay below n times it.
+  const double radiance = irradiance / M_PI * double(std::max(bounces, 1));
   if (!(radiance > 0.0)) return 1.0f;
-  return float(std::clamp(1.0 / radiance, 1e-30, 1e30));
+  return float(std::exp2(std::clamp(std::floor(std::log2(1.0 / radiance)), -120.0, 120.0)));
 }
 
 }  // namespace giq::realtime
