@@ -32,7 +32,6 @@
 namespace giq::realtime {
 namespace {
 
-constexpr uint32_t kColumnSlices = 8;       // workgroups sharing one triangle's footprint
 constexpr uint32_t kMaxGroupsX = 65535;     // minimum maxComputeWorkGroupCount[0]
 constexpr uint32_t kCoarsestChainSize = 4;  // seed 000 ch. V: chains stop at 4^3
 
@@ -206,7 +205,11 @@ class Vct : public Technique {
     pc.grid = grid_;
     const uint32_t triangles = scene_gpu_.triangle_count();
     pc.grid.size.z = triangles;
-    pc.grid.size.w = kColumnSlices;
+    // Workgroups (of 64 threads) per triangle: 8 let a few large triangles (a room's walls)
+    // spread over the GPU; with many triangles, each small, one is plenty and 8 would mostly
+    // launch idle threads.
+    const uint32_t slices = triangles > 65536 ? 1u : 8u;
+    pc.grid.size.w = slices;
     if (triangles > 0) {
       voxelize_.bind(cmd);
       auto d = scene_gpu_.descriptors();
@@ -214,7 +217,7 @@ class Vct : public Technique {
       voxelize_.push_descriptors(cmd, d);
       voxelize_.push_constants(cmd, pc);
       const uint32_t gx = std::min(triangles, kMaxGroupsX), gy = (triangles + gx - 1) / gx;
-      vkCmdDispatch(cmd, gx, gy, kColumnSlices);
+      vkCmdDispatch(cmd, gx, gy, slices);
     }
     full_barrier(cmd);
     in.timer.end(cmd);
