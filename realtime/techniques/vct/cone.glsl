@@ -25,7 +25,7 @@ vec4 sample_voxels(vec3 uvw, vec3 dir, float lod) {
 // (step factor) of the cone's diameter. Each sample stands for a segment of length
 // step = step factor x diameter while a voxel of that diameter holds the opacity of a
 // segment one diameter long, so opacity is corrected to 1 - (1 - a)^(step factor)
-// (Crassin 2011, sec. 4.1). Returns premultiplied radiance (stored units) and alpha; occlusion
+// (Crassin et al. 2011). Returns premultiplied radiance (stored units) and alpha; occlusion
 // follows the thesis's AO with falloff 1 / (1 + falloff x diameter in voxels).
 vec4 trace_cone(vec3 p, vec3 dir, float aperture, out float occlusion) {
   float voxel = VCT_GRID.origin.w;

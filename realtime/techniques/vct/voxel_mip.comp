@@ -1,6 +1,6 @@
 #version 460
 // One level of the six anisotropic mip chains (Crassin et al. 2011, "Interactive Indirect
-// Illumination Using Voxel Cone Tracing", sec. 5.1; seed 000 ch. IV uses their six
+// Illumination Using Voxel Cone Tracing"; seed 000 ch. IV uses their six
 // directional textures, VoxelConeTracingPS.hlsl). Chain D holds what a cone travelling along
 // D sees: the 2x2x2 children are composited front to back in pairs along D (near + (1 - near
 // alpha) far, premultiplied radiance) and the four pairs averaged. Level 0 of the chains
