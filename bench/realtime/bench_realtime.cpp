@@ -1,12 +1,12 @@
-// giq-bench-realtime: GPU milliseconds per pass of `direct`, `pt` (1 path per pixel per
-// frame) and `vct` (defaults: 256^3 voxels re-voxelised every frame, k = 2; and 2 bounces) on
-// the Cornell box at 720p, 1080p and 4K, and at 1080p as the triangle count grows
+// giq-bench-realtime: GPU milliseconds per pass of every technique (`pt`: 1 path per pixel per
+// frame) on the Cornell box at 720p, 1080p and 4K, and at 1080p as the triangle count grows
 // (the box plus a tessellated sphere of about 10k, 100k and 1M triangles). Scenes are built
 // in code, so the benchmark runs without the glTF loader; --scene adds glTF scenes.
 //
 // Prints a Markdown table and writes every run's timings.json content to --out.
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -17,6 +17,7 @@
 #include "giq/realtime/context.h"
 #include "giq/realtime/renderer.h"
 #include "giq/realtime/shader.h"
+#include "giq/realtime/technique.h"
 #include "scene_builders.h"
 
 namespace {
@@ -45,7 +46,7 @@ std::string pass_summary(const nlohmann::json& t) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"giq-bench-realtime: per-pass GPU ms of direct and pt", "giq-bench-realtime"};
+  CLI::App app{"giq-bench-realtime: per-pass GPU ms of every technique", "giq-bench-realtime"};
   std::string device, out = "bench-realtime.json";
   std::vector<std::string> gltf;
   int frames = 50, warmup = 10;
@@ -56,6 +57,8 @@ int main(int argc, char** argv) {
   app.add_option("--scene", gltf, "Also run these glTF scenes (view 0) at 1080p");
   app.add_option("--out", out, "JSON output")->capture_default_str();
   app.add_flag("--quick", quick, "Small sizes only (a smoke test on a CPU device)");
+  std::vector<std::string> only;
+  app.add_option("--technique", only, "Only these techniques (default: every registered one)");
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -79,17 +82,21 @@ int main(int argc, char** argv) {
 
     std::vector<Case> cases;
     const uint32_t sizes[][2] = {{1280, 720}, {1920, 1080}, {3840, 2160}};
-    // `direct` twice: with the rasterised G-buffer (the default) and with the ray-traced one
-    // (same image; on GPUs with few graphics units, such as the H100, much faster).
-    const std::vector<std::pair<std::string, std::vector<std::string>>> variants = {
-        {"direct", {}},
-        {"direct", {"gbuffer_ray_traced=1"}},
-        {"pt", {}},
-        {"vct", {"gbuffer_ray_traced=1"}},
-        {"vct", {"gbuffer_ray_traced=1", "bounces=2"}}};
-    for (auto [t, params] : variants) {
-      // A CPU device voxelises 256^3 in seconds: the smoke test uses a small grid.
-      if (quick && t == "vct") params.push_back("voxel_resolution=64");
+    // Every registered technique with its defaults; `direct` with each G-buffer builder named
+    // (the default picks one by device), the rasterised and the ray-traced one (same image).
+    std::vector<std::pair<std::string, std::vector<std::string>>> variants = {
+        {"direct", {"gbuffer_ray_traced=0"}}, {"direct", {"gbuffer_ray_traced=1"}}};
+    for (const auto& info : realtime::techniques())
+      if (info.name != "direct") variants.push_back({info.name, {}});
+    // vct also with its second bounce (twice the voxel passes).
+    variants.push_back({"vct", {"bounces=2"}});
+    // A CPU device voxelises 256^3 in seconds: the smoke test uses a small grid.
+    if (quick)
+      for (auto& [t, params] : variants)
+        if (t == "vct") params.push_back("voxel_resolution=64");
+    if (!only.empty())
+      std::erase_if(variants, [&](const auto& v) { return std::find(only.begin(), only.end(), v.first) == only.end(); });
+    for (const auto& [t, params] : variants) {
       for (const auto& sz : sizes) {
         if (quick && sz[0] > 1280) break;
         cases.push_back({"cornell", &scenes_owned[0].second, t, quick ? sz[0] / 8 : sz[0], quick ? sz[1] / 8 : sz[1], params});
@@ -100,8 +107,8 @@ int main(int argc, char** argv) {
 
     nlohmann::json all = nlohmann::json::array();
     std::printf("device: %s (%s)\n\n", ctx.info().name.c_str(), ctx.info().driver.c_str());
-    std::printf("| technique | parameters | scene | triangles | resolution | frame GPU ms (median) | p95 | passes (median GPU ms) |\n");
-    std::printf("|---|---|---|---|---|---|---|---|\n");
+    std::printf("| technique | parameters | scene | triangles | resolution | frame GPU ms (median) | p95 | GPU memory MB | passes (median GPU ms) |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|\n");
     for (const auto& c : cases) {
       realtime::RenderOptions o;
       o.technique = c.technique;
@@ -117,10 +124,11 @@ int main(int argc, char** argv) {
       t.erase("per_frame");
       std::string params;
       for (const auto& p : c.params) params += (params.empty() ? "" : " ") + p;
-      std::printf("| %s | %s | %s | %zu | %ux%u | %.3f | %.3f | %s |\n", c.technique.c_str(),
+      std::printf("| %s | %s | %s | %zu | %ux%u | %.3f | %.3f | %.1f | %s |\n", c.technique.c_str(),
                   params.empty() ? "defaults" : params.c_str(), c.scene_name.c_str(),
                   c.scene->stats.triangles, c.width, c.height, t["frame_gpu_ms"]["median"].get<double>(),
-                  t["frame_gpu_ms"]["p95"].get<double>(), pass_summary(t).c_str());
+                  t["frame_gpu_ms"]["p95"].get<double>(), t["gpu_memory_mb"]["technique"].get<double>(),
+                  pass_summary(t).c_str());
       std::fflush(stdout);
       all.push_back(t);
     }

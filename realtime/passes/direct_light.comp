@@ -12,6 +12,7 @@
 
 #include "shaders/scene.glsl"
 #include "shaders/brdf.glsl"
+#include "shaders/surface.glsl"
 #include "shaders/lights.glsl"
 #include "passes/direct_light_shared.h"
 #include "passes/shadow_maps_shared.h"
@@ -144,8 +145,21 @@ void main() {
       vec3 p = pos.xyz;
       vec3 n = imageLoad(gb_normal, px).xyz;
       vec3 wo = normalize(pc.camera.position.xyz - p);
-      if (mat.emissive.w != 0.0) radiance += mat.emissive.rgb;
-      Surface s = make_surface(mat, n);
+      uint tri = ids.x - 1u;
+      vec3 ta, tb, tc;
+      triangle_vertices(tri, ta, tb, tc);
+      // The geometric normal on the viewer's side: light from below it would leak through
+      // the surface, whatever the (interpolated or mapped) shading normal says; the
+      // reference drops it too.
+      vec3 ng = normalize(cross(tb - ta, tc - ta)) * (back ? -1.0 : 1.0);
+      // Textured materials are looked up at the G-buffer point (deferred texturing): its
+      // barycentrics on the triangle's plane, as the G-buffer pass computed them.
+      vec2 bary = vec2(0.0);
+#ifdef GIQ_SURFACE_TEXTURES
+      bary = plane_barycentrics(p, ta, tb, tc);
+#endif
+      if (mat.emissive.w != 0.0) radiance += emission_at(mat, tri, bary.x, bary.y);
+      Surface s = hit_material(tri, bary.x, bary.y, n);
       float normal_offset = pc.viewport.z;
       int pcf = int(pc.viewport.w);
       for (uint i = 0u; i < pc.counts.x; ++i) {
@@ -153,7 +167,7 @@ void main() {
         float dist;
         vec3 e = punctual_incident(scene_lights[i], p, wi, dist);
         float cos_i = dot(n, wi);
-        if (cos_i <= 0.0 || all(equal(e, vec3(0.0)))) continue;
+        if (cos_i <= 0.0 || dot(ng, wi) <= 0.0 || all(equal(e, vec3(0.0)))) continue;
         float vis = int(scene_lights[i].position.w) == GIQ_LIGHT_DIRECTIONAL
                         ? shadow_cascades(light_shadow_layer[i], dot(p - pc.camera.position.xyz, pc.camera.forward.xyz), p, n, normal_offset, pcf)
                         : shadow_cube(light_shadow_layer[i], scene_lights[i].position.xyz, p, n, normal_offset, pcf);

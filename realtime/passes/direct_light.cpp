@@ -21,21 +21,22 @@ std::vector<Parameter> DirectLightPass::parameters() {
 }
 
 DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
-    : scene_gpu_(ci.scene_gpu), width_(ci.width), height_(ci.height),
+    : ctx_(&ci.ctx), scene_gpu_(ci.scene_gpu), width_(ci.width), height_(ci.height),
       pcf_radius_(float(ci.parameters.get_int("pcf_radius"))),
       normal_offset_(float(ci.parameters.get("normal_offset"))),
       shadows_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.bounds, uint32_t(ci.parameters.get_int("shadow_map_size"))) {
   shadows_.set_split_lambda(float(ci.parameters.get("cascade_split_lambda")));
   shadows_.set_cache_static(ci.parameters.get_int("cache_static_shadows") != 0);
+  // Shadow sources: the punctual lights in scene order, then one cube per area light.
   for (const auto& l : ci.scene.lights)
     light_layer_.push_back(l.type == scenes::LightType::Directional ? shadows_.add_cascades(l.direction)
                                                                      : shadows_.add_cube(l.position));
   build_area_lights(ci.scene);
+  for (auto& a : area_lights_) a.position.w = float(shadows_.add_cube(glm::vec3(a.position)));
 
   direct_ = Image(ci.ctx, {width_, height_, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
   light_layer_buffer_ = Buffer::storage(ci.ctx, light_layer_);
-  area_light_buffer_ = Buffer::storage(ci.ctx, area_lights_);
-  area_triangle_buffer_ = Buffer::storage(ci.ctx, area_triangles_);
+  upload_area_lights(ci.ctx);
 
   auto bindings = SceneGpu::binding_types();
   bindings.insert(bindings.end(), {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
@@ -48,7 +49,33 @@ DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
       sizeof(gpu::DirectPush));
 }
 
+void DirectLightPass::upload_area_lights(Context& ctx) {
+  area_light_buffer_ = Buffer::storage(ctx, area_lights_);
+  area_triangle_buffer_ = Buffer::storage(ctx, area_triangles_);
+}
+
+void DirectLightPass::follow(const scenes::Scene& scene, SceneChange change) {
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const auto& l = scene.lights[i];
+    shadows_.move(i, l.type == scenes::LightType::Directional ? l.direction : l.position);
+  }
+  if (change != SceneChange::Geometry) return;
+  // Emissive meshes moved: rebuild the area lights, keeping each one's shadow layers.
+  std::vector<float> layers;
+  for (const auto& a : area_lights_) layers.push_back(a.position.w);
+  area_lights_.clear();
+  area_triangles_.clear();
+  build_area_lights(scene);
+  shadows_.set_bounds(scene.bounds);
+  for (size_t i = 0; i < area_lights_.size(); ++i) {
+    area_lights_[i].position.w = layers.at(i);
+    shadows_.move(scene.lights.size() + i, glm::vec3(area_lights_[i].position));
+  }
+  upload_area_lights(*ctx_);
+}
+
 void DirectLightPass::record_shadows(const FrameInput& in) {
+  if (in.change != SceneChange::None) follow(in.scene, in.change);
   shadows_.record(in.cmd, in.camera, float(width_) / float(height_), in.timer);
 }
 
@@ -80,7 +107,7 @@ void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer
 
 // One area light per emissive mesh; its representative point (for the shadow cube) is the
 // area-weighted centroid, moved a hair in front of the mesh along its mean normal so that the
-// emitter does not shadow itself.
+// emitter does not shadow itself. The shadow layer (position.w) is set by the caller.
 void DirectLightPass::build_area_lights(const scenes::Scene& scene) {
   std::vector<std::vector<const scenes::EmissiveTriangle*>> per_mesh(scene.meshes.size());
   for (const auto& e : scene.emissive_triangles)
@@ -106,7 +133,7 @@ void DirectLightPass::build_area_lights(const scenes::Scene& scene) {
     centroid /= area;
     const float nl = glm::length(normal);
     if (!two_sided && nl > 0.0f) centroid += normal / nl * offset;
-    l.position = glm::vec4(centroid, float(shadows_.add_cube(centroid)));
+    l.position = glm::vec4(centroid, 0.0f);
     area_lights_.push_back(l);
   }
 }

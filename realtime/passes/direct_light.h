@@ -30,7 +30,8 @@ class DirectLightPass {
 
   explicit DirectLightPass(const TechniqueCreateInfo& ci);
 
-  // Records "shadow_maps" (before the G-buffer is needed) and then "direct_lighting".
+  // Records "shadow_maps" (before the G-buffer is needed) and then "direct_lighting". When
+  // in.change says the scene moved, the shadow sources and area lights follow it first.
   void record_shadows(const FrameInput& in);
   void record_lighting(const FrameInput& in, GBufferPass& gbuffer);
 
@@ -42,7 +43,10 @@ class DirectLightPass {
 
  private:
   void build_area_lights(const scenes::Scene& scene);
+  void upload_area_lights(Context& ctx);
+  void follow(const scenes::Scene& scene, SceneChange change);
 
+  Context* ctx_;
   const SceneGpu& scene_gpu_;
   uint32_t width_, height_;
   float pcf_radius_, normal_offset_;

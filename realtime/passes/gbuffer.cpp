@@ -9,14 +9,21 @@
 namespace giq::realtime {
 
 Parameter GBufferPass::ray_traced_parameter() {
-  return {"gbuffer_ray_traced", 0, 0, 1, true,
-          "1: build the G-buffer by casting camera rays through the BVH in compute instead of rasterising (same "
-          "contents; faster on GPUs with few graphics units)"};
+  return {"gbuffer_ray_traced", -1, -1, 1, true,
+          "G-buffer builder: 1 casts the camera rays through the BVH in compute, 0 rasterises (same contents); "
+          "-1 picks rays on GPUs and the rasteriser on CPU devices"};
+}
+
+GBufferBuilder GBufferPass::builder(const ParameterValues& parameters) {
+  const int v = parameters.get_int("gbuffer_ray_traced");
+  return v < 0 ? GBufferBuilder::Auto : v == 0 ? GBufferBuilder::Raster : GBufferBuilder::RayTraced;
 }
 
 GBufferPass::GBufferPass(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene,
-                         const scenes::FeatureSet& features, uint32_t width, uint32_t height, bool ray_traced)
-    : scene_(scene), width_(width), height_(height), ray_traced_(ray_traced) {
+                         const scenes::FeatureSet& features, uint32_t width, uint32_t height, GBufferBuilder builder)
+    : scene_(scene), width_(width), height_(height),
+      ray_traced_(builder == GBufferBuilder::RayTraced || (builder == GBufferBuilder::Auto && ctx.info().type != "cpu")),
+      compiler_(compiler), ctx_(ctx) {
   const VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
   position_ = Image(ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, color});
   normal_ = Image(ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, color});
@@ -52,7 +59,9 @@ void GBufferPass::record(VkCommandBuffer cmd, const scenes::Camera& camera, GpuT
     pipeline_.push_descriptors(cmd, d);
     pipeline_.push_constants(cmd, pc);
     pipeline_.dispatch_2d(cmd, width_, height_);
+    full_barrier(cmd);
     timer.end(cmd);
+    record_motion(cmd, camera, timer);
     return;
   }
   for (Image* i : {&position_, &normal_, &ids_}) i->transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
@@ -93,6 +102,37 @@ void GBufferPass::record(VkCommandBuffer cmd, const scenes::Camera& camera, GpuT
   }
   vkCmdEndRendering(cmd);
   for (Image* i : {&position_, &normal_, &ids_}) i->transition(cmd, VK_IMAGE_LAYOUT_GENERAL);
+  timer.end(cmd);
+  record_motion(cmd, camera, timer);
+}
+
+void GBufferPass::enable_motion_vectors() {
+  if (motion_) return;
+  motion_ = Image(ctx_, {width_, height_, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
+  auto bindings = SceneGpu::binding_types();
+  bindings.insert(bindings.end(), {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+  motion_pipeline_ = Pipeline::compute(ctx_, compiler_.compile("passes/motion_vectors.comp"), bindings,
+                                       sizeof(gpu::MotionPush));
+}
+
+void GBufferPass::record_motion(VkCommandBuffer cmd, const scenes::Camera& camera, GpuTimer& timer) {
+  const scenes::Camera previous = has_previous_camera_ ? previous_camera_ : camera;
+  previous_camera_ = camera;
+  has_previous_camera_ = true;
+  if (!motion_) return;
+  timer.begin(cmd, "motion_vectors");
+  motion_.transition(cmd, VK_IMAGE_LAYOUT_GENERAL);
+  motion_pipeline_.bind(cmd);
+  auto d = scene_.descriptors();
+  d.push_back(Descriptor::storage(scene_.previous_vertices()));
+  d.push_back(Descriptor::storage_image(position_));
+  d.push_back(Descriptor::storage_image(ids_));
+  d.push_back(Descriptor::storage_image(motion_));
+  motion_pipeline_.push_descriptors(cmd, d);
+  motion_pipeline_.push_constants(cmd, gpu::MotionPush{gpu::make_gpu_camera(camera), gpu::make_gpu_camera(previous)});
+  motion_pipeline_.dispatch_2d(cmd, width_, height_);
+  full_barrier(cmd);
   timer.end(cmd);
 }
 

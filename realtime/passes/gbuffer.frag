@@ -3,6 +3,7 @@
 
 #include "shaders/scene.glsl"
 #include "shaders/camera.glsl"
+#include "shaders/surface.glsl"
 #include "passes/gbuffer_shared.h"
 
 layout(push_constant) uniform Push { GBufferPush pc; };
@@ -25,19 +26,13 @@ void main() {
   // edge-on falls back to the rasteriser's own depth.
   float tp = abs(denom) > 1e-12 ? dot(a - o, ng) / denom : 0.0;
   vec3 p = o + tp * d;
-  // Barycentrics of p for the shading normal.
-  vec3 e1 = b - a, e2 = c - a, ep = p - a;
-  float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), dp1 = dot(ep, e1), dp2 = dot(ep, e2);
-  float den = d11 * d22 - d12 * d12;
-  float u = den != 0.0 ? clamp((d22 * dp1 - d12 * dp2) / den, 0.0, 1.0) : 0.0;
-  float v = den != 0.0 ? clamp((d11 * dp2 - d12 * dp1) / den, 0.0, 1.0) : 0.0;
-  vec3 ns = (1.0 - u - v) * scene_vertices[t.v.x].normal.xyz + u * scene_vertices[t.v.y].normal.xyz +
-            v * scene_vertices[t.v.z].normal.xyz;
-  bool back = dot(ng, d) > 0.0;
-  vec3 ngv = back ? -ng : ng;
-  ns = dot(ns, ns) > 0.0 ? normalize(ns) : ngv;
-  if (dot(ns, ngv) < 0.0) ns = -ns;
+  vec2 bary = plane_barycentrics(p, a, b, c);
+#ifdef GIQ_ALPHA_MASK
+  // Cut-outs are no surface: the triangles behind them show through (glTF 2.0, 3.9.4).
+  if (alpha_cut(tri, bary.x, bary.y)) discard;
+#endif
+  HitNormals hn = hit_normals(tri, bary.x, bary.y, d);
   out_position = vec4(p, 1.0);
-  out_normal = vec4(ns, 0.0);
-  out_ids = uvec4(tri + 1u, t.v.w, t.extra.y, back ? 1u : 0u);
+  out_normal = vec4(hn.ns, 0.0);
+  out_ids = uvec4(tri + 1u, t.v.w, t.extra.y, denom > 0.0 ? 1u : 0u);
 }

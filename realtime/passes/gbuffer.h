@@ -6,8 +6,16 @@
 //
 // Targets (RGBA32F unless noted, GENERAL layout after record()):
 //   position: xyz local-frame position, w = 1 where a surface was hit, 0 elsewhere
-//   normal:   xyz shading normal turned to the viewer's side, w = 0
+//   normal:   xyz shading normal as the reference's first hit has it (interpolated,
+//             normal-mapped, turned to the viewer's side; shaders/surface.glsl), w = 0
+// Alpha-masked cut-outs are no surface: the rasteriser discards them, the ray caster passes
+// through them.
 //   ids (RGBA32UI): x = triangle + 1 (0 = nothing), y = material, z = object id, w = 1 back face
+//   motion (only after enable_motion_vectors()): xy = where this pixel's surface point was in
+//     the previous frame minus this pixel's centre, in pixels (so the history of pixel p is
+//     read at p + 0.5 + motion.xy); w = 1 when that place was in front of the previous camera
+//     and inside the image. Camera and geometry motion both count; on the first frame, and
+//     for anything that did not move, it is 0. Pass "motion_vectors".
 
 #include <cstdint>
 
@@ -24,28 +32,44 @@ class GpuTimer;
 class SceneGpu;
 class ShaderCompiler;
 
+// How the G-buffer is built: rasterised, or by casting the pixel-centre camera rays through
+// the BVH in a compute shader (gbuffer_rays.comp; same contents). Auto picks by device:
+// rays on GPUs, whose graphics units may be few (on an H100 the rasteriser path is more than
+// ten times slower: bench/results/realtime-h100.md), the rasteriser on CPU implementations
+// such as lavapipe, where tracing is the slower one.
+enum class GBufferBuilder { Raster, RayTraced, Auto };
+
 class GBufferPass {
  public:
-  // "gbuffer_ray_traced" (0 or 1), for techniques to list among their parameters.
+  // "gbuffer_ray_traced" (-1 auto, 0 raster, 1 rays; default auto), for techniques to list
+  // among their parameters, and its value as a builder.
   static Parameter ray_traced_parameter();
+  static GBufferBuilder builder(const ParameterValues& parameters);
 
-  // ray_traced: cast the pixel-centre camera rays through the BVH in a compute shader
-  // instead of rasterising (gbuffer_rays.comp); same contents, for GPUs whose graphics units
-  // are few (the H100's).
   GBufferPass(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene, const scenes::FeatureSet& features,
-              uint32_t width, uint32_t height, bool ray_traced = false);
+              uint32_t width, uint32_t height, GBufferBuilder builder = GBufferBuilder::Raster);
+  bool ray_traced() const { return ray_traced_; }
+  // For temporal techniques: also write motion vectors on every record().
+  void enable_motion_vectors();
   void record(VkCommandBuffer cmd, const scenes::Camera& camera, GpuTimer& timer);
 
   Image& position() { return position_; }
   Image& normal() { return normal_; }
   Image& ids() { return ids_; }
+  Image& motion() { return motion_; }
 
  private:
   const SceneGpu& scene_;
   uint32_t width_, height_;
   bool ray_traced_;
-  Image position_, normal_, ids_, depth_;
-  Pipeline pipeline_;
+  Image position_, normal_, ids_, depth_, motion_;
+  Pipeline pipeline_, motion_pipeline_;
+  ShaderCompiler& compiler_;
+  Context& ctx_;
+  bool has_previous_camera_ = false;
+  scenes::Camera previous_camera_;
+
+  void record_motion(VkCommandBuffer cmd, const scenes::Camera& camera, GpuTimer& timer);
 };
 
 }  // namespace giq::realtime

@@ -7,6 +7,7 @@
 
 #include "shaders/bvh.glsl"
 #include "shaders/camera.glsl"
+#include "shaders/surface.glsl"
 #include "passes/gbuffer_shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -38,13 +39,9 @@ void main() {
   // The hit on the triangle's plane from the camera itself, as gbuffer.frag computes it.
   float denom = dot(d, ng);
   vec3 p = abs(denom) > 1e-12 ? o + (dot(a - o, ng) / denom) * d : o + (tmin + hit.t) * d;
-  vec3 ns = (1.0 - hit.u - hit.v) * scene_vertices[t.v.x].normal.xyz + hit.u * scene_vertices[t.v.y].normal.xyz +
-            hit.v * scene_vertices[t.v.z].normal.xyz;
   bool back = denom > 0.0;
-  vec3 ngv = back ? -ng : ng;
-  ns = dot(ns, ns) > 0.0 ? normalize(ns) : ngv;
-  if (dot(ns, ngv) < 0.0) ns = -ns;
+  HitNormals hn = hit_normals(hit.triangle, hit.u, hit.v, d);
   imageStore(out_position, px, vec4(p, 1.0));
-  imageStore(out_normal, px, vec4(ns, 0.0));
+  imageStore(out_normal, px, vec4(hn.ns, 0.0));
   imageStore(out_ids, px, uvec4(hit.triangle + 1u, t.v.w, t.extra.y, back ? 1u : 0u));
 }

@@ -1,4 +1,5 @@
-// Push constants of the G-buffer pass (gbuffer.cpp, gbuffer.vert, gbuffer.frag).
+// Push constants of the G-buffer pass (gbuffer.cpp, gbuffer.vert, gbuffer.frag,
+// gbuffer_rays.comp, motion_vectors.comp).
 #ifndef GIQ_GBUFFER_SHARED_H
 #define GIQ_GBUFFER_SHARED_H
 
@@ -11,6 +12,12 @@ namespace giq::realtime::gpu {
 struct GBufferPush {
   GpuCamera camera;
   vec4 viewport;  // x width, y height, z near plane
+};
+
+// Motion vectors (motion_vectors.comp): the cameras of this frame and of the previous one.
+struct MotionPush {
+  GpuCamera current;
+  GpuCamera previous;
 };
 
 #ifdef __cplusplus

@@ -21,7 +21,10 @@ ShadowMaps::ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& s
                        uint32_t size)
     : ctx_(ctx), scene_(scene), bounds_(bounds), size_(size), sampler_(ctx, false, true) {
   GraphicsDesc g;
-  g.vertex_spirv = compiler.compile("passes/shadow_maps.vert");
+  const auto defines = feature_defines(scene.features());
+  g.vertex_spirv = compiler.compile("passes/shadow_maps.vert", defines);
+  // Depth only, except where alpha-masked casters need their cut-outs discarded.
+  if (scene.features().alpha_mask) g.fragment_spirv = compiler.compile("passes/shadow_maps.frag", defines);
   g.depth_format = VK_FORMAT_D32_SFLOAT;
   g.depth_bias = true;
   pipeline_ = Pipeline::graphics(ctx, g, SceneGpu::binding_types(), sizeof(glm::mat4));
@@ -30,18 +33,46 @@ ShadowMaps::ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& s
 uint32_t ShadowMaps::add_cube(glm::vec3 position) {
   const uint32_t first = uint32_t(layers_.size());
   sources_.push_back({true, position, first});
+  layers_.resize(first + 6);
+  params_.resize(first + 6);
+  place_cube(sources_.back());
+  return first;
+}
+
+glm::mat4 ShadowMaps::cube_face_view_proj(glm::vec3 position, const scenes::Bounds& bounds, int face) {
   // Near plane: a thousandth of the scene; far: beyond the farthest point of the scene.
-  const float diag = diagonal(bounds_);
-  const float znear = 1e-3f * diag, zfar = 2.0f * diag + glm::length(position - centre(bounds_));
+  const float diag = diagonal(bounds);
+  const float znear = 1e-3f * diag, zfar = 2.0f * diag + glm::length(position - centre(bounds));
   const glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, znear, zfar);
   const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+  return proj * glm::lookAtRH(position, position + dirs[face], ups[face]);
+}
+
+void ShadowMaps::place_cube(const Source& s) {
   for (int f = 0; f < 6; ++f) {
-    layers_.push_back(proj * glm::lookAtRH(position, position + dirs[f], ups[f]));
+    layers_[s.first_layer + f] = cube_face_view_proj(s.v, bounds_, f);
     // A 90-degree face is 2 units wide at distance 1.
-    params_.emplace_back(GIQ_SHADOW_CUBE_FACE, 2.0f / float(size_), 0.0f, 0.0f);
+    params_[s.first_layer + f] = glm::vec4(GIQ_SHADOW_CUBE_FACE, 2.0f / float(size_), 0.0f, 0.0f);
   }
-  return first;
+}
+
+void ShadowMaps::move(size_t source, glm::vec3 v) {
+  Source& s = sources_.at(source);
+  const glm::vec3 moved = s.cube ? v : glm::normalize(v);
+  if (moved == s.v) return;
+  s.v = moved;
+  if (s.cube) {
+    place_cube(s);
+    cubes_stale_ = true;
+  }
+}
+
+void ShadowMaps::set_bounds(const scenes::Bounds& bounds) {
+  bounds_ = bounds;
+  for (const auto& s : sources_)
+    if (s.cube) place_cube(s);
+  cubes_stale_ = true;
 }
 
 uint32_t ShadowMaps::add_cascades(glm::vec3 direction) {
@@ -56,8 +87,9 @@ uint32_t ShadowMaps::add_cascades(glm::vec3 direction) {
 
 void ShadowMaps::create_resources() {
   const uint32_t n = std::max<uint32_t>(1, layer_count());
+  // An array view even for one layer (a scene without lights): the shaders read a 2D array.
   depth_ = Image(ctx_, {size_, size_, n, VK_FORMAT_D32_SFLOAT,
-                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true});
   layer_buffer_ = Buffer(ctx_, n * sizeof(gpu::GpuShadowLayer), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
 }
 
@@ -121,7 +153,7 @@ void ShadowMaps::record(VkCommandBuffer cmd, const scenes::Camera& camera, float
   pipeline_.bind(cmd);
   pipeline_.push_descriptors(cmd, scene_.descriptors());
   for (uint32_t l = 0; l < layer_count(); ++l) {
-    if (cache_static_ && rendered_ && params_[l].x == GIQ_SHADOW_CUBE_FACE) continue;
+    if (cache_static_ && !cubes_stale_ && params_[l].x == GIQ_SHADOW_CUBE_FACE) continue;
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = depth_.layer_view(l);
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -147,7 +179,7 @@ void ShadowMaps::record(VkCommandBuffer cmd, const scenes::Camera& camera, float
     vkCmdEndRendering(cmd);
   }
   depth_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-  rendered_ = true;
+  cubes_stale_ = false;
   timer.end(cmd);
 }
 

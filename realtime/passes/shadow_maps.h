@@ -5,7 +5,8 @@
 // 90-degree layers (+x, -x, +y, -y, +z, -z); the lighting shader picks the face by the major
 // axis of the light-to-point direction. Depth uses slope-scaled bias when rendering and a
 // normal offset of a few texels when sampling (shaders/shadow.glsl); filtering is PCF over a
-// (2r+1)^2 texel grid.
+// (2r+1)^2 texel grid. In scenes with alpha masks a fragment shader discards the cut-outs,
+// which cast no shadow.
 
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -29,16 +30,24 @@ class ShadowMaps {
 
   ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene, const scenes::Bounds& bounds, uint32_t size);
 
+  // View-projection of face f (+x, -x, +y, -y, +z, -z) of a cube centred at `position`, with
+  // near and far planes covering `bounds`; shared with the reflective shadow maps (passes/rsm.h).
+  static glm::mat4 cube_face_view_proj(glm::vec3 position, const scenes::Bounds& bounds, int face);
+
   // Declare the maps before the first record(); each returns its first layer.
   uint32_t add_cube(glm::vec3 position);
   uint32_t add_cascades(glm::vec3 direction);
   // The fraction between logarithmic (1) and uniform (0) cascade splits (Zhang et al. 2006,
   // "Parallel-Split Shadow Maps", practical split scheme).
   void set_split_lambda(float lambda) { split_lambda_ = lambda; }
-  // Render cube maps on the first record() only. The geometry and the punctual lights of a
-  // technique instance never change (an animated scene recreates the technique each frame),
-  // so their cube maps stay valid; cascades follow the camera and are always re-rendered.
+  // Render cube maps only when they are stale (first record, a moved source, moved geometry);
+  // cascades follow the camera and are always re-rendered.
   void set_cache_static(bool cache) { cache_static_ = cache; }
+  // Moves source `source` (numbered in the order of the add_ calls) to a new position (cube)
+  // or direction (cascades), for a light that moved.
+  void move(size_t source, glm::vec3 v);
+  // The geometry moved: new scene bounds, and every cube map is re-rendered.
+  void set_bounds(const scenes::Bounds& bounds);
 
   // Renders every layer; cascades follow the camera. Pass name "shadow_maps".
   void record(VkCommandBuffer cmd, const scenes::Camera& camera, float aspect, GpuTimer& timer);
@@ -56,6 +65,7 @@ class ShadowMaps {
     uint32_t first_layer;
   };
   void create_resources();
+  void place_cube(const Source& s);
   void update_cascades(const Source& s, const scenes::Camera& camera, float aspect);
 
   Context& ctx_;
@@ -64,7 +74,7 @@ class ShadowMaps {
   uint32_t size_;
   float split_lambda_ = 0.5f;
   bool cache_static_ = true;
-  bool rendered_ = false;
+  bool cubes_stale_ = true;
   std::vector<Source> sources_;
   std::vector<glm::mat4> layers_;
   std::vector<glm::vec4> params_;

@@ -6,4 +6,15 @@
 
 layout(push_constant) uniform Push { mat4 view_proj; } pc;
 
-void main() { gl_Position = pc.view_proj * vec4(scene_vertices[gl_VertexIndex].position.xyz, 1.0); }
+#ifdef GIQ_ALPHA_MASK
+// Texture coordinates for the cut-out test of shadow_maps.frag; perspective-correct
+// interpolation gives the surface point's own TEXCOORD_0.
+layout(location = 0) out vec2 out_uv;
+#endif
+
+void main() {
+  gl_Position = pc.view_proj * vec4(scene_vertices[gl_VertexIndex].position.xyz, 1.0);
+#ifdef GIQ_ALPHA_MASK
+  out_uv = scene_vertex_extra[gl_VertexIndex].uv.xy;
+#endif
+}

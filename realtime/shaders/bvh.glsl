@@ -1,10 +1,12 @@
 // Ray tracing in compute: stack-based traversal of the flattened BVH (src/bvh.cpp) with the
 // watertight ray/triangle test of Woop, Benthin and Wald 2013 ("Watertight Ray/Triangle
 // Intersection", JCGT 2(1)). Needs scene.glsl. Works on every Vulkan device (no ray queries).
+// With GIQ_ALPHA_MASK, hits on the cut-out parts of alpha-masked materials are skipped.
 #ifndef GIQ_BVH_GLSL
 #define GIQ_BVH_GLSL
 
 #include "scene.glsl"
+#include "textures.glsl"
 
 #define GIQ_BVH_STACK 64  // Bvh::kMaxDepth
 
@@ -99,6 +101,11 @@ RayHit trace_ray(vec3 org, vec3 dir, float tmax, bool any_hit) {
         triangle_vertices(tri, a, b, c);
         float t, u, v;
         if (intersect_watertight(sr, a, b, c, hit.t, t, u, v)) {
+#ifdef GIQ_ALPHA_MASK
+          // A cut-out texel is no surface, for closest and any hits alike (the reference's
+          // Embree intersect and occluded filters).
+          if (alpha_cut(tri, u, v)) continue;
+#endif
           hit.triangle = tri;
           hit.t = t;
           hit.u = u;

@@ -13,4 +13,20 @@ vec3 camera_ray_direction(GpuCamera cam, vec2 pixel, vec2 size) {
   return normalize(cam.forward.xyz + x * cam.right.xyz + y * cam.up.xyz);
 }
 
+// The inverse: the image point (in pixels, as camera_ray_direction takes it) where the point
+// p appears; w > 0 when p is in front of the camera.
+vec3 camera_project(GpuCamera cam, vec3 p, vec2 size) {
+  vec3 d = p - cam.position.xyz;
+  float z = dot(d, cam.forward.xyz);
+  float tan_half = cam.forward.w, aspect = size.x / size.y;
+  float x = dot(d, cam.right.xyz) / (z * tan_half * aspect);
+  float y = dot(d, cam.up.xyz) / (z * tan_half);
+  return vec3(0.5 * (x + 1.0) * size.x, 0.5 * (1.0 - y) * size.y, z);
+}
+
+// Where a direction (a point at infinity, e.g. the environment) appears.
+vec3 camera_project_direction(GpuCamera cam, vec3 d, vec2 size) {
+  return camera_project(cam, cam.position.xyz + d, size);
+}
+
 #endif

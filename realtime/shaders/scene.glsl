@@ -1,4 +1,4 @@
-// The scene's storage buffers (bindings 0..6, see scene_shared.h) and accessors.
+// The scene's storage buffers (bindings 0..9, see scene_shared.h) and accessors.
 #ifndef GIQ_SCENE_GLSL
 #define GIQ_SCENE_GLSL
 
@@ -11,6 +11,9 @@ layout(std430, binding = GIQ_BINDING_BVH_NODES) readonly buffer SceneBvhNodes { 
 layout(std430, binding = GIQ_BINDING_BVH_PRIMS) readonly buffer SceneBvhPrims { uint bvh_prims[]; };
 layout(std430, binding = GIQ_BINDING_LIGHTS) readonly buffer SceneLights { GpuLight scene_lights[]; };
 layout(std430, binding = GIQ_BINDING_EMISSIVE) readonly buffer SceneEmissive { GpuEmissive scene_emissive[]; };
+layout(std430, binding = GIQ_BINDING_VERTEX_EXTRA) readonly buffer SceneVertexExtra { GpuVertexExtra scene_vertex_extra[]; };
+layout(std430, binding = GIQ_BINDING_TEXTURES) readonly buffer SceneTextures { GpuTexture scene_textures[]; };
+layout(std430, binding = GIQ_BINDING_TEXELS) readonly buffer SceneTexels { vec4 scene_texels[]; };
 
 void triangle_vertices(uint tri, out vec3 a, out vec3 b, out vec3 c) {
   uvec4 v = scene_triangles[tri].v;

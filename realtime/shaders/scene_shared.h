@@ -11,10 +11,11 @@ namespace giq::realtime::gpu {
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using uvec4 = glm::uvec4;
+using ivec4 = glm::ivec4;
 using uint = uint32_t;
 #endif
 
-// Bindings 0..6 of every pipeline that reads the scene (SceneGpu::descriptors()).
+// Bindings 0..9 of every pipeline that reads the scene (SceneGpu::descriptors()).
 #define GIQ_BINDING_VERTICES 0
 #define GIQ_BINDING_TRIANGLES 1
 #define GIQ_BINDING_MATERIALS 2
@@ -22,27 +23,61 @@ using uint = uint32_t;
 #define GIQ_BINDING_BVH_PRIMS 4
 #define GIQ_BINDING_LIGHTS 5
 #define GIQ_BINDING_EMISSIVE 6
-#define GIQ_SCENE_BINDING_COUNT 7
+// Texture coordinates and tangents, texture descriptors and texels: filled only for scenes
+// whose FeatureSet has textures, normal maps or alpha masks (one placeholder entry otherwise).
+#define GIQ_BINDING_VERTEX_EXTRA 7
+#define GIQ_BINDING_TEXTURES 8
+#define GIQ_BINDING_TEXELS 9
+#define GIQ_SCENE_BINDING_COUNT 10
 
 #define GIQ_LIGHT_DIRECTIONAL 0
 #define GIQ_LIGHT_POINT 1
 #define GIQ_LIGHT_SPOT 2
+
+// GpuTriangle::extra.z bits: what the triangle's mesh provides (scenes::Mesh).
+#define GIQ_TRIANGLE_HAS_UVS 1u
+#define GIQ_TRIANGLE_HAS_TANGENTS 2u
+#define GIQ_TRIANGLE_HAS_NORMALS 4u
+
+// GpuTexture::info.w: wrap_s | wrap_t << 2 | filter << 4 (scenes::Wrap, scenes::Filter order).
+#define GIQ_WRAP_REPEAT 0u
+#define GIQ_WRAP_CLAMP 1u
+#define GIQ_WRAP_MIRROR 2u
+#define GIQ_FILTER_NEAREST 0u
+#define GIQ_FILTER_LINEAR 1u
 
 struct GpuVertex {
   vec4 position;  // xyz in the scene's local frame
   vec4 normal;    // xyz unit shading normal
 };
 
+// Per vertex, beside GpuVertex, for textured scenes only.
+struct GpuVertexExtra {
+  vec4 tangent;  // xyz tangent, w bitangent sign (scenes::Mesh::tangents)
+  vec4 uv;       // xy TEXCOORD_0
+};
+
 struct GpuTriangle {
   uvec4 v;      // x, y, z: global vertex indices; w: material index
-  uvec4 extra;  // x: emissive triangle index + 1 (0 = not emissive); y: object id
+  uvec4 extra;  // x: emissive triangle index + 1 (0 = not emissive); y: object id;
+                // z: GIQ_TRIANGLE_HAS_* bits
 };
 
 struct GpuMaterial {
-  vec4 base_color;      // linear RGB, a unused
+  vec4 base_color;      // linear RGB; a: alpha factor (alpha mask)
   vec4 emissive;        // radiance RGB; w: 1 when emissive
   vec4 specular_color;  // rgb: KHR_materials_specular colour
   vec4 params;          // x metallic, y roughness, z specular factor, w 1 = double-sided
+  ivec4 textures;       // texture indices, -1 = none: x base colour, y metallic-roughness,
+                        // z emissive, w normal
+  ivec4 textures2;      // x specular (A channel), y specular colour (RGB)
+  vec4 mask;            // x: 1 = alpha mode MASK, y: alpha cutoff, z: normal scale
+};
+
+// A texture: texels[first .. first + width * height), row-major, first row = v 0, linear
+// float RGBA exactly as scenes::Texture holds them (sRGB already decoded on the CPU).
+struct GpuTexture {
+  uvec4 info;  // x first texel, y width, z height, w wrap and filter (GIQ_WRAP_*, GIQ_FILTER_*)
 };
 
 // Flattened BVH node (32 bytes). count == 0: interior, `index` = right child (the left child

@@ -13,7 +13,9 @@ RayQuery::RayQuery(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene
   auto bindings = SceneGpu::binding_types();
   bindings.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   bindings.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-  pipeline_ = Pipeline::compute(ctx, compiler.compile("shaders/ray_query.comp"), bindings, sizeof(uint32_t));
+  // The scene's defines: alpha-masked scenes trace through their cut-outs.
+  pipeline_ = Pipeline::compute(ctx, compiler.compile("shaders/ray_query.comp", feature_defines(scene.features())), bindings,
+                                sizeof(uint32_t));
 }
 
 std::vector<QueryHit> RayQuery::trace(const std::vector<QueryRay>& rays) {

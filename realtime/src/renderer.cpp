@@ -40,33 +40,39 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
   const std::string view_name = view0.name;
 
   GpuTimer timer(ctx);
-  std::unique_ptr<SceneGpu> scene_gpu;
-  std::unique_ptr<Technique> technique;
-  std::unique_ptr<scenes::Scene> posed;
+  // One technique instance for the whole sequence, so temporal techniques keep their history:
+  // an animated scene is posed per frame into `posed` (which the technique holds by
+  // reference) and the GPU scene is updated in place; the technique learns what moved.
+  scenes::Scene posed = scene.features.animation ? scene.at_frame(0) : scene;
+  // Device memory the scene and the technique keep resident (sub-allocated bytes, so what
+  // the resources need, not the 64 MiB blocks around them); measured after the first frame,
+  // since passes may create resources when they first record.
+  const uint64_t memory_before = ctx.allocator().bytes_in_use();
+  SceneGpu scene_gpu(ctx, posed);
+  const uint64_t memory_scene = ctx.allocator().bytes_in_use();
+  std::unique_ptr<Technique> technique =
+      info.create({ctx, compiler, posed, scene_gpu, options.width, options.height, params});
+  uint64_t memory_technique = 0;
   std::vector<FrameTiming> timings;
   int technique_frame = 0;
   const int total = options.warmup + options.frames;
   for (int f = 0; f < total; ++f) {
-    // A static scene is uploaded once; an animated one is posed and uploaded per frame, and
-    // the technique is recreated for the new geometry.
-    if (!technique || scene.features.animation) {
-      technique.reset();
-      scene_gpu.reset();
-      posed = std::make_unique<scenes::Scene>(scene.features.animation ? scene.at_frame(f) : scene);
-      scene_gpu = std::make_unique<SceneGpu>(ctx, *posed);
-      technique = info.create({ctx, compiler, *posed, *scene_gpu, options.width, options.height, params});
-      technique_frame = 0;
+    SceneChange change = SceneChange::None;
+    if (f > 0 && scene.features.animation) {
+      posed = scene.at_frame(f);
+      change = scene_gpu.update(posed);
     }
-    const scenes::Camera camera = posed->view(view_name).camera;
+    const scenes::Camera camera = posed.view(view_name).camera;
     FrameTiming t;
     t.frame = f;
     t.warmup = f < options.warmup;
     const auto start = std::chrono::steady_clock::now();
     ctx.submit_and_wait([&](VkCommandBuffer cmd) {
       timer.reset(cmd);
-      technique->render({cmd, technique_frame, camera, timer, *posed, SceneChange::None});
+      technique->render({cmd, technique_frame, camera, timer, posed, change});
     });
     t.cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (f == 0) memory_technique = ctx.allocator().bytes_in_use() - memory_scene;
     t.passes = timer.resolve();
     t.gpu_ms = timer.frame_ms();
     timings.push_back(t);
@@ -93,7 +99,7 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
     on_frame(out);
   }
 
-  std::vector<std::string> declared = technique ? technique->passes() : std::vector<std::string>{};
+  const std::vector<std::string> declared = technique->passes();
   nlohmann::json run = {
       {"giq_version", version()},
       {"technique", info.name},
@@ -107,6 +113,8 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
                                  std::to_string(VK_API_VERSION_MINOR(ctx.info().api_version)) + "." +
                                  std::to_string(VK_API_VERSION_PATCH(ctx.info().api_version))}}},
       {"declared_passes", declared},
+      {"gpu_memory_mb", {{"scene", double(memory_scene - memory_before) / (1 << 20)},
+                         {"technique", double(memory_technique) / (1 << 20)}}},
       {"validation", ctx.validation_enabled()},
   };
   return timings_json(timings, run);

@@ -128,7 +128,7 @@ Image::Image(Context& ctx, const ImageDesc& desc) : ctx_(&ctx), desc_(desc) {
     vk_check(vkBindImageMemory(ctx.device(), image_, alloc_.memory, alloc_.offset), "vkBindImageMemory");
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vi.image = image_;
-    vi.viewType = desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+    vi.viewType = desc.layers > 1 || desc.array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
     vi.format = desc.format;
     vi.subresourceRange = {aspect(), 0, 1, 0, desc.layers};
     vk_check(vkCreateImageView(ctx.device(), &vi, nullptr, &view_), "vkCreateImageView");

@@ -1,5 +1,6 @@
 #include "giq/realtime/scene_gpu.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -28,28 +29,49 @@ FlatGeometry flatten(const scenes::Scene& scene) {
 }
 
 namespace {
-// Features the real-time module does not render are refused at load time: a silently
-// different image would be compared with the reference as if it were right.
-void require_supported(const scenes::Scene& scene) {
-  const std::pair<bool, const char*> unsupported[] = {{scene.features.textures, "textures"},
-                                                      {scene.features.normal_maps, "normal_maps"},
-                                                      {scene.features.alpha_mask, "alpha_mask"}};
-  for (const auto& [present, name] : unsupported)
-    if (present)
-      throw InputError(scene.path.string(), "features",
-                       std::string("the scene uses ") + name +
-                           ", which giq realtime does not render; expected a scene without " + name);
+
+uint32_t wrap_code(scenes::Wrap w) {
+  return w == scenes::Wrap::Repeat ? GIQ_WRAP_REPEAT : w == scenes::Wrap::ClampToEdge ? GIQ_WRAP_CLAMP : GIQ_WRAP_MIRROR;
 }
+
+// Scenes that sample textures, map normals or cut out by alpha get their texture
+// coordinates, tangents and texels; the others one placeholder entry per binding, so that
+// every pipeline has the same scene bindings.
+bool needs_textures(const scenes::FeatureSet& f) { return f.textures || f.normal_maps || f.alpha_mask; }
+
 }  // namespace
 
-SceneGpu::SceneGpu(Context& ctx, const scenes::Scene& scene) : geometry_((require_supported(scene), flatten(scene))) {
+SceneGpu::SceneGpu(Context& ctx, const scenes::Scene& scene) : ctx_(&ctx), features_(scene.features) {
+  upload_materials(scene);
+  upload_geometry(scene, flatten(scene));
+  previous_vertices_ = Buffer::storage(ctx, vertices_host_);
+  upload_lights(scene);
+}
+
+SceneChange SceneGpu::update(const scenes::Scene& posed) {
+  // The previous frame's vertices, for motion vectors: what is current now, before it moves.
+  previous_vertices_.upload(vertices_host_.data(), vertices_host_.size() * sizeof(glm::vec4));
+  SceneChange change = SceneChange::None;
+  FlatGeometry g = flatten(posed);
+  if (g.positions != geometry_.positions || g.normals != geometry_.normals) {
+    upload_geometry(posed, std::move(g));
+    change = SceneChange::Geometry;
+  }
+  if (upload_lights(posed) && change == SceneChange::None) change = SceneChange::Lights;
+  return change;
+}
+
+void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat) {
   using namespace gpu;
+  Context& ctx = *ctx_;
+  geometry_ = std::move(flat);
   triangle_count_ = uint32_t(geometry_.triangles.size());
   bvh_ = build_bvh(geometry_.positions, geometry_.triangles);
 
-  std::vector<GpuVertex> vertices(geometry_.positions.size());
-  for (size_t i = 0; i < vertices.size(); ++i)
-    vertices[i] = {glm::vec4(geometry_.positions[i], 1.0f), glm::vec4(geometry_.normals[i], 0.0f)};
+  static_assert(sizeof(GpuVertex) == 2 * sizeof(glm::vec4));
+  vertices_host_.clear();
+  for (size_t i = 0; i < geometry_.positions.size(); ++i)
+    vertices_host_.insert(vertices_host_.end(), {glm::vec4(geometry_.positions[i], 1.0f), glm::vec4(geometry_.normals[i], 0.0f)});
 
   // Emissive triangles: chosen by power, as the reference does; the CDF is accumulated in
   // double so that a million small lights still end at exactly 1.
@@ -81,17 +103,94 @@ SceneGpu::SceneGpu(Context& ctx, const scenes::Scene& scene) : geometry_((requir
     triangles[i].extra = glm::uvec4(emissive_of_triangle[i], geometry_.object_id[i], 0, 0);
     indices.insert(indices.end(), {t.x, t.y, t.z});
   }
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const scenes::Mesh& mesh = scene.meshes[m];
+    const uint32_t flags = (mesh.uvs.size() == mesh.positions.size() && !mesh.uvs.empty() ? GIQ_TRIANGLE_HAS_UVS : 0u) |
+                           (mesh.tangents.size() == mesh.positions.size() && !mesh.tangents.empty() ? GIQ_TRIANGLE_HAS_TANGENTS : 0u) |
+                           (mesh.normals.size() == mesh.positions.size() && !mesh.normals.empty() ? GIQ_TRIANGLE_HAS_NORMALS : 0u);
+    const uint32_t first = geometry_.mesh_first_triangle[m];
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) triangles[first + t].extra.z = flags;
+  }
+
+  std::vector<GpuVertexExtra> vertex_extra;
+  if (needs_textures(scene.features))
+    for (const auto& mesh : scene.meshes)
+      for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        GpuVertexExtra e{glm::vec4(0.0f), glm::vec4(0.0f)};
+        if (i < mesh.tangents.size()) e.tangent = mesh.tangents[i];
+        if (i < mesh.uvs.size()) e.uv = glm::vec4(mesh.uvs[i], 0.0f, 0.0f);
+        vertex_extra.push_back(e);
+      }
+
+  std::vector<GpuBvhNode> nodes(bvh_.nodes.size());
+  static_assert(sizeof(GpuBvhNode) == sizeof(BvhNode));
+  std::memcpy(nodes.data(), bvh_.nodes.data(), nodes.size() * sizeof(GpuBvhNode));
+
+  vertices_ = Buffer::storage(ctx, vertices_host_);
+  triangles_ = Buffer::storage(ctx, triangles);
+  nodes_ = Buffer::storage(ctx, nodes);
+  prims_ = Buffer::storage(ctx, bvh_.prims);
+  emissive_ = Buffer::storage(ctx, emissive);
+  indices_ = Buffer::storage(ctx, indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  vertex_extra_ = Buffer::storage(ctx, vertex_extra);
+}
+
+// Materials and textures do not move: uploaded once.
+void SceneGpu::upload_materials(const scenes::Scene& scene) {
+  using namespace gpu;
+  Context& ctx = *ctx_;
+  std::vector<GpuTexture> textures;
+  std::vector<glm::vec4> texels;
+  if (needs_textures(scene.features)) {
+    // One storage buffer of float RGBA texels, filtered in the shader (shaders/textures.glsl)
+    // with scenes::Texture::sample's arithmetic: no sampler or image array to bind, no
+    // descriptor indexing (lavapipe has none), and the reference's texels to the bit.
+    const uint64_t limit = ctx.properties().limits.maxStorageBufferRange;
+    uint64_t total = 0;
+    for (const auto& t : scene.textures) total += uint64_t(std::max(t.width, 0)) * uint64_t(std::max(t.height, 0));
+    if (total * sizeof(glm::vec4) > limit)
+      throw InputError(scene.path.string(), "textures",
+                       "the scene's textures hold " + std::to_string(total) + " texels (" + std::to_string(total * sizeof(glm::vec4)) +
+                           " bytes as float RGBA); expected at most " + std::to_string(limit) +
+                           " bytes, this device's largest storage buffer");
+    texels.reserve(size_t(total));
+    for (const auto& t : scene.textures) {
+      const size_t n = size_t(std::max(t.width, 0)) * size_t(std::max(t.height, 0));
+      GpuTexture g;
+      const bool valid = n > 0 && t.texels && t.texels->size() >= n;
+      // A texture without texels samples as 0, like scenes::Texture::sample.
+      g.info = glm::uvec4(uint32_t(texels.size()), valid ? uint32_t(t.width) : 0u, valid ? uint32_t(t.height) : 0u,
+                          wrap_code(t.wrap_s) | wrap_code(t.wrap_t) << 2 |
+                              (t.filter == scenes::Filter::Linear ? GIQ_FILTER_LINEAR : GIQ_FILTER_NEAREST) << 4);
+      if (valid) texels.insert(texels.end(), t.texels->begin(), t.texels->begin() + std::ptrdiff_t(n));
+      textures.push_back(g);
+    }
+  }
+  texture_count_ = uint32_t(textures.size());
 
   std::vector<GpuMaterial> materials;
   for (const auto& m : scene.materials) {
     GpuMaterial g;
-    g.base_color = glm::vec4(glm::vec3(m.base_color), 1.0f);
+    g.base_color = m.base_color;
     g.emissive = glm::vec4(m.emissive, m.is_emissive() ? 1.0f : 0.0f);
     g.specular_color = glm::vec4(m.specular_color, 0.0f);
     g.params = glm::vec4(m.metallic, m.roughness, m.has_specular_lobe() ? m.specular : 0.0f, m.double_sided ? 1.0f : 0.0f);
+    // Texture indices only where the scene's shaders compile texturing at all.
+    const bool tex = needs_textures(scene.features);
+    g.textures = tex ? glm::ivec4(m.base_color_texture, m.metallic_roughness_texture, m.emissive_texture, m.normal_texture)
+                     : glm::ivec4(-1);
+    g.textures2 = tex ? glm::ivec4(m.specular_texture, m.specular_color_texture, -1, -1) : glm::ivec4(-1);
+    g.mask = glm::vec4(m.alpha_mode == scenes::AlphaMode::Mask ? 1.0f : 0.0f, m.alpha_cutoff, m.normal_scale, 0.0f);
     materials.push_back(g);
   }
 
+  materials_ = Buffer::storage(ctx, materials);
+  textures_ = Buffer::storage(ctx, textures);
+  texels_ = Buffer::storage(ctx, texels);
+}
+
+bool SceneGpu::upload_lights(const scenes::Scene& scene) {
+  using namespace gpu;
   std::vector<GpuLight> lights;
   for (const auto& l : scene.lights) {
     GpuLight g;
@@ -109,19 +208,15 @@ SceneGpu::SceneGpu(Context& ctx, const scenes::Scene& scene) : geometry_((requir
     lights.push_back(g);
   }
   light_count_ = uint32_t(lights.size());
-
-  std::vector<GpuBvhNode> nodes(bvh_.nodes.size());
-  static_assert(sizeof(GpuBvhNode) == sizeof(BvhNode));
-  std::memcpy(nodes.data(), bvh_.nodes.data(), nodes.size() * sizeof(GpuBvhNode));
-
-  vertices_ = Buffer::storage(ctx, vertices);
-  triangles_ = Buffer::storage(ctx, triangles);
-  materials_ = Buffer::storage(ctx, materials);
-  nodes_ = Buffer::storage(ctx, nodes);
-  prims_ = Buffer::storage(ctx, bvh_.prims);
-  lights_ = Buffer::storage(ctx, lights);
-  emissive_ = Buffer::storage(ctx, emissive);
-  indices_ = Buffer::storage(ctx, indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  static_assert(sizeof(GpuLight) % sizeof(glm::vec4) == 0);
+  const size_t bytes = lights.size() * sizeof(GpuLight);
+  if (lights_ && bytes == lights_host_.size() * sizeof(glm::vec4) &&
+      std::memcmp(lights.data(), lights_host_.data(), bytes) == 0)
+    return false;
+  lights_ = Buffer::storage(*ctx_, lights);
+  lights_host_.resize(bytes / sizeof(glm::vec4));
+  std::memcpy(lights_host_.data(), lights.data(), bytes);
+  return true;
 }
 
 std::vector<VkDescriptorType> SceneGpu::binding_types() {
@@ -131,7 +226,8 @@ std::vector<VkDescriptorType> SceneGpu::binding_types() {
 std::vector<Descriptor> SceneGpu::descriptors() const {
   return {Descriptor::storage(vertices_), Descriptor::storage(triangles_), Descriptor::storage(materials_),
           Descriptor::storage(nodes_),    Descriptor::storage(prims_),     Descriptor::storage(lights_),
-          Descriptor::storage(emissive_)};
+          Descriptor::storage(emissive_), Descriptor::storage(vertex_extra_), Descriptor::storage(textures_),
+          Descriptor::storage(texels_)};
 }
 
 }  // namespace giq::realtime

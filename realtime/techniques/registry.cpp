@@ -2,7 +2,9 @@
 // here.
 #include "giq/realtime/technique.h"
 #include "techniques/direct/direct.h"
+#include "techniques/lpv/lpv.h"
 #include "techniques/pt/pt.h"
+#include "techniques/rsm/rsm.h"
 #include "techniques/vct/vct.h"
 
 namespace giq::realtime {
@@ -11,6 +13,8 @@ const std::vector<TechniqueInfo>& techniques() {
   static const std::vector<TechniqueInfo> all = {
       direct_technique(),
       pt_technique(),
+      rsm_technique(),
+      lpv_technique(),
       vct_technique(),
   };
   return all;

@@ -133,6 +133,33 @@ TEST_F(SweepCli, ParetoFrontAcrossTechniques) {
   EXPECT_NE(svg.str().find("class=\"default\""), std::string::npos);
 }
 
+// GPU time at the resolution that matters (1080p on the GPU of interest) while the error is
+// scored at the reference's: a second run per setting, without images, at the timing size.
+TEST_F(SweepCli, TimesAtAnotherResolution) {
+  ASSERT_EQ(giq("--technique direct --grid pcf_radius=0,2 --warmup 1 --frames 3 --ref-spp 8 "
+                "--timing-width 24 --timing-height 16"),
+            0)
+      << std::ifstream(dir_ / "log.txt").rdbuf();
+  const json s = read("sweep.json");
+  EXPECT_EQ(s["run"]["timing_resolution"], json::array({24, 16}));
+  EXPECT_EQ(s["run"]["resolution"], json::array({8, 8}));
+  std::ifstream calls(dir_ / "calls.log");
+  int scored = 0, timed = 0;
+  for (std::string line; std::getline(calls, line);) {
+    if (line.find("realtime") == std::string::npos || line.find("--list") != std::string::npos) continue;
+    if (line.find("--no-images") != std::string::npos) {
+      ++timed;
+      EXPECT_NE(line.find("--width 24 --height 16"), std::string::npos) << line;
+    } else {
+      ++scored;
+      EXPECT_NE(line.find("--width 8 --height 8"), std::string::npos) << line;
+    }
+  }
+  EXPECT_EQ(scored, 3);  // 0, 2 and the default 1
+  EXPECT_EQ(timed, 3);
+  EXPECT_EQ(giq("--technique direct --timing-width 24"), 2);  // a width needs a height
+}
+
 TEST_F(SweepCli, ReferenceConvergenceSlope) {
   ASSERT_EQ(giq("--convergence --spp 1,4,16,64 --ref-spp 4096"), 0)
       << std::ifstream(dir_ / "log.txt").rdbuf();

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -56,6 +57,23 @@ TEST(RealtimeCli, WritesFramesAndTimings) {
   EXPECT_EQ(j["resolution"], nlohmann::json::array({24, 16}));
   EXPECT_FALSE(j["device"]["name"].get<std::string>().empty());
   EXPECT_EQ(j["passes"].size(), 3u);
+}
+
+TEST(RealtimeCli, RendersTexturedNormalMappedAlphaMaskedScenes) {
+  const std::string scene = std::string(GIQ_TEST_DATA) + "/scenes/textured_room.gltf";
+  for (const char* technique : {"direct", "pt"}) {
+    const fs::path out = scratch() / (std::string("textured_") + technique);
+    fs::remove_all(out);
+    const Outcome r = giq("--scene '" + scene + "' --technique " + technique +
+                          " --param " + (technique == std::string("direct") ? "shadow_map_size=128" : "samples_per_frame=2") +
+                          " --frames 1 --width 16 --height 16 --validation --out '" + out.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << technique << "\n" << r.err;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+    const giq::image::Image img = giq::image::read_image(out / "frame_0000.exr");
+    double sum = 0.0;
+    for (size_t i = 0; i < img.pixel_count(); ++i) sum += img.channel("G")[i];
+    EXPECT_TRUE(std::isfinite(sum) && sum > 0.0) << technique;
+  }
 }
 
 TEST(RealtimeCli, ListsTechniquesWithTheirParameters) {

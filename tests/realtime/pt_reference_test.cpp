@@ -2,8 +2,9 @@
 // units, BRDF and light transport must give the same image up to noise. Per pixel, the
 // z-score (pt - reference) / sqrt(var_pt + var_reference) uses both renders' variance of the
 // pixel mean; with both estimators unbiased it is close to standard normal, so beyond 4 sigma
-// there should be almost no pixels (6e-5 of a normal population; the issue allows 0.5%), and
-// the image means must agree within 4 standard errors.
+// there should be almost no pixels (6e-5 of a normal population; the requirement allows
+// 0.5%), the mean z-score must be consistent with zero and the image means must agree within
+// 4 standard errors (reference_agreement.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 #include "giq/realtime/renderer.h"
 #include "giq/reference/renderer.h"
 #include "giq/scenes/scene.h"
+#include "reference_agreement.h"
 #include "test_scenes.h"
 
 namespace giq::realtime {
@@ -22,10 +24,12 @@ class PtReferenceTest : public test::VulkanTest, public ::testing::WithParamInte
 TEST_P(PtReferenceTest, AgreesWithinNoise) {
   const scenes::Scene loaded = scenes::load(std::filesystem::path(GIQ_SCENES_DIR) / (GetParam() + ".gltf"));
   const scenes::Scene scene = loaded.features.animation ? loaded.at_frame(0) : loaded;
-  // 32 x 32 at 256 paths per pixel keeps each scene to seconds on lavapipe; the comparison
-  // is per pixel, so the resolution only sets how many pixels are tested.
-  const int size = 32;
-  const uint32_t spp = 256;
+  // 128 x 128 (the resolution the requirement names) at 32 paths per pixel on both sides:
+  // about 7 s per scene on lavapipe with 2 cores. The z-score carries both renders' variance,
+  // so fewer paths widen it without biasing it; 32 paths still estimate each variance well
+  // enough that a normal population's 4-sigma tail stays far below the 0.5% allowed.
+  const int size = 128;
+  const uint32_t spp = 32;
 
   RenderOptions o;
   o.technique = "pt";
@@ -43,26 +47,9 @@ TEST_P(PtReferenceTest, AgreesWithinNoise) {
   ref.render(film, spp);
   const image::Image cpu = film.to_image();
 
-  size_t outliers = 0, n = 0;
-  double diff_sum = 0.0, var_sum = 0.0;
-  for (const char* c : {"R", "G", "B"}) {
-    const std::string v = std::string("variance.") + c;
-    for (size_t i = 0; i < gpu.pixel_count(); ++i) {
-      const double a = gpu.channel(c)[i], b = cpu.channel(c)[i];
-      const double var = double(gpu.channel(v)[i]) + double(cpu.channel(v)[i]);
-      ASSERT_TRUE(std::isfinite(a)) << GetParam() << " pixel " << i;
-      diff_sum += a - b;
-      var_sum += var;
-      ++n;
-      // Noise-free pixels (emission seen directly, black background) must agree to float
-      // rounding; the others by their z-score.
-      const double z = std::abs(a - b) / std::sqrt(var + 1e-12 * (a * a + b * b) + 1e-30);
-      outliers += z > 4.0;
-    }
-  }
-  EXPECT_LE(double(outliers), 0.005 * double(n)) << GetParam() << ": " << outliers << " of " << n << " beyond 4 sigma";
-  EXPECT_LE(std::abs(diff_sum), 4.0 * std::sqrt(var_sum)) << GetParam() << ": image mean differs by "
-                                                           << diff_sum / double(n) << ", se " << std::sqrt(var_sum) / double(n);
+  // Each built-in scene has emissive meshes only or one punctual light only, which `pt` and
+  // the reference sample alike, so the mean z-score is gated too (reference_agreement.h).
+  test::expect_agreement(gpu, cpu, GetParam(), "", true);
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltinScenes, PtReferenceTest,

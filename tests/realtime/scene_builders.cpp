@@ -30,6 +30,28 @@ int add_material(scenes::Scene& s, glm::vec3 albedo, glm::vec3 emissive) {
   return int(s.materials.size() - 1);
 }
 
+int add_texture(scenes::Scene& s, int w, int h, const std::function<glm::vec4(int, int)>& texel, scenes::Filter filter,
+                scenes::Wrap wrap) {
+  scenes::Texture t;
+  t.name = "texture" + std::to_string(s.textures.size());
+  t.width = w;
+  t.height = h;
+  auto texels = std::make_shared<std::vector<glm::vec4>>();
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) texels->push_back(texel(x, y));
+  t.texels = texels;
+  t.filter = filter;
+  t.wrap_s = t.wrap_t = wrap;
+  s.textures.push_back(std::move(t));
+  return int(s.textures.size() - 1);
+}
+
+void add_textured_quad(scenes::Scene& s, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, int material, float uv_scale) {
+  add_quad(s, a, b, c, d, material);
+  const float k = uv_scale;
+  s.meshes.back().uvs = {{0.0f, 0.0f}, {k, 0.0f}, {k, k}, {0.0f, k}};
+}
+
 namespace {
 // An axis-aligned block [lo, hi] with outward faces.
 void add_block(scenes::Scene& s, glm::vec3 lo, glm::vec3 hi, int mat) {
@@ -62,6 +84,51 @@ scenes::Scene cornell_box(glm::vec3 light_radiance) {
   add_block(s, {0.15f, -1.0f, 0.0f}, {0.65f, -0.45f, 0.5f}, white);
   // The camera sits inside the closed box, near the front wall.
   s.views.push_back({"front", scenes::Camera::look_at({0.0f, 0.0f, 0.95f}, {0.0f, 0.0f, -1.0f}, {0, 1, 0}, 1.2f), -1});
+  s.derive();
+  return s;
+}
+
+scenes::Scene textured_box() {
+  scenes::Scene s = cornell_box();
+  // Floor: a 4 x 4 checker of two colours, repeated twice across the floor, bilinear.
+  const int floor = add_material(s, glm::vec3(1.0f));
+  s.materials[floor].base_color_texture = add_texture(s, 4, 4, [](int x, int y) {
+    return (x + y) % 2 ? glm::vec4(0.8f, 0.7f, 0.2f, 1.0f) : glm::vec4(0.15f, 0.3f, 0.6f, 1.0f);
+  });
+  s.meshes[0].material = floor;
+  s.meshes[0].uvs = {{0.0f, 0.0f}, {2.0f, 0.0f}, {2.0f, 2.0f}, {0.0f, 2.0f}};
+  // Back wall: ridges along u in the normal map (tilted +-0.5 in tangent space), glossy
+  // where the metallic-roughness texture says so.
+  const int wall = add_material(s, glm::vec3(0.7f));
+  scenes::Material& w = s.materials[wall];
+  w.normal_texture = add_texture(s, 8, 1, [](int x, int) {
+    const float tilt = 0.5f * std::sin(2.0f * float(M_PI) * (float(x) + 0.5f) / 8.0f);
+    const glm::vec3 n = glm::normalize(glm::vec3(tilt, 0.0f, 1.0f));
+    return glm::vec4(0.5f * n + 0.5f, 1.0f);
+  });
+  w.metallic = 1.0f;  // times the texture's B
+  w.specular = 1.0f;
+  w.metallic_roughness_texture = add_texture(s, 2, 2, [](int x, int y) {
+    return glm::vec4(0.0f, (x + y) % 2 ? 0.9f : 0.35f, (x + y) % 2 ? 0.0f : 0.6f, 1.0f);
+  }, scenes::Filter::Nearest);
+  s.meshes[2].material = wall;
+  s.meshes[2].uvs = {{0.0f, 0.0f}, {2.0f, 0.0f}, {2.0f, 2.0f}, {0.0f, 2.0f}};
+  // Light: an emissive texture of four tints (nearest), on the quad's UVs.
+  scenes::Material& light = s.materials[size_t(s.meshes[6].material)];
+  light.emissive_texture = add_texture(s, 2, 2, [](int x, int y) {
+    return x + y == 0 ? glm::vec4(1.0f) : x == y ? glm::vec4(0.4f, 0.8f, 1.0f, 1.0f) : glm::vec4(1.0f, 0.6f, 0.5f, 1.0f);
+  }, scenes::Filter::Nearest);
+  s.meshes[6].uvs = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
+  // A grating 0.3 under the light: alpha 1 on even texel columns, 0 on odd ones (nearest).
+  const int grating = add_material(s, glm::vec3(0.73f));
+  scenes::Material& g = s.materials[grating];
+  g.alpha_mode = scenes::AlphaMode::Mask;
+  g.alpha_cutoff = 0.5f;
+  g.double_sided = true;
+  g.base_color_texture = add_texture(s, 6, 1, [](int x, int) {
+    return glm::vec4(0.9f, 0.9f, 0.9f, x % 2 ? 0.0f : 1.0f);
+  }, scenes::Filter::Nearest);
+  add_textured_quad(s, {-0.4f, 0.69f, 0.4f}, {0.4f, 0.69f, 0.4f}, {0.4f, 0.69f, -0.4f}, {-0.4f, 0.69f, -0.4f}, grating);
   s.derive();
   return s;
 }

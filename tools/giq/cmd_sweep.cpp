@@ -40,7 +40,7 @@ struct SweepArgs {
   std::string scene, view = "0", ref, layer = "beauty", error, out = "sweep-out", device, giq;
   std::vector<std::string> techniques, grid;
   std::vector<uint32_t> spp;
-  int auto_steps = 0, width = 128, height = 128, warmup = 10, frames = 20, jobs = 1,
+  int auto_steps = 0, width = 128, height = 128, warmup = 10, frames = 20, jobs = 1, timing_width = 0, timing_height = 0,
       max_settings = 64;
   uint32_t ref_spp = 1024;
   bool convergence = false, linear = false;
@@ -159,11 +159,26 @@ int run_techniques(const SweepArgs& a, const fs::path& giq, const fs::path& out)
       }
       if (!a.device.empty()) rt.insert(rt.end(), {"--device", a.device});
       must(run_process(rt, log), "giq realtime", log);
-      const fs::path timings = dir / "technique" / "timings.json";
+      fs::path timings = dir / "technique" / "timings.json";
+      const fs::path scored_timings = timings;
+      if (a.timing_width > 0) {
+        // GPU time at another resolution than the scored images (e.g. 1080p on the GPU of
+        // interest while the error is measured at the reference's resolution): the same
+        // command without images.
+        std::vector<std::string> tr = rt;
+        for (size_t k = 0; k + 1 < tr.size(); ++k) {
+          if (tr[k] == "--width") tr[k + 1] = std::to_string(a.timing_width);
+          if (tr[k] == "--height") tr[k + 1] = std::to_string(a.timing_height);
+          if (tr[k] == "--out") tr[k + 1] = (dir / "timing").string();
+        }
+        tr.push_back("--no-images");
+        must(run_process(tr, log), "giq realtime (timing)", log);
+        timings = dir / "timing" / "timings.json";
+      }
       row.gpu_ms = gate::frame_time(read_json(timings)).gpu_ms;
       char last[32];
       std::snprintf(last, sizeof last, "frame_%04d.exr", a.warmup + a.frames - 1);
-      row.metrics = score(a, giq, ref, dir / "technique" / last, timings, dir / "score", log);
+      row.metrics = score(a, giq, ref, dir / "technique" / last, scored_timings, dir / "score", log);
     } catch (const std::exception& e) {
       row.error = e.what();
     }
@@ -174,7 +189,9 @@ int run_techniques(const SweepArgs& a, const fs::path& giq, const fs::path& out)
   write_file_atomically(out / "sweep.csv", gate::sweep_csv(rows, names));
   const json run = {{"scene", a.scene},   {"view", a.view},     {"resolution", {a.width, a.height}},
                     {"warmup", a.warmup}, {"frames", a.frames}, {"reference", ref.string()},
-                    {"layer", a.layer}};
+                    {"layer", a.layer},
+                    {"timing_resolution", a.timing_width > 0 ? json::array({a.timing_width, a.timing_height})
+                                                             : json::array({a.width, a.height})}};
   write_file_atomically(out / "sweep.json", gate::sweep_json(rows, error, run).dump(2) + "\n");
   write_file_atomically(out / "sweep.svg",
                         gate::sweep_svg(rows, error, !a.linear,
@@ -255,6 +272,10 @@ int run_sweep(const SweepArgs& a) {
   if (a.scene.empty()) throw InputError("", "--scene", "a scene is required");
   if (a.jobs < 1 || a.frames < 1 || a.warmup < 0)
     throw InputError("", "--jobs/--frames/--warmup", "must be positive");
+  if ((a.timing_width > 0) != (a.timing_height > 0) || a.timing_width < 0 || a.timing_height < 0)
+    throw InputError("", "--timing-width/--timing-height",
+                     std::to_string(a.timing_width) + "x" + std::to_string(a.timing_height) +
+                         "; expected both positive, or neither");
   const fs::path giq = a.giq.empty() ? self_executable() : fs::absolute(a.giq);
   const fs::path out = fs::absolute(a.out);  // recorded in metrics.json: valid from anywhere
   fs::create_directories(out);
@@ -288,6 +309,9 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
       "Error metric of the front and plots (default flip_mean; rmse for --convergence)");
   cmd->add_option("--width", a->width, "Image width")->capture_default_str();
   cmd->add_option("--height", a->height, "Image height")->capture_default_str();
+  cmd->add_option("--timing-width", a->timing_width,
+                  "Measure GPU ms at this width in a separate run without images (default: --width)");
+  cmd->add_option("--timing-height", a->timing_height, "Height of the timing run (with --timing-width)");
   cmd->add_option("--warmup", a->warmup, "Frames before the measured ones")->capture_default_str();
   cmd->add_option("--frames", a->frames, "Measured frames (median GPU ms)")->capture_default_str();
   cmd->add_option("--device", a->device, "Vulkan device for giq realtime");

@@ -15,7 +15,7 @@ class Direct : public Technique {
  public:
   explicit Direct(const TechniqueCreateInfo& ci)
       : gbuffer_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.features, ci.width, ci.height,
-                 ci.parameters.get_int("gbuffer_ray_traced") != 0),
+                 GBufferPass::builder(ci.parameters)),
         lighting_(ci),
         indirect_(ci.ctx, {ci.width, ci.height, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
                            VK_IMAGE_USAGE_STORAGE_BIT}) {}

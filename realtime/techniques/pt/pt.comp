@@ -10,6 +10,7 @@
 
 #include "shaders/bvh.glsl"
 #include "shaders/brdf.glsl"
+#include "shaders/surface.glsl"
 #include "shaders/camera.glsl"
 #include "shaders/lights.glsl"
 #include "pt_shared.h"
@@ -31,8 +32,9 @@ float power_heuristic(float a, float b) {
   return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
 }
 
-// Emitted radiance of a triangle seen from direction -w (w travels towards the surface).
-vec3 emitted(uint tri, vec3 w) {
+// Emitted radiance of a triangle at barycentrics (b1, b2) seen from direction -w (w travels
+// towards the surface); with its emissive texture where the scene has textures.
+vec3 emitted(uint tri, float b1, float b2, vec3 w) {
   GpuTriangle t = scene_triangles[tri];
   GpuMaterial m = scene_materials[t.v.w];
   if (m.emissive.w == 0.0) return vec3(0.0);
@@ -40,7 +42,7 @@ vec3 emitted(uint tri, vec3 w) {
   triangle_vertices(tri, a, b, c);
   vec3 ng = cross(b - a, c - a);
   if (dot(ng, w) >= 0.0 && m.params.w == 0.0) return vec3(0.0);  // one-sided: front only
-  return m.emissive.rgb;
+  return emission_at(m, tri, b1, b2);
 }
 
 // Solid-angle pdf with which NEE would pick direction w from p to hit `tri` at distance t.
@@ -85,16 +87,12 @@ PathResult trace_path(vec3 org, vec3 dir, inout Rng rng) {
 #endif
       break;
     }
-    GpuTriangle tri = scene_triangles[hit.triangle];
-    GpuMaterial mat = scene_materials[tri.v.w];
     vec3 a, b, c;
     triangle_vertices(hit.triangle, a, b, c);
-    vec3 ng = normalize(cross(b - a, c - a));
     vec3 p = a + hit.u * (b - a) + hit.v * (c - a);
-    bool back = dot(ng, dir) > 0.0;
 
     // Emission, weighted against NEE when a BRDF sample found it.
-    vec3 le = emitted(hit.triangle, dir);
+    vec3 le = emitted(hit.triangle, hit.u, hit.v, dir);
     if (any(greaterThan(le, vec3(0.0)))) {
       float w = 1.0;
       if (depth > 0u && pc.emissive_count > 0u) w = power_heuristic(prev_pdf, light_pdf(hit.triangle, dir, hit.t));
@@ -102,15 +100,13 @@ PathResult trace_path(vec3 org, vec3 dir, inout Rng rng) {
       if (depth <= 1u) res.direct += contrib; else res.indirect += contrib;
     }
     if (depth == pc.max_bounces) break;
-    // The back of a one-sided material is black: it absorbs.
-    if (back && mat.params.w == 0.0) break;
-
-    if (back) ng = -ng;
-    vec3 n0 = scene_vertices[tri.v.x].normal.xyz, n1 = scene_vertices[tri.v.y].normal.xyz, n2 = scene_vertices[tri.v.z].normal.xyz;
-    vec3 ns = (1.0 - hit.u - hit.v) * n0 + hit.u * n1 + hit.v * n2;
-    ns = dot(ns, ns) > 0.0 ? normalize(ns) : ng;
-    if (dot(ns, ng) < 0.0) ns = -ns;
-    Surface s = make_surface(mat, ns);
+    // Normals and material as the reference's make_surface: the back of a one-sided
+    // material is black (it absorbs), shading normals are interpolated, normal-mapped and
+    // kept above the viewer's horizon; textures scale the material's factors.
+    HitNormals hn = hit_normals(hit.triangle, hit.u, hit.v, dir);
+    if (hn.black) break;
+    vec3 ng = hn.ng, ns = hn.ns;
+    Surface s = hit_material(hit.triangle, hit.u, hit.v, ns);
     vec3 wo = -dir;
     vec3 p_off = offset_ray(p, ng);
     // Light arriving at this vertex (depth + 1 surfaces before the camera sees it).
@@ -142,7 +138,7 @@ PathResult trace_path(vec3 org, vec3 dir, inout Rng rng) {
       vec3 wi = d / dist;
       vec3 lng = normalize(cross(lb - la, lc - la));
       float cos_l = abs(dot(lng, wi));
-      vec3 le2 = emitted(em.triangle.x, wi);
+      vec3 le2 = emitted(em.triangle.x, bc.x, bc.y, wi);
       if (dot(wi, ng) > 0.0 && cos_l > 0.0 && any(greaterThan(le2, vec3(0.0)))) {
         vec3 f = brdf_eval(s, wo, wi);
         if (any(greaterThan(f, vec3(0.0))) && !occluded(p_off, wi, dist * (1.0 - 1e-4))) {

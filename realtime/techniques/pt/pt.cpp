@@ -1,5 +1,6 @@
 // `pt`: one compute pass per frame that adds samples_per_frame paths per pixel to running
-// sums and writes the means. Parameters: samples_per_frame, max_bounces, seed.
+// sums and writes the means; the sums restart when the scene or the camera moves. Parameters:
+// samples_per_frame, max_bounces, seed.
 #include "techniques/pt/pt.h"
 
 #include "giq/realtime/context.h"
@@ -16,7 +17,7 @@ namespace {
 class PathTracer : public Technique {
  public:
   explicit PathTracer(const TechniqueCreateInfo& ci)
-      : scene_(ci.scene), scene_gpu_(ci.scene_gpu), width_(ci.width), height_(ci.height) {
+      : scene_gpu_(ci.scene_gpu), width_(ci.width), height_(ci.height) {
     spp_ = uint32_t(ci.parameters.get_int("samples_per_frame"));
     max_bounces_ = uint32_t(ci.parameters.get_int("max_bounces"));
     seed_ = uint32_t(ci.parameters.get_int("seed"));
@@ -34,16 +35,25 @@ class PathTracer : public Technique {
   void render(const FrameInput& in) override {
     if (in.frame == 0)
       for (Image* img : images()) img->transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
+    // Samples of a scene that has since moved belong to another image: start again, with new
+    // random numbers so that consecutive restarts do not repeat the same noise.
+    if (in.frame == 0 || in.change != SceneChange::None || in.camera.position != camera_.position ||
+        in.camera.forward != camera_.forward || in.camera.up != camera_.up || in.camera.yfov != camera_.yfov) {
+      accumulated_ = 0;
+      ++restarts_;
+    }
+    camera_ = in.camera;
     gpu::PtPush pc{};
     pc.camera = gpu::make_gpu_camera(in.camera);
-    pc.environment = glm::vec4(scene_.environment, 0.0f);
+    pc.environment = glm::vec4(in.scene.environment, 0.0f);
     pc.width = width_;
     pc.height = height_;
     pc.samples_per_frame = 1;
     pc.max_bounces = max_bounces_;
     pc.emissive_count = scene_gpu_.emissive_count();
     pc.light_count = scene_gpu_.light_count();
-    pc.seed = seed_;
+    // 0x9E3779B9: the golden-ratio increment, so restart r's seeds are far from restart r-1's.
+    pc.seed = seed_ + 0x9E3779B9u * (restarts_ - 1);
     in.timer.begin(in.cmd, "path_trace");
     pipeline_.bind(in.cmd);
     auto d = scene_gpu_.descriptors();
@@ -53,11 +63,12 @@ class PathTracer : public Technique {
     // (llvmpipe) ends any loop after 65535 iterations per invocation to guard against hangs,
     // which silently cut BVH traversals short when one invocation traced hundreds of paths.
     for (uint32_t k = 0; k < spp_; ++k) {
-      pc.first_sample = uint32_t(in.frame) * spp_ + k;
+      pc.first_sample = accumulated_ + k;
       pipeline_.push_constants(in.cmd, pc);
       pipeline_.dispatch_2d(in.cmd, width_, height_);
       full_barrier(in.cmd);
     }
+    accumulated_ += spp_;
     in.timer.end(in.cmd);
   }
 
@@ -69,9 +80,10 @@ class PathTracer : public Technique {
   std::vector<Image*> images() {
     return {&sum_direct_, &sum_indirect_, &sum_square_, &beauty_, &direct_, &indirect_, &variance_};
   }
-  const scenes::Scene& scene_;
   const SceneGpu& scene_gpu_;
   uint32_t width_, height_, spp_ = 1, max_bounces_ = 64, seed_ = 0;
+  uint32_t accumulated_ = 0, restarts_ = 0;  // samples per pixel since the last restart
+  scenes::Camera camera_;                    // of the previous frame
   Image sum_direct_, sum_indirect_, sum_square_, beauty_, direct_, indirect_, variance_;
   Pipeline pipeline_;
 };

@@ -18,6 +18,7 @@
 
 #include "shaders/scene.glsl"
 #include "shaders/brdf.glsl"
+#include "shaders/surface.glsl"
 #include "techniques/vct/vct_shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -56,7 +57,15 @@ void main() {
       vec3 p = imageLoad(gb_position, px).xyz;
       vec3 n = imageLoad(gb_normal, px).xyz;
       vec3 wo = normalize(pc.eye.xyz - p);
-      Surface s = make_surface(mat, n);
+      // Textured materials at the G-buffer point (as passes/direct_light.comp).
+      uint tri = ids.x - 1u;
+      vec2 bary = vec2(0.0);
+#ifdef GIQ_SURFACE_TEXTURES
+      vec3 ta, tb, tc;
+      triangle_vertices(tri, ta, tb, tc);
+      bary = plane_barycentrics(p, ta, tb, tc);
+#endif
+      Surface s = hit_material(tri, bary.x, bary.y, n);
       vec3 start = p + n * (pc.cone.w * pc.grid.origin.w);
 
       uint cones = pc.grid.size.z;

@@ -57,7 +57,7 @@ class Vct : public Technique {
         width_(ci.width),
         height_(ci.height),
         gbuffer_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.features, ci.width, ci.height,
-                 ci.parameters.get_int("gbuffer_ray_traced") != 0),
+                 GBufferPass::builder(ci.parameters)),
         lighting_(ci),
         upsample_(ci.ctx, ci.compiler, ci.width, ci.height,
                   uint32_t(ci.parameters.get_int("downsample")),

@@ -22,6 +22,7 @@
 #include "shaders/scene.glsl"
 #include "shaders/bvh.glsl"
 #include "shaders/brdf.glsl"
+#include "shaders/surface.glsl"
 #include "shaders/lights.glsl"
 #include "techniques/vct/vct_shared.h"
 #include "techniques/vct/voxel.glsl"
@@ -90,8 +91,13 @@ void main() {
   vec3 ng = normalize(cross(b - a, c - a));
   GpuMaterial mat = scene_materials[scene_triangles[tri].v.w];
   bool two_sided = mat.params.w != 0.0;
-  // The diffuse BRDF at normal incidence (its Fresnel weight varies little with angle).
-  Surface s = make_surface(mat, ng);
+  // The diffuse BRDF at normal incidence (its Fresnel weight varies little with angle), with
+  // the material's textures at p.
+  vec2 bary = vec2(0.0);
+#ifdef GIQ_SURFACE_TEXTURES
+  bary = plane_barycentrics(p, a, b, c);
+#endif
+  Surface s = hit_material(tri, bary.x, bary.y, ng);
   vec3 fd, fs;
   brdf_parts(s, ng, ng, fd, fs);
 

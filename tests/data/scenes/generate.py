@@ -248,6 +248,76 @@ def materials():
     return g.finish()
 
 
+def textured_room():
+    """Every texture feature giq renders, in a small room with a view: an sRGB checker on the
+    floor (bilinear, repeating), a normal-mapped wall with TANGENT and a metallic-roughness
+    texture, an alpha-masked grating (nearest) under a lamp with an emissive texture, and a
+    point light. The real-time tests compare `pt` with `giq reference` on it."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_lights_punctual", "KHR_materials_emissive_strength"]
+
+    def image(png):
+        return g.add("images", {"uri": "data:image/png;base64," + base64.b64encode(png).decode()})
+
+    def texture(png, sampler=None):
+        t = {"source": image(png)}
+        if sampler is not None:
+            t["sampler"] = sampler
+        return g.add("textures", t)
+
+    linear_repeat = g.add("samplers", {"magFilter": 9729, "wrapS": 10497, "wrapT": 10497})
+    nearest_clamp = g.add("samplers", {"magFilter": 9728, "wrapS": 33071, "wrapT": 33071})
+    checker = png_rgba(4, 4, [[(200, 80, 40, 255) if (x + y) % 2 else (40, 90, 180, 255) for x in range(4)] for y in range(4)])
+    ridges = []
+    for x in range(8):
+        tilt = 0.5 * math.sin(2 * math.pi * (x + 0.5) / 8)
+        n = (tilt, 0.0, 1.0)
+        length = math.sqrt(sum(c * c for c in n))
+        ridges.append(tuple(int(round(255 * (0.5 * c / length + 0.5))) for c in n) + (255,))
+    normal = png_rgba(8, 1, [ridges])
+    rough = png_rgba(2, 2, [[(0, 90, 150, 255), (0, 230, 0, 255)], [(0, 230, 0, 255), (0, 90, 150, 255)]])
+    stripes = png_rgba(6, 1, [[(230, 230, 230, 0 if x % 2 else 255) for x in range(6)]])
+    tint = png_rgba(2, 2, [[(255, 255, 255, 255), (255, 160, 120, 255)], [(120, 200, 255, 255), (255, 255, 255, 255)]])
+    floor_m = g.add("materials", {"name": "floor", "pbrMetallicRoughness": {
+        "baseColorTexture": {"index": texture(checker, linear_repeat)}, "metallicFactor": 0.0, "roughnessFactor": 0.8}})
+    wall_m = g.add("materials", {"name": "wall", "normalTexture": {"index": texture(normal), "scale": 0.9},
+                                 "pbrMetallicRoughness": {"baseColorFactor": [0.7, 0.7, 0.7, 1.0],
+                                                          "metallicRoughnessTexture": {"index": texture(rough, nearest_clamp)}}})
+    grating_m = g.add("materials", {"name": "grating", "alphaMode": "MASK", "doubleSided": True, "pbrMetallicRoughness": {
+        "baseColorTexture": {"index": texture(stripes, nearest_clamp)}, "metallicFactor": 0.0}})
+    lamp_m = g.add("materials", {"name": "lamp", "emissiveFactor": [1.0, 1.0, 1.0],
+                                 "emissiveTexture": {"index": texture(tint, nearest_clamp)},
+                                 "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0]},
+                                 "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 6.0}}})
+
+    def quad(name, p, uvs, material, tangent=None):
+        a, b, c = p[0], p[1], p[2]
+        e1 = [b[i] - a[i] for i in range(3)]
+        e2 = [c[i] - a[i] for i in range(3)]
+        n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
+        length = math.sqrt(sum(x * x for x in n))
+        n = [x / length for x in n]
+        attrs = {"POSITION": g.accessor(p, "VEC3", minmax=True), "NORMAL": g.accessor([n] * 4, "VEC3"),
+                 "TEXCOORD_0": g.accessor(uvs, "VEC2")}
+        if tangent:
+            attrs["TANGENT"] = g.accessor([tangent] * 4, "VEC4")
+        m = g.add("meshes", {"name": name, "primitives": [
+            {"attributes": attrs, "indices": g.accessor([0, 1, 2, 0, 2, 3], "SCALAR", USHORT), "material": material}]})
+        g.node(name=name, mesh=m)
+
+    quad("floor", [(-1.5, 0, 1.5), (1.5, 0, 1.5), (1.5, 0, -1.5), (-1.5, 0, -1.5)], [(0, 2), (2, 2), (2, 0), (0, 0)], floor_m)
+    quad("wall", [(-1.5, 0, -1.5), (1.5, 0, -1.5), (1.5, 2.5, -1.5), (-1.5, 2.5, -1.5)], [(0, 1), (1, 1), (1, 0), (0, 0)], wall_m,
+         tangent=(1, 0, 0, 1))
+    quad("grating", [(-0.5, 1.2, 0.5), (0.5, 1.2, 0.5), (0.5, 1.2, -0.5), (-0.5, 1.2, -0.5)], [(0, 1), (1, 1), (1, 0), (0, 0)],
+         grating_m)
+    quad("lamp", [(-0.4, 2.3, -0.4), (0.4, 2.3, -0.4), (0.4, 2.3, 0.4), (-0.4, 2.3, 0.4)], [(0, 0), (1, 0), (1, 1), (0, 1)], lamp_m)
+    g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [{"name": "bulb", "type": "point", "intensity": 3.0}]}}
+    g.node(name="bulb", translation=[0.8, 1.8, 0.6], extensions={"KHR_lights_punctual": {"light": 0}})
+    d = g.finish()
+    d["extras"] = {"giq": {"views": [{"name": "front", "eye": [0, 1.6, 3.2], "target": [0, 0.5, 0], "yfov_deg": 60}]}}
+    return d
+
+
 def external():
     g = Gltf()
     g.mesh("tri", TRI_P)
@@ -460,6 +530,7 @@ def main():
     write(os.path.join(HERE, "animated.gltf"), animated())
     write(os.path.join(HERE, "lights_cameras.gltf"), lights_cameras())
     write(os.path.join(HERE, "materials.gltf"), materials())
+    write(os.path.join(HERE, "textured_room.gltf"), textured_room())
     write(os.path.join(HERE, "external.gltf"), external())
     with open(os.path.join(HERE, "quad_tri.glb"), "wb") as f:
         f.write(glb(None))

@@ -54,6 +54,7 @@ struct ImageDesc {
   uint32_t width = 1, height = 1, layers = 1;
   VkFormat format = VK_FORMAT_R32G32B32A32_SFLOAT;
   VkImageUsageFlags usage = 0;
+  bool array = false;  // a 2D-array view even for one layer (shaders that index layers)
 };
 
 class Image {
@@ -67,7 +68,7 @@ class Image {
   Image& operator=(const Image&) = delete;
 
   VkImage handle() const { return image_; }
-  VkImageView view() const { return view_; }              // all layers (2D array when layers > 1)
+  VkImageView view() const { return view_; }              // all layers (2D array when layers > 1 or desc.array)
   VkImageView layer_view(uint32_t layer) const { return layer_views_.at(layer); }
   const ImageDesc& desc() const { return desc_; }
   VkImageAspectFlags aspect() const;

@@ -1,7 +1,11 @@
 #pragma once
-// The scene uploaded once for every technique: vertices, triangles, materials, the BVH,
-// punctual lights and the emissive triangles with their power CDF, bound as bindings 0..6 of
-// any pipeline that reads the scene (shaders/scene_shared.h, shaders/scene.glsl).
+// The scene on the GPU for every technique: vertices, triangles, materials, the BVH, punctual
+// lights, the emissive triangles with their power CDF and, for textured scenes, texture
+// coordinates, tangents and texels, bound as bindings 0..9 of any pipeline that reads the
+// scene (shaders/scene_shared.h, shaders/scene.glsl). An animated scene is uploaded once and
+// then updated per frame with the posed scene: what moved is re-uploaded (and the BVH rebuilt
+// when geometry moved), so pipelines must take descriptors() when they record, never keep
+// them across frames.
 //
 // All meshes are concatenated in Scene::meshes order; a triangle's global index (reported by
 // ray queries) is its mesh's offset plus its index in the mesh.
@@ -12,6 +16,7 @@
 #include "giq/realtime/bvh.h"
 #include "giq/realtime/pipeline.h"
 #include "giq/realtime/resources.h"
+#include "giq/realtime/technique.h"
 #include "giq/scenes/scene.h"
 
 namespace giq::realtime {
@@ -32,6 +37,10 @@ class SceneGpu {
  public:
   SceneGpu(Context& ctx, const scenes::Scene& scene);
 
+  // Brings the buffers to `posed` (the same scene at another time: same meshes, materials and
+  // lights, moved) and says what moved. The vertices before the call become previous_vertices().
+  SceneChange update(const scenes::Scene& posed);
+
   static std::vector<VkDescriptorType> binding_types();  // GIQ_SCENE_BINDING_COUNT storage buffers
   std::vector<Descriptor> descriptors() const;
 
@@ -40,13 +49,28 @@ class SceneGpu {
   uint32_t light_count() const { return light_count_; }
   uint32_t emissive_count() const { return emissive_count_; }
   const Bvh& bvh() const { return bvh_; }
+  // GpuVertex array of the frame before the last update() (the current one before any), for
+  // motion vectors.
+  const Buffer& previous_vertices() const { return previous_vertices_; }
   const FlatGeometry& geometry() const { return geometry_; }
+  // The FeatureSet the scene was uploaded for; passes compile their shaders with its defines.
+  const scenes::FeatureSet& features() const { return features_; }
+  uint32_t texture_count() const { return texture_count_; }
 
  private:
+  void upload_materials(const scenes::Scene& scene);
+  void upload_geometry(const scenes::Scene& scene, FlatGeometry flat);
+  bool upload_lights(const scenes::Scene& scene);  // false when nothing changed
+
+  Context* ctx_;
   FlatGeometry geometry_;
+  scenes::FeatureSet features_;
   Bvh bvh_;
-  Buffer vertices_, triangles_, materials_, nodes_, prims_, lights_, emissive_, indices_;
-  uint32_t triangle_count_ = 0, light_count_ = 0, emissive_count_ = 0;
+  // What the vertex and light buffers hold (gpu::GpuVertex, gpu::GpuLight as vec4 rows).
+  std::vector<glm::vec4> vertices_host_, lights_host_;
+  Buffer vertices_, triangles_, materials_, nodes_, prims_, lights_, emissive_, indices_, previous_vertices_;
+  Buffer vertex_extra_, textures_, texels_;
+  uint32_t triangle_count_ = 0, light_count_ = 0, emissive_count_ = 0, texture_count_ = 0;
 };
 
 }  // namespace giq::realtime

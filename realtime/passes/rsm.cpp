@@ -1,0 +1,203 @@
+#include "passes/rsm.h"
+
+#include <algorithm>
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+#include <stdexcept>
+
+#include "giq/realtime/context.h"
+#include "giq/realtime/scene_gpu.h"
+#include "giq/realtime/shader.h"
+#include "giq/realtime/timer.h"
+#include "passes/shadow_maps.h"
+
+namespace giq::realtime {
+
+namespace {
+
+float max3(glm::vec3 v) {
+  return std::max(v.x, std::max(v.y, v.z));
+}
+
+// The layers and emitters the scene's lights need, in a fixed order: the scene's lights, then
+// one area light per emissive mesh (as passes/direct_light.cpp builds them).
+void build(const scenes::Scene& scene, uint32_t ortho_size, uint32_t cube_size,
+           std::vector<gpu::GpuRsmEmitter>& emitters, std::vector<gpu::GpuRsmLayer>& layers) {
+  emitters.clear();
+  layers.clear();
+  const scenes::Bounds& b = scene.bounds;
+  const float diag = std::max(glm::length(b.extent()), 1e-6f);
+  const glm::vec3 c0 = b.empty() ? glm::vec3(0.0f) : 0.5f * (b.lo + b.hi);
+  auto add_cube = [&](glm::vec3 position, glm::vec3 intensity) {
+    const float emitter = float(emitters.size());
+    for (int f = 0; f < 6; ++f)
+      layers.push_back({ShadowMaps::cube_face_view_proj(position, b, f), glm::vec4(0.0f),
+                        glm::vec4(GIQ_RSM_CUBE_FACE, float(cube_size), max3(intensity), emitter)});
+  };
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const scenes::Light& l = scene.lights[i];
+    const glm::vec3 radiant = l.radiant();
+    gpu::GpuRsmEmitter e{glm::vec4(l.position, GIQ_RSM_PUNCTUAL), glm::vec4(0.0f),
+                         glm::vec4(radiant, float(i)),
+                         glm::uvec4(uint32_t(layers.size()), 0, 0, 0)};
+    if (l.type == scenes::LightType::Directional) {
+      // The scene's bounding sphere seen along the light, from outside it.
+      const float r = 0.5f * diag;
+      const glm::vec3 dir = glm::normalize(l.direction);
+      const glm::vec3 up = std::abs(dir.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+      const glm::mat4 view = glm::lookAtRH(c0 - dir * (2.0f * r), c0, up);
+      const glm::mat4 proj = glm::orthoRH_ZO(-r, r, -r, r, 0.0f, 4.0f * r);
+      layers.push_back(
+          {proj * view, glm::vec4(dir, 2.0f * r),
+           glm::vec4(GIQ_RSM_ORTHO, float(ortho_size), max3(radiant), float(emitters.size()))});
+      e.layers.y = 1;
+    } else {
+      add_cube(l.position, radiant);
+      e.layers.y = 6;
+    }
+    emitters.push_back(e);
+  }
+  std::vector<std::vector<const scenes::EmissiveTriangle*>> per_mesh(scene.meshes.size());
+  for (const auto& e : scene.emissive_triangles)
+    if (e.area > 0.0f && e.power > 0.0f) per_mesh[e.mesh].push_back(&e);
+  const float offset = 1e-4f * diag;
+  for (size_t m = 0; m < per_mesh.size(); ++m) {
+    if (per_mesh[m].empty()) continue;
+    const auto& mesh = scene.meshes[m];
+    const bool two_sided = scene.materials[mesh.material].double_sided;
+    glm::vec3 centroid(0.0f), normal(0.0f), intensity(0.0f);
+    float area = 0.0f;
+    for (const auto* e : per_mesh[m]) {
+      const auto t = mesh.triangles[e->triangle];
+      const glm::vec3 a = mesh.positions[t.x], bb = mesh.positions[t.y], c = mesh.positions[t.z];
+      centroid += e->area * (a + bb + c) / 3.0f;
+      normal += glm::cross(bb - a, c - a);
+      area += e->area;
+      intensity += e->radiance * e->area;  // a Lambertian emitter: I(n) = L A
+    }
+    centroid /= area;
+    const float nl = glm::length(normal);
+    const glm::vec3 n = nl > 0.0f ? normal / nl : glm::vec3(0, -1, 0);
+    if (!two_sided && nl > 0.0f) centroid += n * offset;
+    gpu::GpuRsmEmitter e{glm::vec4(centroid, GIQ_RSM_AREA), glm::vec4(n, two_sided ? 1.0f : 0.0f),
+                         glm::vec4(intensity, 0.0f), glm::uvec4(uint32_t(layers.size()), 6, 0, 0)};
+    add_cube(centroid, intensity);
+    emitters.push_back(e);
+  }
+}
+
+}  // namespace
+
+std::vector<Parameter> ReflectiveShadowMaps::parameters() {
+  return {{"rsm_size", 1024, 16, 8192, true,
+           "RSM texels per side of a directional light's window over the scene"},
+          {"rsm_cube_size", 512, 16, 4096, true,
+           "RSM texels per side of each cube face (point, spot and area lights)"}};
+}
+
+ReflectiveShadowMaps::ReflectiveShadowMaps(const TechniqueCreateInfo& ci)
+    : scene_gpu_(ci.scene_gpu),
+      ortho_size_(uint32_t(ci.parameters.get_int("rsm_size"))),
+      cube_size_(uint32_t(ci.parameters.get_int("rsm_cube_size"))) {
+  build(ci.scene, ortho_size_, cube_size_, emitters_, layers_);
+  extent_ = 1;
+  for (const auto& l : layers_) extent_ = std::max(extent_, uint32_t(l.params.y));
+  const uint32_t n = std::max<uint32_t>(1, layer_count());
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
+  surface_ = Image(ci.ctx, {extent_, extent_, n, VK_FORMAT_R32G32B32A32_UINT, usage, true});
+  flux_ = Image(ci.ctx, {extent_, extent_, n, VK_FORMAT_R16G16B16A16_SFLOAT, usage, true});
+  // One depth buffer serves every layer in turn.
+  depth_ = Image(ci.ctx, {extent_, extent_, 1, VK_FORMAT_D32_SFLOAT,
+                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
+  layer_buffer_ = Buffer(ci.ctx, std::max<size_t>(1, layers_.size()) * sizeof(gpu::GpuRsmLayer),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
+  emitter_buffer_ =
+      Buffer(ci.ctx, std::max<size_t>(1, emitters_.size()) * sizeof(gpu::GpuRsmEmitter),
+             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
+
+  const auto defines = feature_defines(ci.scene.features);
+  GraphicsDesc g;
+  g.vertex_spirv = ci.compiler.compile("passes/rsm.vert", defines);
+  g.fragment_spirv = ci.compiler.compile("passes/rsm.frag", defines);
+  g.color_formats = {VK_FORMAT_R32G32B32A32_UINT, VK_FORMAT_R16G16B16A16_SFLOAT};
+  g.depth_format = VK_FORMAT_D32_SFLOAT;
+  auto bindings = SceneGpu::binding_types();
+  bindings.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  pipeline_ = Pipeline::graphics(ci.ctx, g, bindings, sizeof(gpu::RsmDrawPush));
+}
+
+void ReflectiveShadowMaps::update(const scenes::Scene& scene) {
+  const size_t n_layers = layers_.size(), n_emitters = emitters_.size();
+  build(scene, ortho_size_, cube_size_, emitters_, layers_);
+  if (layers_.size() != n_layers || emitters_.size() != n_emitters)
+    throw std::logic_error(
+        "reflective shadow maps: the scene's lights changed in number during a sequence");
+  draw_scale_.clear();
+  // The stored flux is density x scale with scale = 1 / the light's brightest channel, so every
+  // stored value lies in [0, 1] (fp16 keeps ~3 significant digits there and cannot overflow for
+  // any light); a dark light stores zeros. Readers multiply by params.z = 1 / scale.
+  for (auto& l : layers_) draw_scale_.push_back(l.params.z > 0.0f ? 1.0f / l.params.z : 0.0f);
+  if (!layers_.empty())
+    std::memcpy(layer_buffer_.mapped(), layers_.data(), layers_.size() * sizeof(layers_[0]));
+  if (!emitters_.empty())
+    std::memcpy(emitter_buffer_.mapped(), emitters_.data(),
+                emitters_.size() * sizeof(emitters_[0]));
+}
+
+void ReflectiveShadowMaps::record(const FrameInput& in) {
+  const bool render = in.frame == 0 || in.change != SceneChange::None || draw_scale_.empty();
+  if (render) update(in.scene);
+  in.timer.begin(in.cmd, "rsm");
+  if (render) {
+    surface_.transition(in.cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    flux_.transition(in.cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    depth_.transition(in.cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+    pipeline_.bind(in.cmd);
+    auto d = scene_gpu_.descriptors();
+    d.push_back(Descriptor::storage(emitter_buffer_));
+    pipeline_.push_descriptors(in.cmd, d);
+    for (uint32_t l = 0; l < layer_count(); ++l) {
+      const uint32_t size = uint32_t(layers_[l].params.y);
+      VkRenderingAttachmentInfo colors[2];
+      Image* targets[2] = {&surface_, &flux_};
+      for (int i = 0; i < 2; ++i) {
+        colors[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        colors[i].imageView = targets[i]->layer_view(l);
+        colors[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        colors[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;  // empty texels: zero flux
+        colors[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        colors[i].clearValue = {};
+      }
+      VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+      depth.imageView = depth_.view();
+      depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+      depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+      depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+      depth.clearValue.depthStencil = {1.0f, 0};
+      VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+      ri.renderArea = {{0, 0}, {extent_, extent_}};
+      ri.layerCount = 1;
+      ri.colorAttachmentCount = 2;
+      ri.pColorAttachments = colors;
+      ri.pDepthAttachment = &depth;
+      vkCmdBeginRendering(in.cmd, &ri);
+      VkViewport vp{0.0f, 0.0f, float(size), float(size), 0.0f, 1.0f};
+      VkRect2D sc{{0, 0}, {size, size}};
+      vkCmdSetViewport(in.cmd, 0, 1, &vp);
+      vkCmdSetScissor(in.cmd, 0, 1, &sc);
+      gpu::RsmDrawPush pc{layers_[l].view_proj,
+                          glm::vec4(layers_[l].params.w, draw_scale_[l], 0.0f, 0.0f)};
+      pipeline_.push_constants(in.cmd, pc);
+      if (scene_gpu_.triangle_count() > 0) {
+        vkCmdBindIndexBuffer(in.cmd, scene_gpu_.index_buffer().handle(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(in.cmd, 3 * scene_gpu_.triangle_count(), 1, 0, 0, 0);
+      }
+      vkCmdEndRendering(in.cmd);
+    }
+    surface_.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
+    flux_.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
+  }
+  in.timer.end(in.cmd);
+}
+
+}  // namespace giq::realtime

@@ -1,0 +1,17 @@
+#version 460
+// Reflective shadow map (seed 000, chapter II; Dachsbacher and Stamminger 2005): the scene
+// rasterised from one light's view into one layer. Vertices pulled from the scene buffer.
+#extension GL_GOOGLE_include_directive : require
+
+#include "shaders/scene.glsl"
+#include "passes/rsm_shared.h"
+
+layout(push_constant) uniform Push { RsmDrawPush pc; };
+
+layout(location = 0) out vec3 out_position;
+
+void main() {
+  vec3 p = scene_vertices[gl_VertexIndex].position.xyz;
+  out_position = p;
+  gl_Position = pc.view_proj * vec4(p, 1.0);
+}

@@ -1,0 +1,15 @@
+#version 460
+// Alpha-masked casters (scenes with GIQ_ALPHA_MASK only; the others render depth without a
+// fragment shader): cut-out texels cast no shadow, as they stop no ray in the reference.
+#extension GL_GOOGLE_include_directive : require
+
+#include "shaders/scene.glsl"
+#include "shaders/textures.glsl"
+
+layout(location = 0) in vec2 in_uv;
+
+void main() {
+  // One draw covers every triangle in SceneGpu order, so gl_PrimitiveID is the global index.
+  uint tri = uint(gl_PrimitiveID);
+  if (alpha_cut(scene_materials[scene_triangles[tri].v.w], tri, in_uv)) discard;
+}

@@ -1,0 +1,114 @@
+// Texture lookups, texture coordinates and the alpha-mask test, with the arithmetic of the
+// scene library (scenes/src/texture.cpp, Texture::sample) and of the reference
+// (reference/src/surface.h, reference/src/embree_scene.cpp). Textures are float RGBA texels
+// in one storage buffer (scene.glsl, GIQ_BINDING_TEXELS) filtered here by hand: the same
+// texels as the reference (sRGB decoded on the CPU), the same wrap modes and the same
+// bilinear weights (the same bits for power-of-two sizes), on every Vulkan device without
+// samplers or descriptor indexing.
+// Needs scene.glsl.
+#ifndef GIQ_TEXTURES_GLSL
+#define GIQ_TEXTURES_GLSL
+
+#include "scene.glsl"
+
+#if defined(GIQ_TEXTURES) || defined(GIQ_NORMAL_MAPS) || defined(GIQ_ALPHA_MASK)
+
+// An integer texel coordinate i (held in a float) mapped onto [0, n) by a glTF wrap mode
+// (glTF 2.0, 5.26 "Sampler": OpenGL REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT).
+int texture_wrap(float i, float n, uint mode) {
+  float w;
+  if (mode == GIQ_WRAP_REPEAT) {
+    w = i - n * floor(i / n);
+  } else if (mode == GIQ_WRAP_CLAMP) {
+    w = clamp(i, 0.0, n - 1.0);
+  } else {
+    float m = i - 2.0 * n * floor(i / (2.0 * n));
+    w = m < n ? m : 2.0 * n - 1.0 - m;
+  }
+  // Rounding in the divisions can land exactly on n for huge |i|.
+  return clamp(int(w), 0, int(n) - 1);
+}
+
+vec4 texel_at(GpuTexture t, int x, int y) { return scene_texels[t.info.x + uint(y) * t.info.y + uint(x)]; }
+
+// Texture `index` at uv: nearest or bilinear between the four nearest texel centres, which
+// sit at (i + 0.5) / size; first texel row at v = 0 (glTF's top-left origin).
+vec4 texture_sample(int index, vec2 uv) {
+  GpuTexture t = scene_textures[index];
+  if (t.info.y == 0u || t.info.z == 0u) return vec4(0.0);
+  float w = float(t.info.y), h = float(t.info.z);
+  uint wrap_s = t.info.w & 3u, wrap_t = (t.info.w >> 2) & 3u;
+  // Beyond |uv| = 1e6 a float uv cannot address a texel anyway (as Texture::sample).
+  float u = isnan(uv.x) || isinf(uv.x) ? 0.0 : clamp(uv.x, -1e6, 1e6);
+  float v = isnan(uv.y) || isinf(uv.y) ? 0.0 : clamp(uv.y, -1e6, 1e6);
+  if (((t.info.w >> 4) & 1u) == GIQ_FILTER_NEAREST)
+    return texel_at(t, texture_wrap(floor(u * w), w, wrap_s), texture_wrap(floor(v * h), h, wrap_t));
+  // Texture::sample forms x = u * width - 0.5 in double, x0 = floor(x) and the weight
+  // fx = float(x - x0), rounded once. Here p = u * width is exact in float for power-of-two
+  // sizes (rounded once otherwise, which moves the weights by at most 2^-24 |u| width);
+  // x0 + 0.5 is exact, so p - (x0 + 0.5) is x - x0 rounded once, as the reference rounds it.
+  // x0 from the float p - 0.5 can be one too large where that rounds up onto an integer; the
+  // weight then comes out negative, and one step down fixes it. `precise` keeps every
+  // product and sum here and below separately rounded (no fused multiply-add), as in C++.
+  precise float px = u * w;
+  precise float py = v * h;
+  float x0 = floor(px - 0.5), y0 = floor(py - 0.5);
+  precise float fx = px - (x0 + 0.5);
+  precise float fy = py - (y0 + 0.5);
+  if (fx < 0.0) {
+    x0 -= 1.0;
+    fx = px - (x0 + 0.5);
+  }
+  if (fy < 0.0) {
+    y0 -= 1.0;
+    fy = py - (y0 + 0.5);
+  }
+  int xa = texture_wrap(x0, w, wrap_s), xb = texture_wrap(x0 + 1.0, w, wrap_s);
+  int ya = texture_wrap(y0, h, wrap_t), yb = texture_wrap(y0 + 1.0, h, wrap_t);
+  precise vec4 top = texel_at(t, xa, ya) * (1.0 - fx) + texel_at(t, xb, ya) * fx;
+  precise vec4 bottom = texel_at(t, xa, yb) * (1.0 - fx) + texel_at(t, xb, yb) * fx;
+  precise vec4 r = top * (1.0 - fy) + bottom * fy;
+  return r;
+}
+
+// TEXCOORD_0 at barycentrics (b1, b2) of triangle `tri`; 0 when its mesh has none, as the
+// reference's interpolate_uv.
+vec2 triangle_uv(uint tri, float b1, float b2) {
+  uvec4 v = scene_triangles[tri].v;
+  if ((scene_triangles[tri].extra.z & GIQ_TRIANGLE_HAS_UVS) == 0u) return vec2(0.0);
+  return (1.0 - b1 - b2) * scene_vertex_extra[v.x].uv.xy + b1 * scene_vertex_extra[v.y].uv.xy +
+         b2 * scene_vertex_extra[v.z].uv.xy;
+}
+
+#endif
+
+#ifdef GIQ_ALPHA_MASK
+// glTF 2.0, 3.9.4 "Alpha Coverage": a MASK material is absent where baseColorFactor.a times
+// the base colour texture's alpha is below alphaCutoff (the texture only when the mesh has
+// texture coordinates, as the reference's Embree filter).
+bool alpha_cut(GpuMaterial m, uint tri, vec2 uv) {
+  if (m.mask.x == 0.0) return false;
+  float alpha = m.base_color.a;
+  if (m.textures.x >= 0 && (scene_triangles[tri].extra.z & GIQ_TRIANGLE_HAS_UVS) != 0u) alpha *= texture_sample(m.textures.x, uv).a;
+  return alpha < m.mask.y;
+}
+
+bool alpha_cut(uint tri, float b1, float b2) {
+  GpuMaterial m = scene_materials[scene_triangles[tri].v.w];
+  if (m.mask.x == 0.0) return false;
+  return alpha_cut(m, tri, triangle_uv(tri, b1, b2));
+}
+#endif
+
+// Radiance emitted at barycentrics (b1, b2) of triangle `tri` (front side; the caller
+// decides about the back): emissive factor times the emissive texture (reference
+// emitted_radiance).
+vec3 emission_at(GpuMaterial m, uint tri, float b1, float b2) {
+  vec3 e = m.emissive.rgb;
+#if defined(GIQ_TEXTURES) || defined(GIQ_NORMAL_MAPS)
+  if (m.textures.z >= 0) e *= texture_sample(m.textures.z, triangle_uv(tri, b1, b2)).rgb;
+#endif
+  return e;
+}
+
+#endif
