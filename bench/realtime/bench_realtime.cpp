@@ -88,6 +88,12 @@ int main(int argc, char** argv) {
         {"direct", {"gbuffer_ray_traced=0"}}, {"direct", {"gbuffer_ray_traced=1"}}};
     for (const auto& info : realtime::techniques())
       if (info.name != "direct") variants.push_back({info.name, {}});
+    // vct also with its second bounce (twice the voxel passes).
+    variants.push_back({"vct", {"bounces=2"}});
+    // A CPU device voxelises 256^3 in seconds: the smoke test uses a small grid.
+    if (quick)
+      for (auto& [t, params] : variants)
+        if (t == "vct") params.push_back("voxel_resolution=64");
     if (!only.empty())
       std::erase_if(variants, [&](const auto& v) { return std::find(only.begin(), only.end(), v.first) == only.end(); });
     for (const auto& [t, params] : variants) {

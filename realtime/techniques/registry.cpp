@@ -5,6 +5,7 @@
 #include "techniques/lpv/lpv.h"
 #include "techniques/pt/pt.h"
 #include "techniques/rsm/rsm.h"
+#include "techniques/vct/vct.h"
 
 namespace giq::realtime {
 
@@ -14,6 +15,7 @@ const std::vector<TechniqueInfo>& techniques() {
       pt_technique(),
       rsm_technique(),
       lpv_technique(),
+      vct_technique(),
   };
   return all;
 }

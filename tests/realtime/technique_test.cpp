@@ -18,7 +18,7 @@ TEST(Techniques, RegistryListsDirectAndPtWithTheirParameters) {
       EXPECT_FALSE(p.description.empty());
     }
   }
-  EXPECT_EQ(names, (std::vector<std::string>{"direct", "pt", "rsm", "lpv"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"direct", "pt", "rsm", "lpv", "vct"}));
   EXPECT_THROW(find_technique("rtx"), InputError);
 }
 
