@@ -116,6 +116,8 @@ class Vct : public Technique {
     }
 
     const auto defines = feature_defines(ci.scene.features);
+    clear_ = Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/vct/voxel_clear.comp"),
+                               {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, 0);
     auto scene_bindings = SceneGpu::binding_types();
     auto b = scene_bindings;
     b.push_back(VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
@@ -199,7 +201,11 @@ class Vct : public Technique {
     VkCommandBuffer cmd = in.cmd;
     for (auto& c : chains_) c.make_general(cmd);
     in.timer.begin(cmd, bounce_pass("voxelize", bounce));
-    base_.clear(cmd, GIQ_VCT_EMPTY);
+    base_.make_general(cmd);
+    clear_.bind(cmd);
+    clear_.push_descriptors(cmd, {base_.storage(0)});
+    const uint32_t groups = (resolution_ + 3) / 4;
+    vkCmdDispatch(cmd, groups, groups, groups);
     full_barrier(cmd);
     gpu::VctVoxelPush pc{};
     pc.grid = grid_;
@@ -313,7 +319,7 @@ class Vct : public Technique {
   Buffer emitter_buffer_;
   float scale_ = 1.0f, history_scale_ = 0.0f;
   Image low_, ao_low_;
-  Pipeline voxelize_, light_, mip_, cone_;
+  Pipeline clear_, voxelize_, light_, mip_, cone_;
 };
 
 }  // namespace

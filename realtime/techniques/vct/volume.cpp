@@ -142,12 +142,4 @@ void Volume::make_general(VkCommandBuffer cmd) {
   layout_ = VK_IMAGE_LAYOUT_GENERAL;
 }
 
-void Volume::clear(VkCommandBuffer cmd, uint32_t value) {
-  make_general(cmd);
-  VkClearColorValue c{};
-  c.uint32[0] = value;
-  VkImageSubresourceRange r{VK_IMAGE_ASPECT_COLOR_BIT, 0, levels_, 0, 1};
-  vkCmdClearColorImage(cmd, image_, VK_IMAGE_LAYOUT_GENERAL, &c, 1, &r);
-}
-
 }  // namespace giq::realtime

@@ -38,8 +38,6 @@ class Volume {
 
   // GENERAL layout for every level; waits for every earlier command.
   void make_general(VkCommandBuffer cmd);
-  // Fills every level with `value` (a packed texel).
-  void clear(VkCommandBuffer cmd, uint32_t value);
 
  private:
   void release();
