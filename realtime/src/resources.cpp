@@ -278,4 +278,16 @@ Sampler& Sampler::operator=(Sampler&& o) noexcept {
   return *this;
 }
 
+void compute_barrier(VkCommandBuffer cmd) {
+  VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  b.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  b.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  b.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  b.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  di.memoryBarrierCount = 1;
+  di.pMemoryBarriers = &b;
+  vkCmdPipelineBarrier2(cmd, &di);
+}
+
 }  // namespace giq::realtime

@@ -166,8 +166,9 @@ class Lpv : public Technique {
           {Descriptor::storage(volume_[step % 2]), Descriptor::storage(volume_[(step + 1) % 2]),
            Descriptor::storage(accumulated_), Descriptor::storage(faces_)});
       vkCmdDispatch(in.cmd, groups, groups, groups);
-      full_barrier(in.cmd);
+      compute_barrier(in.cmd);
     }
+    full_barrier(in.cmd);
     in.timer.end(in.cmd);
 
     in.timer.begin(in.cmd, "lpv_lookup");

@@ -99,6 +99,10 @@ class Image {
 
 // Makes every earlier shader/transfer write visible to every later read or write.
 void full_barrier(VkCommandBuffer cmd);
+// Makes earlier compute-shader writes visible to later compute-shader reads and writes only:
+// for chains of dependent dispatches (propagation steps), where a full barrier's wider scope
+// (every stage, the host) costs time on every link.
+void compute_barrier(VkCommandBuffer cmd);
 
 // A sampler object: linear or nearest filtering, clamp to edge, optional depth compare
 // (for PCF shadow lookups).
