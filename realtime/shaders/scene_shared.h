@@ -24,7 +24,7 @@ using uint = uint32_t;
 #define GIQ_BINDING_LIGHTS 5
 #define GIQ_BINDING_EMISSIVE 6
 // Texture coordinates and tangents, texture descriptors and texels: filled only for scenes
-// whose FeatureSet has textures, normal maps or alpha masks (one placeholder entry otherwise).
+// whose FeatureSet has textures, normal maps or alpha masks (an empty 16-byte buffer otherwise).
 #define GIQ_BINDING_VERTEX_EXTRA 7
 #define GIQ_BINDING_TEXTURES 8
 #define GIQ_BINDING_TEXELS 9

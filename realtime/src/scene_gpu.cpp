@@ -35,7 +35,7 @@ uint32_t wrap_code(scenes::Wrap w) {
 }
 
 // Scenes that sample textures, map normals or cut out by alpha get their texture
-// coordinates, tangents and texels; the others one placeholder entry per binding, so that
+// coordinates, tangents and texels; the others a 16-byte empty buffer per binding, so that
 // every pipeline has the same scene bindings.
 bool needs_textures(const scenes::FeatureSet& f) { return f.textures || f.normal_maps || f.alpha_mask; }
 

@@ -20,9 +20,7 @@ class PtTest : public test::VulkanTest {
     o.view = view;
     o.width = o.height = size;
     o.parameters = {"samples_per_frame=" + std::to_string(spp), "max_bounces=" + std::to_string(max_bounces)};
-    image::Image out;
-    render_sequence(*ctx, *compiler, s, o, [&](RenderedFrame& f) { out = std::move(f.image); });
-    return out;
+    return render_last(s, o);
   }
 };
 

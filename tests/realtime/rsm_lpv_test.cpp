@@ -22,9 +22,7 @@ class RsmLpvTest : public test::VulkanTest {
     o.width = o.height = size;
     o.frames = frames;
     o.parameters = std::move(params);
-    image::Image out;
-    render_sequence(*ctx, *compiler, s, o, [&](RenderedFrame& f) { out = std::move(f.image); });
-    return out;
+    return render_last(s, o);
   }
 };
 

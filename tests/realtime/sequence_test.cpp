@@ -135,38 +135,12 @@ TEST_F(SequenceTest, UpdateReportsWhatMoved) {
 // for that frame's pose alone gives: `direct` on the moving light of `movinglight` (its cube
 // shadow map must follow the light). Same commands on the same data: identical bits.
 TEST_F(SequenceTest, APersistentTechniqueFollowsTheMovingLight) {
-  const scenes::Scene scene = scenes::load(std::filesystem::path(GIQ_SCENES_DIR) / "movinglight.gltf");
-  ASSERT_TRUE(scene.features.animation);
   RenderOptions o;
   o.technique = "direct";
   o.width = o.height = 48;
   o.frames = 3;
   o.parameters = {"shadow_map_size=256"};
-  std::vector<image::Image> sequence;
-  render_sequence(*ctx, *compiler, scene, o, [&](RenderedFrame& f) {
-    // Frames this technique instance has rendered, this one included: it was never recreated.
-    EXPECT_EQ(f.image.metadata.at("giq.technique_frame"), std::to_string(f.frame + 1));
-    sequence.push_back(std::move(f.image));
-  });
-  ASSERT_EQ(sequence.size(), 3u);
-  for (int f = 1; f < 3; ++f) {
-    scenes::Scene posed = scene.at_frame(f);
-    posed.features.animation = false;
-    RenderOptions one = o;
-    one.frames = 1;
-    image::Image alone;
-    render_sequence(*ctx, *compiler, posed, one, [&](RenderedFrame& r) { alone = std::move(r.image); });
-    const float* a = sequence[f].channel("R");
-    const float* b = alone.channel("R");
-    double diff = 0.0;
-    for (size_t i = 0; i < alone.pixel_count(); ++i) diff = std::max(diff, double(std::abs(a[i] - b[i])));
-    EXPECT_EQ(diff, 0.0) << "frame " << f;
-    // And the light did move: the frames differ from each other.
-    const float* prev = sequence[f - 1].channel("R");
-    double change = 0.0;
-    for (size_t i = 0; i < alone.pixel_count(); ++i) change = std::max(change, double(std::abs(a[i] - prev[i])));
-    EXPECT_GT(change, 0.0) << "frame " << f;
-  }
+  expect_persistent_matches_fresh(scenes::load(std::filesystem::path(GIQ_SCENES_DIR) / "movinglight.gltf"), o, "R");
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
 #include "test_scenes.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace giq::test {
 
 void VulkanTest::SetUp() {
@@ -12,6 +15,40 @@ void VulkanTest::SetUp() {
 void VulkanTest::TearDown() {
   if (!ctx) return;
   for (const auto& m : ctx->validation_messages()) ADD_FAILURE() << "validation: " << m;
+}
+
+image::Image VulkanTest::render_last(const scenes::Scene& s, const realtime::RenderOptions& o) {
+  image::Image out;
+  realtime::render_sequence(*ctx, *compiler, s, o, [&](realtime::RenderedFrame& f) { out = std::move(f.image); });
+  return out;
+}
+
+void VulkanTest::expect_persistent_matches_fresh(const scenes::Scene& animated, realtime::RenderOptions o,
+                                                 const std::string& channel) {
+  ASSERT_TRUE(animated.features.animation);
+  std::vector<image::Image> sequence;
+  realtime::render_sequence(*ctx, *compiler, animated, o, [&](realtime::RenderedFrame& f) {
+    // Frames this technique instance has rendered, this one included: it was never recreated.
+    EXPECT_EQ(f.image.metadata.at("giq.technique_frame"), std::to_string(f.frame + 1));
+    sequence.push_back(std::move(f.image));
+  });
+  ASSERT_EQ(sequence.size(), size_t(o.frames));
+  for (int f = 1; f < o.frames; ++f) {
+    scenes::Scene posed = animated.at_frame(f);
+    posed.features.animation = false;
+    realtime::RenderOptions one = o;
+    one.frames = 1;
+    const image::Image alone = render_last(posed, one);
+    const float *a = sequence[size_t(f)].channel(channel), *b = alone.channel(channel);
+    const float* prev = sequence[size_t(f) - 1].channel(channel);
+    double diff = 0.0, change = 0.0;
+    for (size_t i = 0; i < alone.pixel_count(); ++i) {
+      diff = std::max(diff, double(std::abs(a[i] - b[i])));
+      change = std::max(change, double(std::abs(a[i] - prev[i])));
+    }
+    EXPECT_EQ(diff, 0.0) << o.technique << " frame " << f;
+    EXPECT_GT(change, 0.0) << o.technique << " frame " << f;
+  }
 }
 
 }  // namespace giq::test

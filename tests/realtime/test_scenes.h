@@ -6,7 +6,9 @@
 
 #include <memory>
 
+#include "giq/image/image.h"
 #include "giq/realtime/context.h"
+#include "giq/realtime/renderer.h"
 #include "giq/realtime/shader.h"
 #include "giq/scenes/scene.h"
 #include "scene_builders.h"
@@ -17,6 +19,13 @@ class VulkanTest : public ::testing::Test {
  protected:
   void SetUp() override;
   void TearDown() override;
+  // The last measured frame of the sequence `o` describes.
+  image::Image render_last(const scenes::Scene& s, const realtime::RenderOptions& o);
+  // One instance of o.technique through frames 0..o.frames-1 of an animated scene gives, at
+  // every frame, the bits of an instance created for that frame's pose alone (same commands
+  // on the same data), in `channel`; and consecutive frames differ, so something did move.
+  void expect_persistent_matches_fresh(const scenes::Scene& animated, realtime::RenderOptions o,
+                                       const std::string& channel);
   std::unique_ptr<realtime::Context> ctx;
   std::unique_ptr<realtime::ShaderCompiler> compiler;
 };

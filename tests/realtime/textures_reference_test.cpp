@@ -27,9 +27,7 @@ class TexturesReferenceTest : public test::VulkanTest {
     o.view = "0";
     o.width = o.height = uint32_t(size);
     o.parameters = std::move(params);
-    image::Image out;
-    render_sequence(*ctx, *compiler, s, o, [&](RenderedFrame& f) { out = std::move(f.image); });
-    return out;
+    return render_last(s, o);
   }
   static image::Image reference(const scenes::Scene& s, int size, uint32_t spp) {
     reference::RenderSettings rs;

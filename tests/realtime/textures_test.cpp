@@ -30,9 +30,7 @@ class TexturesTest : public test::VulkanTest {
     o.view = "0";
     o.width = o.height = size;
     o.parameters = std::move(params);
-    image::Image out;
-    render_sequence(*ctx, *compiler, s, o, [&](RenderedFrame& f) { out = std::move(f.image); });
-    return out;
+    return render_last(s, o);
   }
 };
 
