@@ -12,7 +12,7 @@
 namespace giq::reference {
 namespace {
 
-constexpr char kMagic[] = "giq-checkpoint 1\n";
+constexpr char kMagic[] = "giq-checkpoint 2\n";
 static_assert(std::is_trivially_copyable_v<PixelAccumulator> && std::is_trivially_copyable_v<PixelAux>);
 
 template <class T>
@@ -65,7 +65,7 @@ std::optional<Checkpoint> read_checkpoint(const std::filesystem::path& path, con
   const std::string file = path.string();
   const size_t magic = sizeof(kMagic) - 1;
   if (data.size() < magic + sizeof(uint64_t) || data.compare(0, magic, kMagic) != 0)
-    throw InputError(file, "checkpoint", "not a giq checkpoint (expected it to start with 'giq-checkpoint 1')");
+    throw InputError(file, "checkpoint", "not a giq checkpoint (expected it to start with 'giq-checkpoint 2'; checkpoints of older giq versions cannot be resumed)");
   uint64_t stored_hash;
   std::memcpy(&stored_hash, data.data() + data.size() - sizeof(uint64_t), sizeof(uint64_t));
   if (Hasher().add(data.data(), data.size() - sizeof(uint64_t)).value() != stored_hash)

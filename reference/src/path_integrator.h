@@ -32,9 +32,9 @@ class PathIntegrator {
   Renderer::Sample trace(int x, int y, uint32_t sample_index) const {
     using D = SampleDimensions;
     const RenderSettings& rs = c_.settings;
-    const PathSampler s(uint32_t(y) * uint32_t(rs.width) + uint32_t(x), sample_index, rs.seed);
-    const glm::vec2 j = s.get2(D::kPixel);
-    glm::vec3 d = c_.camera.ray_direction(float(x) + j.x, float(y) + j.y, rs.width, rs.height);
+    const PathSampler s(uint32_t(y) * uint32_t(rs.width) + uint32_t(x), sample_index, rs.seed, rs.block());
+    const PathSampler::Group j = s.get(D::kPixel);
+    glm::vec3 d = c_.camera.ray_direction(float(x) + j[0], float(y) + j[1], rs.width, rs.height);
     glm::vec3 o = c_.eye;
     glm::vec3 beta(1.0f), direct(0.0f), indirect(0.0f);
     float prev_pdf = 0.0f;  // BSDF pdf of the direction that led to the current hit
@@ -74,9 +74,8 @@ class PathIntegrator {
 
       // Next-event estimation: one light sample.
       if (!c_.lights.empty()) {
-        const LightSample ls = c_.lights.sample<F>(sf.p, s.get(D::bounce(depth, D::kLightPick)),
-                                                   s.get(D::bounce(depth, D::kLightAlias)),
-                                                   s.get2(D::bounce(depth, D::kLightPoint)));
+        const PathSampler::Group u = s.get(D::light(depth));
+        const LightSample ls = c_.lights.sample<F>(sf.p, u[2], u[3], {u[0], u[1]});
         const bool use = ls.delta || rs.estimator != Estimator::BsdfOnly;
         if (use && ls.pdf > 0.0f && glm::dot(ls.wi, sf.ng) > 0.0f && ls.radiance != glm::vec3(0.0f)) {
           const BsdfEval e = bsdf_evaluate<kSpec>(sf.bsdf, wo_l, frame.to_local(ls.wi));
@@ -90,7 +89,8 @@ class PathIntegrator {
 
       // BSDF sampling continues the path.
       glm::vec3 wi_l;
-      if (!bsdf_sample<kSpec>(sf.bsdf, wo_l, s.get(D::bounce(depth, D::kLobe)), s.get2(D::bounce(depth, D::kDirection)), wi_l))
+      const PathSampler::Group u = s.get(D::bsdf(depth));
+      if (!bsdf_sample<kSpec>(sf.bsdf, wo_l, kSpec ? u[2] : 0.0f, {u[0], u[1]}, wi_l))
         break;
       const glm::vec3 wi = frame.to_world(wi_l);
       // Reflection only: a direction below the geometric surface would leak through it.
@@ -102,7 +102,7 @@ class PathIntegrator {
       if (depth >= 3) {
         // Unbiased Russian roulette: survive with q, divide by q.
         const float q = std::min(1.0f, max_component(beta));
-        if (!(s.get(D::bounce(depth, D::kRoulette)) < q)) break;
+        if (!(u[3] < q)) break;
         beta /= q;
       }
       o = origin;

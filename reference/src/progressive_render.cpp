@@ -16,7 +16,8 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 // Target duration of one pass: short enough for a live progress bar and for checkpoints at
 // the requested interval, long enough that the per-pass overhead stays negligible.
 constexpr double kPassSeconds = 1.0;
-// Below this many samples the variance estimate is too noisy to stop on.
+// Below this many samples (or two blocks of the Sobol sampler) the variance estimate is too
+// noisy to stop on.
 constexpr uint32_t kMinSppForErrorStop = 8;
 constexpr uint32_t kMaxSpp = 1u << 24;  // float-exact sample counts in the spp layer
 
@@ -52,6 +53,8 @@ RenderOutcome render_progressive(const Renderer& renderer, const ProgressiveOpti
   uint32_t max_spp = 0;
   for (const PixelAccumulator& p : out.film.pixels) max_spp = std::max(max_spp, p.samples);
   const uint32_t cap = stop.spp > 0 ? stop.spp : kMaxSpp;
+  const uint32_t block = renderer.settings().block();
+  const uint32_t min_spp_for_error_stop = std::max(kMinSppForErrorStop, 2 * block);
   double seconds_per_spp = 0.0;  // measured on the last pass
   Clock::time_point last_checkpoint = Clock::now();
   const double pass_seconds = std::min(kPassSeconds, std::max(0.05, o.checkpoint_interval_seconds));
@@ -59,7 +62,7 @@ RenderOutcome render_progressive(const Renderer& renderer, const ProgressiveOpti
   const auto done = [&](uint32_t n) {
     if (n >= cap) return true;
     if (stop.seconds > 0.0 && elapsed() >= stop.seconds) return true;
-    if (stop.rel_error > 0.0 && n >= kMinSppForErrorStop && out.film.relative_standard_error() <= stop.rel_error) return true;
+    if (stop.rel_error > 0.0 && n >= min_spp_for_error_stop && out.film.relative_standard_error() <= stop.rel_error) return true;
     return false;
   };
 
@@ -73,6 +76,9 @@ RenderOutcome render_progressive(const Renderer& renderer, const ProgressiveOpti
       if (stop.seconds > 0.0) budget = std::min(budget, stop.seconds - elapsed());
       step = uint32_t(std::clamp(std::floor(budget / seconds_per_spp), 1.0, double(cap - spp)));
     }
+    // Passes that stop on time or error end on whole blocks, so that every block counted in
+    // the variance is complete and the mean has no partial block.
+    if (block > 0 && max_spp <= spp && spp + step >= block) step = std::min(cap, (spp + step + block - 1) / block * block) - spp;
     const Clock::time_point t0 = Clock::now();
     const bool finished = renderer.render(out.film, spp + step, o.cancel);
     if (!finished) {

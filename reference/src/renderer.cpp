@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -72,6 +73,8 @@ void validate(const RenderSettings& s) {
     throw InputError("", "--height", "height " + std::to_string(s.height) + " is out of range; expected 1 to 65536");
   if (s.max_bounces < 0 || s.max_bounces > 100000)
     throw InputError("", "--max-bounces", "max bounces " + std::to_string(s.max_bounces) + " is out of range; expected 0 to 100000");
+  if (s.sampler == Sampler::Sobol && (s.sobol_block < 2 || s.sobol_block > (1u << kSobolMaxBits) || !std::has_single_bit(s.sobol_block)))
+    throw InputError("", "--sobol-block", "block " + std::to_string(s.sobol_block) + " is not a power of two from 2 to 256");
   if (s.threads < 0) throw InputError("", "--threads", "threads " + std::to_string(s.threads) + " must be >= 0 (0 = all cores)");
 }
 
@@ -118,7 +121,10 @@ Renderer::~Renderer() = default;
 
 const RenderSettings& Renderer::settings() const { return impl_->ctx.settings; }
 unsigned Renderer::feature_mask() const { return impl_->mask; }
-Film Renderer::make_film() const { return Film(impl_->ctx.settings.width, impl_->ctx.settings.height); }
+Film Renderer::make_film() const {
+  const RenderSettings& s = impl_->ctx.settings;
+  return Film(s.width, s.height, s.block());
+}
 
 void Renderer::render_aux(Film& film) const {
   const RenderContext& ctx = impl_->ctx;

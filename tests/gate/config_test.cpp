@@ -120,6 +120,8 @@ INSTANTIATE_TEST_SUITE_P(
             "cases[0].golden.still", "true or false"},
         Bad{CASE_PREFIX R"("golden": {"half": "yes"}, "bounds": {"relmse": 1}}]})",
             "cases[0].golden.half", "true or false"},
+        Bad{CASE_PREFIX R"("golden": {"sampler": "halton"}, "bounds": {"relmse": 1}}]})",
+            "cases[0].golden.sampler", "\"independent\" or \"sobol\""},
         Bad{CASE_PREFIX R"("colour": 1, "bounds": {"relmse": 1}}]})", "cases[0].colour",
             "unknown key"},
         Bad{CASE_PREFIX R"("bounds": {"relmse": 1}}, {"name": "a", "scene": "s", "technique": "t",

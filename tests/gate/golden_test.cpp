@@ -136,6 +136,13 @@ TEST(GoldenKey, StillAndHalfGoldens) {
   giq::gate::Case f32 = c[0];
   f32.golden.half = false;
   EXPECT_FALSE(giq::gate::golden_settings(f32).contains("half"));
+  // Goldens use the independent sampler unless the config asks otherwise; only the other
+  // choice enters the settings, so manifests written before the option stay fresh.
+  EXPECT_EQ(c[0].golden.sampler, "independent");
+  EXPECT_FALSE(giq::gate::golden_settings(c[0]).contains("sampler"));
+  giq::gate::Case sobol = c[0];
+  sobol.golden.sampler = "sobol";
+  EXPECT_EQ(giq::gate::golden_settings(sobol)["sampler"], "sobol");
 }
 
 TEST(GateEscape, HtmlAndBase64) {

@@ -9,30 +9,6 @@
 namespace giq::reference {
 namespace {
 
-// A glossy and a diffuse block on a floor, under a large area light and a dim environment,
-// so every estimator has finite variance and MIS has both strategies to weigh.
-scenes::Scene glossy_scene() {
-  scenes::Scene s;
-  const int floor = test::add_material(s, test::diffuse({0.6f, 0.6f, 0.5f}));
-  scenes::Material metal;
-  metal.base_color = {0.9f, 0.7f, 0.4f, 1.0f};
-  metal.metallic = 1.0f;
-  metal.roughness = 0.45f;
-  const int gloss = test::add_material(s, metal);
-  scenes::Material plastic = test::diffuse({0.2f, 0.4f, 0.8f});
-  plastic.specular = 1.0f;
-  plastic.roughness = 0.3f;
-  const int plast = test::add_material(s, plastic);
-  const int lamp = test::add_material(s, test::diffuse(glm::vec3(0.0f), glm::vec3(2.0f, 1.8f, 1.5f), true));
-  test::add_quad(s, floor, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, {-3, 0, -3}, 1);
-  test::add_box(s, gloss, {-1.2f, 0.0f, -0.6f}, {-0.2f, 1.0f, 0.4f}, false, 2);
-  test::add_box(s, plast, {0.3f, 0.0f, -0.3f}, {1.1f, 0.6f, 0.5f}, false, 3);
-  test::add_quad(s, lamp, {-1.5f, 2.5f, 1.5f}, {1.5f, 2.5f, 1.5f}, {1.5f, 2.5f, -1.5f}, {-1.5f, 2.5f, -1.5f}, 4);
-  s.environment = glm::vec3(0.15f, 0.2f, 0.3f);
-  s.derive();
-  return s;
-}
-
 Film render_with(const scenes::Scene& s, Estimator e, uint32_t spp) {
   RenderSettings rs;
   rs.width = rs.height = 16;
@@ -47,7 +23,7 @@ Film render_with(const scenes::Scene& s, Estimator e, uint32_t spp) {
 }
 
 TEST(Estimators, LightOnlyBsdfOnlyAndMisAgree) {
-  const scenes::Scene s = glossy_scene();
+  const scenes::Scene s = test::glossy_scene();
   const Film mis = render_with(s, Estimator::Mis, 64);
   const Film light = render_with(s, Estimator::LightOnly, 64);
   const Film bsdf = render_with(s, Estimator::BsdfOnly, 128);

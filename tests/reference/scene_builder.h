@@ -87,6 +87,30 @@ inline scenes::Scene cornell(float scale = 1.0f, glm::vec3 offset = glm::vec3(0.
 
 // Mean and variance of the mean of the luminance of the beauty over a block of pixels
 // (pixels are independent, so their variances add).
+// A glossy and a diffuse block on a floor, under a large area light and a dim environment,
+// so every estimator has finite variance and MIS has both strategies to weigh.
+inline scenes::Scene glossy_scene() {
+  scenes::Scene s;
+  const int floor = test::add_material(s, test::diffuse({0.6f, 0.6f, 0.5f}));
+  scenes::Material metal;
+  metal.base_color = {0.9f, 0.7f, 0.4f, 1.0f};
+  metal.metallic = 1.0f;
+  metal.roughness = 0.45f;
+  const int gloss = test::add_material(s, metal);
+  scenes::Material plastic = test::diffuse({0.2f, 0.4f, 0.8f});
+  plastic.specular = 1.0f;
+  plastic.roughness = 0.3f;
+  const int plast = test::add_material(s, plastic);
+  const int lamp = test::add_material(s, test::diffuse(glm::vec3(0.0f), glm::vec3(2.0f, 1.8f, 1.5f), true));
+  test::add_quad(s, floor, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, {-3, 0, -3}, 1);
+  test::add_box(s, gloss, {-1.2f, 0.0f, -0.6f}, {-0.2f, 1.0f, 0.4f}, false, 2);
+  test::add_box(s, plast, {0.3f, 0.0f, -0.3f}, {1.1f, 0.6f, 0.5f}, false, 3);
+  test::add_quad(s, lamp, {-1.5f, 2.5f, 1.5f}, {1.5f, 2.5f, 1.5f}, {1.5f, 2.5f, -1.5f}, {-1.5f, 2.5f, -1.5f}, 4);
+  s.environment = glm::vec3(0.15f, 0.2f, 0.3f);
+  s.derive();
+  return s;
+}
+
 struct BlockStat {
   double mean = 0.0;
   double variance = 0.0;

@@ -61,6 +61,7 @@ struct Options {
   double rel_error = 0.0;
   ref::RenderSettings settings;
   std::string estimator = "mis";
+  std::string sampler = "sobol";
   std::string out;
   double checkpoint_interval = 60.0;
   bool resume = false;
@@ -197,6 +198,9 @@ int run(const Options& o) {
   else if (o.estimator == "light") settings.estimator = ref::Estimator::LightOnly;
   else if (o.estimator == "bsdf") settings.estimator = ref::Estimator::BsdfOnly;
   else throw InputError("", "--estimator", "'" + o.estimator + "' is not one of mis, light, bsdf");
+  if (o.sampler == "sobol") settings.sampler = ref::Sampler::Sobol;
+  else if (o.sampler == "independent") settings.sampler = ref::Sampler::Independent;
+  else throw InputError("", "--sampler", "'" + o.sampler + "' is not one of sobol, independent");
   if (o.seconds < 0.0 || !std::isfinite(o.seconds)) throw InputError("", "--time", "must be a positive number of seconds");
   if (o.rel_error < 0.0 || !std::isfinite(o.rel_error)) throw InputError("", "--rel-error", "must be a positive fraction, e.g. 0.01");
   if (!(o.checkpoint_interval > 0.0)) throw InputError("", "--checkpoint-interval", "must be a positive number of seconds");
@@ -273,6 +277,11 @@ void add_reference_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--threads", o.settings.threads, "Worker threads (0 = all cores; never changes the image)")->capture_default_str();
   cmd->add_option("--max-bounces", o.settings.max_bounces, "Scattering events per path")->capture_default_str();
   cmd->add_option("--estimator", o.estimator, "mis, light (light sampling only) or bsdf (BSDF sampling only)")->capture_default_str();
+  cmd->add_option("--sampler", o.sampler,
+                  "sobol (scrambled Sobol nets in independent blocks; variance from the blocks) or independent")
+      ->capture_default_str();
+  cmd->add_option("--sobol-block", o.settings.sobol_block, "Samples per Sobol block, a power of two from 2 to 256")
+      ->capture_default_str();
   cmd->add_option("--out", o.out, "Output EXR path")->required();
   cmd->add_option("--checkpoint-interval", o.checkpoint_interval, "Seconds between checkpoints (OUT.checkpoint)")->capture_default_str();
   cmd->add_flag("--resume", o.resume, "Continue from OUT.checkpoint when it exists");

@@ -192,7 +192,8 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
                                   "--frames",     frames_arg(c.first_frame, c.golden_last_frame()),
                                   "--width",      std::to_string(c.width),
                                   "--height",     std::to_string(c.height),
-                                  "--seed",       std::to_string(c.golden.seed)};
+                                  "--seed",       std::to_string(c.golden.seed),
+                                  "--sampler",    c.golden.sampler};
     if (c.golden.spp)
       a.insert(a.end(), {"--spp", std::to_string(*c.golden.spp)});
     else

@@ -137,7 +137,7 @@ class Parser {
   }
 
   void golden(GoldenSpec& g, const json& v, const std::string& f) const {
-    only_keys(v, {"spp", "rel_error", "seed", "half", "still"}, f);
+    only_keys(v, {"spp", "rel_error", "seed", "half", "still", "sampler"}, f);
     if (v.contains("spp") || v.contains("rel_error")) g.spp.reset(), g.rel_error.reset();
     if (v.contains("spp")) g.spp = uint32_t(integer(v["spp"], f + ".spp", 1, 1 << 30));
     if (v.contains("rel_error")) {
@@ -150,6 +150,11 @@ class Parser {
     if (v.contains("seed")) g.seed = uint64_t(integer(v["seed"], f + ".seed", 0, 2147483647));
     if (v.contains("half")) g.half = boolean(v["half"], f + ".half");
     if (v.contains("still")) g.still = boolean(v["still"], f + ".still");
+    if (v.contains("sampler")) {
+      g.sampler = string(v["sampler"], f + ".sampler");
+      if (g.sampler != "independent" && g.sampler != "sobol")
+        fail(f + ".sampler", show(v["sampler"]) + " is not \"independent\" or \"sobol\"");
+    }
   }
 
   bool boolean(const json& v, const std::string& field) const {

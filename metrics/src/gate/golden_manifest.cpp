@@ -39,6 +39,7 @@ json golden_settings(const Case& c) {
   if (c.golden.rel_error) s["rel_error"] = *c.golden.rel_error;
   // Only when set, so the manifests of float32 goldens written before the option stay fresh.
   if (c.golden.half) s["half"] = true;
+  if (c.golden.sampler != "independent") s["sampler"] = c.golden.sampler;
   return s;
 }
 

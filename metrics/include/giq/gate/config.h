@@ -29,6 +29,10 @@ struct GoldenSpec {
   uint64_t seed = 1;
   bool half = false;
   bool still = false;
+  // giq reference's --sampler. Independent by default: the gate's per-pixel noise tests (leak
+  // beyond 3 sigma, z-scores) want a per-pixel variance with a degree of freedom per sample,
+  // which the Sobol sampler's blocks do not give at golden sample counts.
+  std::string sampler = "independent";
 };
 
 enum class Better { Lower, Higher };

@@ -8,8 +8,12 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
+
+#include "giq/reference/sobol.h"
 
 namespace giq::reference {
 
@@ -37,27 +41,65 @@ constexpr float sample_1d(uint32_t pixel, uint32_t sample, uint32_t dimension, u
   return to_unit_float(mix64(mix64(a ^ 0x9e3779b97f4a7c15ull) ^ mix64(b + 0x632be59bd9b4e019ull)));
 }
 
-// The random numbers of one camera path. Dimensions are allocated by the integrator in a
-// fixed layout (SampleDimensions below), so sample n of a pixel is always the same path.
+// The random numbers of one camera path, in groups of four: the pixel jitter, then per
+// bounce a light group (point on the light, light pick, alias choice) and a BSDF group
+// (direction, lobe, roulette). The first two numbers of a group are the best stratified.
+//
+// Independent: every number a hash of (pixel, sample, dimension, seed), so samples are
+// independent and a pixel's sample variance estimates the variance of its mean.
+// Sobol (block > 0): sample i belongs to block i / block; each block is an independently
+// scrambled Sobol net of `block` points per group, so blocks are independent replicates of a
+// randomised quasi-Monte Carlo estimate (Owen 1997, "Monte Carlo variance of scrambled net
+// quadrature") and the variance of a pixel's mean is estimated from its block means.
 class PathSampler {
  public:
-  PathSampler(uint32_t pixel, uint32_t sample, uint64_t seed) : pixel_(pixel), sample_(sample), seed_(seed) {}
-  float get(uint32_t dimension) const { return sample_1d(pixel_, sample_, dimension, seed_); }
-  glm::vec2 get2(uint32_t dimension) const { return {get(dimension), get(dimension + 1)}; }
+  PathSampler(uint32_t pixel, uint32_t sample, uint64_t seed, uint32_t block)
+      : pixel_(pixel), sample_(sample), seed_(seed), block_(block) {
+    if (block_ != 0) {
+      bits_ = std::countr_zero(block_);
+      key_ = mix64(mix64(((uint64_t(pixel) << 32) | (sample / block)) ^ 0x9e3779b97f4a7c15ull) ^ mix64(seed ^ 0x2545f4914f6cdd1dull));
+    }
+  }
+
+  // The numbers of one group, computed when asked for: a path that has no use for a group's
+  // third or fourth number (no specular lobe to choose, no roulette yet) does not pay for it.
+  class Group {
+   public:
+    float operator[](int k) const {
+      if (independent_) return sample_1d(pixel_, sample_, 4 * group_ + uint32_t(k), seed_);
+      return float(sobol_[k] >> 8) * 0x1p-24f;
+    }
+
+   private:
+    friend class PathSampler;
+    Group(uint32_t pixel, uint32_t sample, uint32_t group, uint64_t seed)
+        : independent_(true), pixel_(pixel), sample_(sample), group_(group), seed_(seed), sobol_(0, 0, 0) {}
+    explicit Group(ScrambledSobol4 s) : independent_(false), sobol_(s) {}
+    bool independent_;
+    uint32_t pixel_ = 0, sample_ = 0, group_ = 0;
+    uint64_t seed_ = 0;
+    ScrambledSobol4 sobol_;
+  };
+
+  Group get(uint32_t group) const {
+    if (block_ == 0) return Group(pixel_, sample_, group, seed_);
+    const uint32_t scramble = uint32_t(mix64(key_ + uint64_t(group) * 0xbf58476d1ce4e5b9ull) >> 32);
+    return Group(ScrambledSobol4(sample_ & (block_ - 1), bits_, scramble));
+  }
 
  private:
   uint32_t pixel_, sample_;
   uint64_t seed_;
+  uint32_t block_;
+  int bits_ = 0;
+  uint64_t key_ = 0;
 };
 
-// Dimension layout: 2 for the pixel jitter, then a fixed block per bounce.
+// Group layout: the pixel jitter, then two groups per bounce.
 struct SampleDimensions {
   static constexpr uint32_t kPixel = 0;
-  static constexpr uint32_t kPerBounce = 8;
-  static constexpr uint32_t kLightPick = 0, kLightPoint = 1;  // 1 + 2
-  static constexpr uint32_t kLobe = 3, kDirection = 4;        // 1 + 2
-  static constexpr uint32_t kRoulette = 6, kLightAlias = 7;
-  static constexpr uint32_t bounce(int depth, uint32_t which) { return 2 + uint32_t(depth) * kPerBounce + which; }
+  static constexpr uint32_t light(int depth) { return 1 + 2 * uint32_t(depth); }  // point.xy, pick, alias
+  static constexpr uint32_t bsdf(int depth) { return 2 + 2 * uint32_t(depth); }   // direction.xy, lobe, roulette
 };
 
 // --- warps -----------------------------------------------------------------------------------
