@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "giq/base/error.h"
 #include "giq/image/io.h"
 #include "giq/reference/reference_exr.h"
 #include "giq/reference/renderer.h"
@@ -136,7 +137,7 @@ sc::Scene tessellated(size_t n) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   CLI::App app{"Benchmarks of the reference path tracer (Markdown on stdout)",
                "giq-bench-reference"};
   std::string scenes_dir = "scenes";
@@ -145,7 +146,8 @@ int main(int argc, char** argv) {
   uint32_t ref_spp = 4096, max_spp = 4096;
   std::vector<size_t> triangles = {10000, 100000, 1000000};
   std::vector<std::string> names = {"cornell", "leak", "sunroom", "movinglight"};
-  std::string references;
+  std::string references, sampler = "sobol";
+  uint32_t sobol_block = ref::RenderSettings().sobol_block;
   bool scaling = true;
   app.add_option("--scenes", scenes_dir, "Folder of the built-in scenes")->capture_default_str();
   app.add_option("--size", size, "Image width and height")->capture_default_str();
@@ -164,14 +166,18 @@ int main(int argc, char** argv) {
                  "Folder of long renders <scene>.exr: used when present (same size), else rendered "
                  "and written there");
   app.add_flag("!--no-scaling", scaling, "Skip the triangle-count scaling test");
+  app.add_option("--sampler", sampler, "giq reference's sampler: sobol or independent")->capture_default_str();
+  app.add_option("--sobol-block", sobol_block, "Samples per Sobol block")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   ref::RenderSettings rs;
   rs.width = rs.height = size;
   rs.threads = threads;
-  std::printf("Machine: %u hardware threads; image %dx%d; threads %s\n\n",
-              std::thread::hardware_concurrency(), size, size,
-              threads == 0 ? "all" : std::to_string(threads).c_str());
+  rs.sampler = ref::parse_sampler(sampler);
+  rs.sobol_block = sobol_block;
+  std::printf("Machine: %u hardware threads; image %dx%d; threads %s; sampler %s\n\n",
+              std::thread::hardware_concurrency(), size, size, threads == 0 ? "all" : std::to_string(threads).c_str(),
+              rs.block() ? ("sobol, blocks of " + std::to_string(rs.block())).c_str() : "independent");
   std::printf(
       "| scene | features (mask) | Msamples/s | Mrays/s | generic Msamples/s | specialisation "
       "saving | time to relMSE %.0e | spp | long render spp |\n",
@@ -240,4 +246,7 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   }
   return 0;
+} catch (const giq::InputError& e) {
+  std::fprintf(stderr, "giq-bench-reference: %s\n", e.what());
+  return 2;
 }

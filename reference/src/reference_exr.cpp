@@ -37,12 +37,8 @@ std::string settings_json(const RenderSettings& s) {
   j["seed"] = s.seed;
   j["max_bounces"] = s.max_bounces;
   j["estimator"] = estimator_name(s.estimator);
-  if (s.sampler == Sampler::Sobol) {
-    j["sampler"] = "sobol";
-    j["sobol_block"] = s.sobol_block;
-  } else {
-    j["sampler"] = "independent";
-  }
+  j["sampler"] = sampler_name(s.sampler);
+  if (s.sampler == Sampler::Sobol) j["sobol_block"] = s.sobol_block;
   j["integrator"] = "path tracing, NEE + MIS (power heuristic), Russian roulette after bounce 3";
   return j.dump();
 }

@@ -112,6 +112,14 @@ struct Renderer::Impl {
   }
 };
 
+const char* sampler_name(Sampler s) { return s == Sampler::Sobol ? "sobol" : "independent"; }
+
+Sampler parse_sampler(const std::string& name, const std::string& option) {
+  if (name == "sobol") return Sampler::Sobol;
+  if (name == "independent") return Sampler::Independent;
+  throw InputError("", option, "'" + name + "' is not one of sobol, independent");
+}
+
 Renderer::Renderer(const scenes::Scene& scene, const scenes::Camera& camera, const RenderSettings& settings) {
   validate(settings);
   impl_ = std::make_unique<Impl>(scene, camera, settings);

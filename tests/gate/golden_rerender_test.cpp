@@ -75,13 +75,16 @@ TEST(GoldenRerender, LowSppRenderAgreesWithCommittedGoldenWithinNoise) {
   const fs::path scratch = fs::path(::testing::TempDir()) / "giq_golden_rerender";
   fs::remove_all(scratch);
   const fs::path low = scratch / "low.exr";
-  // Another seed, so the two renders share no sample and their noise is independent.
+  // Another seed, so the two renders share no sample and their noise is independent; the
+  // golden's sampler (independent unless its settings say otherwise), whose samples are i.i.d.
+  // as the pooled per-sample variance assumes.
   const std::string cmd = giq::test::shell_quote(GIQ_BINARY) + " reference --scene " +
                           giq::test::shell_quote((golden_dir / e.scene).string()) + " --view " +
                           giq::test::shell_quote(s.at("view").get<std::string>()) + " --width " +
                           std::to_string(s.at("resolution")[0].get<int>()) + " --height " +
                           std::to_string(s.at("resolution")[1].get<int>()) + " --spp " +
-                          std::to_string(kSpp) + " --seed " + std::to_string(seed + 1) + " --out " +
+                          std::to_string(kSpp) + " --seed " + std::to_string(seed + 1) + " --sampler " +
+                          s.value("sampler", std::string("independent")) + " --out " +
                           giq::test::shell_quote(low.string());
   const giq::test::Outcome r = giq::test::run_captured(cmd, scratch);
   ASSERT_EQ(r.exit_code, 0) << cmd << "\n" << r.err;

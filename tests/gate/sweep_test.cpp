@@ -170,6 +170,7 @@ TEST_F(SweepCli, ReferenceConvergenceSlope) {
   EXPECT_NEAR(c["fit_seconds"]["slope"].get<double>(), -0.5, 1e-6);
   EXPECT_NEAR(c["fit_spp"]["intercept_log10"].get<double>(), std::log10(0.5), 1e-6);
   EXPECT_EQ(c["rows"].size(), 4u);
+  EXPECT_EQ(c["sampler"], "sobol");
   EXPECT_TRUE(fs::exists(dir_ / "out" / "convergence_spp.svg"));
   EXPECT_TRUE(fs::exists(dir_ / "out" / "convergence_seconds.svg"));
   EXPECT_NE(giq("--convergence --spp 4"), 0);

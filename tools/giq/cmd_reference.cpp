@@ -198,9 +198,7 @@ int run(const Options& o) {
   else if (o.estimator == "light") settings.estimator = ref::Estimator::LightOnly;
   else if (o.estimator == "bsdf") settings.estimator = ref::Estimator::BsdfOnly;
   else throw InputError("", "--estimator", "'" + o.estimator + "' is not one of mis, light, bsdf");
-  if (o.sampler == "sobol") settings.sampler = ref::Sampler::Sobol;
-  else if (o.sampler == "independent") settings.sampler = ref::Sampler::Independent;
-  else throw InputError("", "--sampler", "'" + o.sampler + "' is not one of sobol, independent");
+  settings.sampler = ref::parse_sampler(o.sampler);
   if (o.seconds < 0.0 || !std::isfinite(o.seconds)) throw InputError("", "--time", "must be a positive number of seconds");
   if (o.rel_error < 0.0 || !std::isfinite(o.rel_error)) throw InputError("", "--rel-error", "must be a positive fraction, e.g. 0.01");
   if (!(o.checkpoint_interval > 0.0)) throw InputError("", "--checkpoint-interval", "must be a positive number of seconds");

@@ -37,7 +37,7 @@ const std::vector<std::string> kMetrics = {"flip_mean", "relmse", "mse", "smape"
                                            "ssim",      "psnr",   "leak"};
 
 struct SweepArgs {
-  std::string scene, view = "0", ref, layer = "beauty", error, out = "sweep-out", device, giq;
+  std::string scene, view = "0", ref, layer = "beauty", error, out = "sweep-out", device, giq, sampler = "sobol";
   std::vector<std::string> techniques, grid;
   std::vector<uint32_t> spp;
   int auto_steps = 0, width = 128, height = 128, warmup = 10, frames = 20, jobs = 1, timing_width = 0, timing_height = 0,
@@ -73,7 +73,7 @@ fs::path reference(const SweepArgs& a, const fs::path& giq, const fs::path& out,
   const ProcessResult r = run_process(
       {giq.string(), "reference", "--scene", a.scene, "--view", a.view, "--spp",
        std::to_string(spp), "--seed", std::to_string(seed), "--width", std::to_string(a.width),
-       "--height", std::to_string(a.height), "--record-time", "--out", file.string()},
+       "--height", std::to_string(a.height), "--sampler", a.sampler, "--record-time", "--out", file.string()},
       log);
   must(r, "giq reference", log);
   if (seconds) {
@@ -239,6 +239,7 @@ int run_convergence(const SweepArgs& a, const fs::path& giq, const fs::path& out
                                                        {"scene", a.scene},
                                                        {"view", a.view},
                                                        {"error_metric", error},
+                                                       {"sampler", a.sampler},
                                                        {"truth", truth.string()},
                                                        {"rows", rows},
                                                        {"fit_spp", fit_json(by_spp)},
@@ -324,6 +325,8 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
                 "Reference convergence: error vs spp and seconds (with --spp)");
   cmd->add_option("--spp", a->spp, "Sample counts for --convergence, e.g. 1,4,16,64")
       ->delimiter(',');
+  cmd->add_option("--sampler", a->sampler, "giq reference's sampler for rendered references: sobol or independent")
+      ->capture_default_str();
   cmd->callback([a, &exit_code] { exit_code = run_sweep(*a); });
 }
 

@@ -240,7 +240,8 @@ int main(int argc, char** argv) try {
       "giq's reference path tracer against Blender's Cycles at equal error (Markdown on stdout)",
       "giq-bench-cycles"};
   std::string scene_path = "scenes/cornell.gltf", blender = "blender", script = GIQ_CYCLES_SCRIPT,
-              work = "/tmp/giq-bench-cycles", reference_path;
+              work = "/tmp/giq-bench-cycles", reference_path, sampler = "sobol";
+  uint32_t sobol_block = ref::RenderSettings().sobol_block;
   int size = 512, threads = 0, reps = 3, max_bounces = 64;
   uint32_t ref_spp = 1024;
   double target = 1e-3;
@@ -263,6 +264,8 @@ int main(int argc, char** argv) try {
   app.add_option("--max-bounces", max_bounces,
                  "Scattering events per path of both renderers (1 = direct light)")
       ->capture_default_str();
+  app.add_option("--sampler", sampler, "giq's sampler: sobol or independent")->capture_default_str();
+  app.add_option("--sobol-block", sobol_block, "Samples per Sobol block")->capture_default_str();
   app.add_option("--threads", threads, "Threads of both renderers (0 = all cores)")
       ->capture_default_str();
   app.add_option("--blender", blender, "Blender executable")->capture_default_str();
@@ -297,9 +300,12 @@ int main(int argc, char** argv) try {
   rs.width = rs.height = size;
   rs.threads = threads;
   rs.max_bounces = max_bounces;
+  rs.sampler = ref::parse_sampler(sampler);
+  rs.sobol_block = sobol_block;
 
-  std::printf("# giq reference vs Blender Cycles: %s, %dx%d, max bounces %d\n\n",
-              scene_path.c_str(), size, size, max_bounces);
+  std::printf("# giq reference vs Blender Cycles: %s, %dx%d, max bounces %d, giq's sampler %s\n\n",
+              scene_path.c_str(), size, size, max_bounces,
+              rs.block() ? ("sobol, blocks of " + std::to_string(rs.block())).c_str() : "independent");
   std::printf(
       "Machine: %s, %u hardware threads; both renderers on %d threads; %s; load average at start "
       "%s\n\n",

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "giq/reference/film.h"
 #include "giq/scenes/camera.h"
@@ -29,6 +30,11 @@ enum class Sampler {
   Sobol,        // Owen-scrambled Sobol nets in independent blocks: lower error per sample
   Independent,  // a hash per number: samples independent of each other
 };
+
+// "sobol" or "independent" (the command-line names); parse_sampler throws InputError naming
+// `option` for anything else.
+const char* sampler_name(Sampler s);
+Sampler parse_sampler(const std::string& name, const std::string& option = "--sampler");
 
 struct RenderSettings {
   int width = 256;

@@ -66,8 +66,18 @@ class PathSampler {
   class Group {
    public:
     float operator[](int k) const {
-      if (independent_) return sample_1d(pixel_, sample_, 4 * group_ + uint32_t(k), seed_);
+      if (independent_) return sample_1d(pixel_, sample_, independent_dimension(group_, k), seed_);
       return float(sobol_[k] >> 8) * 0x1p-24f;
+    }
+
+    // The independent sampler's dimension of number k of a group: the layout it has always
+    // had (2 for the pixel, then per bounce light pick, light point (2), lobe, direction (2),
+    // roulette, alias), so its renders keep their bits across the change to groups.
+    static constexpr uint32_t independent_dimension(uint32_t group, int k) {
+      if (group == 0) return k < 2 ? uint32_t(k) : 0x80000000u + uint32_t(k);  // 2 and 3 are unused
+      constexpr uint32_t light[4] = {1, 2, 0, 7}, bsdf[4] = {4, 5, 3, 6};
+      const uint32_t depth = (group - 1) / 2;
+      return 2 + 8 * depth + (group % 2 == 1 ? light[k] : bsdf[k]);
     }
 
    private:
