@@ -127,5 +127,26 @@ TEST(Determinism, ResumeAfterInterruptionAtAnyMomentIsBitIdentical) {
   std::filesystem::remove(ckpt);
 }
 
+// With the Sobol sampler, renders that stop on an error or a time end on whole blocks: every
+// pixel's variance then comes from complete blocks only, and at least two of them.
+TEST(Determinism, SobolRendersStoppingOnErrorOrTimeEndOnWholeBlocks) {
+  const scenes::Scene s = test::cornell();
+  RenderSettings rs;
+  rs.width = rs.height = 16;
+  ASSERT_EQ(rs.sampler, Sampler::Sobol);
+  const Renderer r(s, s.views[0].camera, rs);
+  for (int stop = 0; stop < 2; ++stop) {
+    ProgressiveOptions o;
+    if (stop == 0) o.stop.rel_error = 10.0;  // met as soon as it may be checked
+    else o.stop.seconds = 0.2;
+    o.identity = "blocks test";
+    const RenderOutcome out = render_progressive(r, o);
+    ASSERT_TRUE(out.completed);
+    EXPECT_EQ(out.spp % rs.sobol_block, 0u) << "stop " << stop << ": " << out.spp << " spp";
+    if (stop == 0) EXPECT_GE(out.spp, 2 * rs.sobol_block);
+    for (const PixelAccumulator& p : out.film.pixels) ASSERT_EQ(p.blocks * rs.sobol_block, p.samples);
+  }
+}
+
 }  // namespace
 }  // namespace giq::reference
