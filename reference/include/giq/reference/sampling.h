@@ -83,7 +83,7 @@ class PathSampler {
    private:
     friend class PathSampler;
     Group(uint32_t pixel, uint32_t sample, uint32_t group, uint64_t seed)
-        : independent_(true), pixel_(pixel), sample_(sample), group_(group), seed_(seed), sobol_(0, 0, 0) {}
+        : independent_(true), pixel_(pixel), sample_(sample), group_(group), seed_(seed) {}
     explicit Group(ScrambledSobol4 s) : independent_(false), sobol_(s) {}
     bool independent_;
     uint32_t pixel_ = 0, sample_ = 0, group_ = 0;

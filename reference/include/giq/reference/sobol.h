@@ -111,6 +111,7 @@ inline constexpr SobolTable kSobolTable{};
 // the scramble that follows absorbs.
 class ScrambledSobol4 {
  public:
+  ScrambledSobol4() = default;
   ScrambledSobol4(uint32_t index, int bits, uint32_t seed)
       : index_(owen_scramble(index, seed) & ((1u << bits) - 1u)), seed_(seed) {}
   uint32_t operator[](int d) const {
@@ -118,7 +119,7 @@ class ScrambledSobol4 {
   }
 
  private:
-  uint32_t index_, seed_;
+  uint32_t index_ = 0, seed_ = 0;
 };
 
 inline std::array<uint32_t, 4> scrambled_sobol4(uint32_t index, int bits, uint32_t seed) {
