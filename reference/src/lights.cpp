@@ -11,7 +11,7 @@ double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.
 
 LightSampler::LightSampler(const scenes::Scene& scene, const std::vector<std::vector<glm::vec3>>& positions,
                            glm::vec3 centre, float scene_radius)
-    : scene_(scene), positions_(positions), centre_(centre) {
+    : scene_(scene), centre_(centre) {
   std::vector<double> weights;
   triangle_entry_.resize(scene.meshes.size());
   const double pi = 3.14159265358979323846;
@@ -24,6 +24,16 @@ LightSampler::LightSampler(const scenes::Scene& scene, const std::vector<std::ve
     if (map.empty()) map.assign(scene.meshes[t.mesh].triangles.size(), -1);
     map[t.triangle] = int32_t(entries_.size());
     entries_.push_back({LightKind::Triangle, uint32_t(i)});
+    emitters_.resize(scene.emissive_triangles.size());
+    Emitter& em = emitters_[i];
+    em.mesh = &scene.meshes[t.mesh];
+    em.material = &scene.materials[size_t(em.mesh->material)];
+    em.triangle = em.mesh->triangles[t.triangle];
+    const std::vector<glm::vec3>& pos = positions[t.mesh];
+    em.p0 = pos[em.triangle.x], em.p1 = pos[em.triangle.y], em.p2 = pos[em.triangle.z];
+    const glm::vec3 c = glm::cross(em.p1 - em.p0, em.p2 - em.p0);
+    em.area = 0.5f * glm::length(c);
+    em.n = c / (2.0f * em.area);
     weights.push_back(t.power);
   }
   const double r2 = double(scene_radius) * double(scene_radius);

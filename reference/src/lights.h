@@ -58,10 +58,19 @@ class LightSampler {
     LightKind kind;
     uint32_t index;  // emissive triangle index or punctual light index
   };
+  // An emissive triangle as sample() reads it, set up once instead of per sample.
+  struct Emitter {
+    glm::vec3 p0{0.0f}, p1{0.0f}, p2{0.0f};  // renderer's frame
+    glm::vec3 n{0.0f};                         // unit geometric normal (counter-clockwise front)
+    float area = 0.0f;
+    const scenes::Mesh* mesh = nullptr;
+    const scenes::Material* material = nullptr;
+    glm::uvec3 triangle{0u};
+  };
   const scenes::Scene& scene_;
-  const std::vector<std::vector<glm::vec3>>& positions_;
   glm::vec3 centre_;
   std::vector<Entry> entries_;
+  std::vector<Emitter> emitters_;  // per scene.emissive_triangles entry
   AliasTable table_;
   std::vector<std::vector<int32_t>> triangle_entry_;  // per mesh: triangle -> entry, or empty
   int32_t environment_entry_ = -1;
@@ -92,30 +101,25 @@ LightSample LightSampler::sample(glm::vec3 p, float u_pick, float u_alias, glm::
   s.kind = e.kind;
   if constexpr (has(F, kEmissive)) {
     if (e.kind == LightKind::Triangle) {
-      const scenes::EmissiveTriangle& et = scene_.emissive_triangles[e.index];
-      const scenes::Mesh& mesh = scene_.meshes[et.mesh];
-      const glm::uvec3 tri = mesh.triangles[et.triangle];
-      const std::vector<glm::vec3>& pos = positions_[et.mesh];
-      const glm::vec3 p0 = pos[tri.x], p1 = pos[tri.y], p2 = pos[tri.z];
+      const Emitter& em = emitters_[e.index];
       const glm::vec2 b = square_to_triangle_barycentrics(u);
-      s.point = (1.0f - b.x - b.y) * p0 + b.x * p1 + b.y * p2;
-      const glm::vec3 c = glm::cross(p1 - p0, p2 - p0);
-      const float area = 0.5f * glm::length(c);
-      glm::vec3 n = c / (2.0f * area);
+      s.point = (1.0f - b.x - b.y) * em.p0 + b.x * em.p1 + b.y * em.p2;
+      const float area = em.area;
+      glm::vec3 n = em.n;
       const glm::vec3 d = s.point - p;
       const float d2 = glm::dot(d, d);
       if (!(d2 > 0.0f) || !(area > 0.0f)) return s;
       s.distance = std::sqrt(d2);
       s.wi = d / s.distance;
       float cos_l = -glm::dot(n, s.wi);
-      const scenes::Material& mat = scene_.materials[size_t(mesh.material)];
+      const scenes::Material& mat = *em.material;
       if (cos_l <= 0.0f) {
         if (!mat.double_sided) return s;  // glTF: a one-sided emitter emits from its front only
         cos_l = -cos_l, n = -n;
       }
       s.normal = n;
       s.area = true;
-      s.radiance = emitted_radiance<F>(scene_, mat, interpolate_uv(mesh, tri, b.x, b.y));
+      s.radiance = emitted_radiance<F>(scene_, mat, interpolate_uv(*em.mesh, em.triangle, b.x, b.y));
       // Area measure to solid angle: dA = d^2 / cos(theta_l) dw (pbrt-v4, eq. 4.9). At grazing
       // angles the density can overflow; such a sample carries no light, so it is dropped.
       s.pdf = pick.pmf * d2 / (area * cos_l);
