@@ -177,7 +177,7 @@ int main(int argc, char** argv) try {
   rs.sobol_block = sobol_block;
   std::printf("Machine: %u hardware threads; image %dx%d; threads %s; sampler %s\n\n",
               std::thread::hardware_concurrency(), size, size, threads == 0 ? "all" : std::to_string(threads).c_str(),
-              rs.block() ? ("sobol, blocks of " + std::to_string(rs.block())).c_str() : "independent");
+              ref::describe_sampler(rs).c_str());
   std::printf(
       "| scene | features (mask) | Msamples/s | Mrays/s | generic Msamples/s | specialisation "
       "saving | time to relMSE %.0e | spp | long render spp |\n",

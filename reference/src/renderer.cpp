@@ -114,6 +114,10 @@ struct Renderer::Impl {
 
 const char* sampler_name(Sampler s) { return s == Sampler::Sobol ? "sobol" : "independent"; }
 
+std::string describe_sampler(const RenderSettings& s) {
+  return s.block() ? "sobol, blocks of " + std::to_string(s.block()) : std::string("independent");
+}
+
 Sampler parse_sampler(const std::string& name, const std::string& option) {
   if (name == "sobol") return Sampler::Sobol;
   if (name == "independent") return Sampler::Independent;

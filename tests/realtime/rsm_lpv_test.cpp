@@ -13,6 +13,14 @@
 namespace giq::realtime {
 namespace {
 
+// Places a view's camera at `position` looking along `forward` (normalised here), y up.
+void aim(scenes::Camera& c, glm::vec3 position, glm::vec3 forward) {
+  c.position = position;
+  c.forward = glm::normalize(forward);
+  c.right = glm::normalize(glm::cross(c.forward, glm::vec3(0, 1, 0)));
+  c.up = glm::cross(c.right, c.forward);
+}
+
 class RsmLpvTest : public test::VulkanTest {
  protected:
   image::Image render(const scenes::Scene& s, const std::string& technique, uint32_t size,
@@ -148,11 +156,7 @@ TEST_F(RsmLpvTest, RsmMatchesTheOneBouncePathTracerUnderTheSun) {
       glm::normalize(glm::vec3(0.0f, -1.0f, -0.6f));  // lights the floor, not the wall's front
   sun.intensity = 3.0f;
   s.lights.push_back(sun);
-  s.views[0].camera.position = {0.0f, 1.2f, 2.5f};
-  s.views[0].camera.forward = glm::normalize(glm::vec3(0.0f, -0.1f, -1.0f));
-  s.views[0].camera.right =
-      glm::normalize(glm::cross(s.views[0].camera.forward, glm::vec3(0, 1, 0)));
-  s.views[0].camera.up = glm::cross(s.views[0].camera.right, s.views[0].camera.forward);
+  aim(s.views[0].camera, {0.0f, 1.2f, 2.5f}, {0.0f, -0.1f, -1.0f});
   s.derive();
   const int size = 32;
   const image::Image r =
@@ -176,11 +180,7 @@ TEST_F(RsmLpvTest, RsmAreaLightAsAPointEmitterAgainstTheOneBouncePathTracer) {
   const int light = test::add_material(s, glm::vec3(0.0f), glm::vec3(8.0f));
   test::add_quad(s, {-0.4f, 1.2f, -0.2f}, {0.4f, 1.2f, -0.2f}, {0.4f, 1.2f, 0.4f},
                  {-0.4f, 1.2f, 0.4f}, light);
-  s.views[0].camera.position = {0.0f, 1.0f, 2.5f};
-  s.views[0].camera.forward = glm::normalize(glm::vec3(0.0f, -0.1f, -1.0f));
-  s.views[0].camera.right =
-      glm::normalize(glm::cross(s.views[0].camera.forward, glm::vec3(0, 1, 0)));
-  s.views[0].camera.up = glm::cross(s.views[0].camera.right, s.views[0].camera.forward);
+  aim(s.views[0].camera, {0.0f, 1.0f, 2.5f}, {0.0f, -0.1f, -1.0f});
   s.derive();
   const int size = 32;
   const image::Image r = render(
@@ -211,11 +211,7 @@ TEST_F(RsmLpvTest, RsmSpotLightAgainstTheOneBouncePathTracer) {
   spot.outer_cone = 0.6f;
   spot.intensity = 10.0f;
   s.lights.push_back(spot);
-  s.views[0].camera.position = {0.0f, 1.0f, 2.5f};
-  s.views[0].camera.forward = glm::normalize(glm::vec3(0.0f, -0.1f, -1.0f));
-  s.views[0].camera.right =
-      glm::normalize(glm::cross(s.views[0].camera.forward, glm::vec3(0, 1, 0)));
-  s.views[0].camera.up = glm::cross(s.views[0].camera.right, s.views[0].camera.forward);
+  aim(s.views[0].camera, {0.0f, 1.0f, 2.5f}, {0.0f, -0.1f, -1.0f});
   s.derive();
   const int size = 32;
   const image::Image p = render(s, "pt", size, {"samples_per_frame=512", "max_bounces=2"});
@@ -246,11 +242,7 @@ TEST_F(RsmLpvTest, LpvWithoutPropagationIsTheInjectedLightOnly) {
   spot.outer_cone = 0.15f;  // a patch of radius ~0.3 around (0, 0, 1.5)
   spot.intensity = 50.0f;
   s.lights.push_back(spot);
-  s.views[0].camera.position = {0.0f, 2.0f, 3.5f};
-  s.views[0].camera.forward = glm::normalize(glm::vec3(0.0f, -0.2f, -1.0f));
-  s.views[0].camera.right =
-      glm::normalize(glm::cross(s.views[0].camera.forward, glm::vec3(0, 1, 0)));
-  s.views[0].camera.up = glm::cross(s.views[0].camera.right, s.views[0].camera.forward);
+  aim(s.views[0].camera, {0.0f, 2.0f, 3.5f}, {0.0f, -0.2f, -1.0f});
   s.derive();
   const int size = 24;
   const std::vector<std::string> base = {"shadow_map_size=256", "rsm_cube_size=128", "lpv_grid=16"};

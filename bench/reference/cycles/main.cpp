@@ -305,7 +305,7 @@ int main(int argc, char** argv) try {
 
   std::printf("# giq reference vs Blender Cycles: %s, %dx%d, max bounces %d, giq's sampler %s\n\n",
               scene_path.c_str(), size, size, max_bounces,
-              rs.block() ? ("sobol, blocks of " + std::to_string(rs.block())).c_str() : "independent");
+              ref::describe_sampler(rs).c_str());
   std::printf(
       "Machine: %s, %u hardware threads; both renderers on %d threads; %s; load average at start "
       "%s\n\n",

@@ -58,6 +58,9 @@ struct RenderSettings {
   uint32_t block() const { return sampler == Sampler::Sobol ? sobol_block : 0; }
 };
 
+// "sobol, blocks of 32" or "independent", for reports.
+std::string describe_sampler(const RenderSettings& s);
+
 struct RenderStats {
   uint64_t rays = 0;     // camera, bounce and shadow rays traced
   uint64_t samples = 0;  // camera paths
