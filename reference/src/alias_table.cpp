@@ -39,10 +39,4 @@ AliasTable::AliasTable(std::span<const double> weights) {
   for (uint32_t i : large) bins_[i] = {1.0f, i};
 }
 
-AliasTable::Pick AliasTable::sample(float u_bin, float u_alias) const {
-  const uint32_t bin = std::min(uint32_t(double(u_bin) * double(bins_.size())), uint32_t(bins_.size() - 1));
-  const uint32_t i = u_alias < bins_[bin].threshold ? bin : bins_[bin].alias;
-  return {i, pmf_[i]};
-}
-
 }  // namespace giq::reference

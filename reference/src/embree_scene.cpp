@@ -52,12 +52,19 @@ EmbreeScene::EmbreeScene(const scenes::Scene& scene, glm::vec3 centre, bool alph
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
   positions_.resize(scene.meshes.size());
+  shapes_.resize(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const scenes::Mesh& mesh = scene.meshes[m];
     std::vector<glm::vec3>& pos = positions_[m];
     pos.reserve(mesh.positions.size() + 1);
     for (const glm::vec3& p : mesh.positions) pos.push_back(p - centre);
     if (mesh.triangles.empty()) continue;
+    shapes_[m].reserve(mesh.triangles.size());
+    for (const glm::uvec3& t : mesh.triangles) {
+      const glm::vec3 c = glm::cross(pos[t.y] - pos[t.x], pos[t.z] - pos[t.x]);
+      const float len = glm::length(c);
+      shapes_[m].push_back({c / len, 0.5f * len});
+    }
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     // Embree reads vertex buffers with 16-byte loads: the last vertex needs 4 bytes of padding,
     // which the spare capacity reserved above provides.

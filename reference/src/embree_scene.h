@@ -26,6 +26,14 @@ struct Hit {
   bool valid() const { return mesh != RTC_INVALID_GEOMETRY_ID; }
 };
 
+// What every hit needs of its triangle beyond the vertices, computed once at build: the unit
+// geometric normal (glTF front face: counter-clockwise winding) and the area. A degenerate
+// triangle has area 0 and a non-finite normal; Embree never reports hits on one.
+struct TriangleShape {
+  glm::vec3 normal{0.0f};
+  float area = 0.0f;
+};
+
 class EmbreeScene {
  public:
   // alpha_mask: whether to install the cut-out filters (the scene's FeatureSet says).
@@ -39,6 +47,8 @@ class EmbreeScene {
 
   // Per mesh, vertex positions in the renderer's frame.
   const std::vector<std::vector<glm::vec3>>& positions() const { return positions_; }
+  // Per mesh, per triangle, from those positions.
+  const std::vector<std::vector<TriangleShape>>& shapes() const { return shapes_; }
 
   struct AlphaMask;  // what a filter function needs to look up a texel's coverage
 
@@ -46,6 +56,7 @@ class EmbreeScene {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::vector<std::vector<glm::vec3>> positions_;
+  std::vector<std::vector<TriangleShape>> shapes_;
   std::vector<AlphaMask*> masks_;
 };
 

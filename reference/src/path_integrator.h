@@ -34,7 +34,7 @@ class PathIntegrator {
     const RenderSettings& rs = c_.settings;
     const PathSampler s(uint32_t(y) * uint32_t(rs.width) + uint32_t(x), sample_index, rs.seed, rs.block());
     const PathSampler::Group j = s.get(D::kPixel);
-    glm::vec3 d = c_.camera.ray_direction(float(x) + j[0], float(y) + j[1], rs.width, rs.height);
+    glm::vec3 d = c_.rays.direction(float(x) + j[0], float(y) + j[1]);
     glm::vec3 o = c_.eye;
     glm::vec3 beta(1.0f), direct(0.0f), indirect(0.0f);
     float prev_pdf = 0.0f;  // BSDF pdf of the direction that led to the current hit
@@ -118,8 +118,7 @@ class PathIntegrator {
   // First-hit layers of the pixel centre's ray.
   PixelAux aux(int x, int y) const {
     PixelAux a;
-    const RenderSettings& rs = c_.settings;
-    const glm::vec3 d = c_.camera.ray_direction(float(x) + 0.5f, float(y) + 0.5f, rs.width, rs.height);
+    const glm::vec3 d = c_.rays.direction(float(x) + 0.5f, float(y) + 0.5f);
     const Hit hit = c_.bvh.intersect(c_.eye, d);
     if (!hit.valid()) return a;
     const Surface sf = make_surface<F>(c_, hit, d);

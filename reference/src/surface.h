@@ -32,10 +32,9 @@ Surface make_surface(const RenderContext& ctx, const Hit& hit, glm::vec3 dir) {
   const float b1 = hit.b1, b2 = hit.b2, b0 = 1.0f - b1 - b2;
   const glm::vec3 p0 = pos[tri.x], p1 = pos[tri.y], p2 = pos[tri.z];
   s.p = b0 * p0 + b1 * p1 + b2 * p2;
-  const glm::vec3 c = glm::cross(p1 - p0, p2 - p0);
-  const float len = glm::length(c);
-  s.area = 0.5f * len;
-  glm::vec3 ng = c / len;  // glTF front face: counter-clockwise winding
+  const TriangleShape& shape = ctx.bvh.shapes()[hit.mesh][hit.triangle];
+  s.area = shape.area;
+  glm::vec3 ng = shape.normal;
   const float cos_ray = glm::dot(ng, dir);
   s.cos_ray = std::abs(cos_ray);
   const bool front = cos_ray < 0.0f;

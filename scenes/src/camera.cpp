@@ -29,14 +29,13 @@ Camera Camera::look_at(glm::vec3 eye, glm::vec3 target, glm::vec3 up, float yfov
 }
 
 glm::vec3 Camera::ray_direction(float px, float py, int width, int height) const {
-  // Pinhole model: the image plane at distance 1 spans tan(yfov/2) above and below the axis;
-  // horizontally it spans aspect times that. (px, py) are continuous pixel coordinates, y down.
-  const double t = std::tan(0.5 * double(yfov));
-  const double aspect = double(width) / double(height);
-  const double x = (2.0 * double(px) / double(width) - 1.0) * t * aspect;
-  const double y = (1.0 - 2.0 * double(py) / double(height)) * t;
-  const glm::dvec3 d = glm::dvec3(forward) + x * glm::dvec3(right) + y * glm::dvec3(up);
-  return glm::vec3(glm::normalize(d));
+  return ImageRays(*this, width, height).direction(px, py);
 }
+
+// Pinhole model: the image plane at distance 1 spans tan(yfov/2) above and below the axis;
+// horizontally it spans aspect times that. (px, py) are continuous pixel coordinates, y down.
+ImageRays::ImageRays(const Camera& camera, int width, int height)
+    : forward_(camera.forward), right_(camera.right), up_(camera.up), tan_half_fov_(std::tan(0.5 * double(camera.yfov))),
+      aspect_(double(width) / double(height)), width_(double(width)), height_(double(height)) {}
 
 }  // namespace giq::scenes

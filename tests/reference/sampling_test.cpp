@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -66,6 +67,48 @@ TEST(Sampling, CosineHemisphereHasItsDensity) {
   EXPECT_NEAR(mean_cos, 2.0 / 3.0, 5.0 * 0.236 / std::sqrt(double(n)));
   // 1/pdf has infinite variance near the horizon; the cut at cos 1e-3 removes 1e-6 of 2 pi.
   EXPECT_NEAR(solid_angle, 2.0 * 3.14159265358979, 0.05);
+}
+
+TEST(Sampling, QuarterTurnSineAndCosineAreAccurateToFloat) {
+  // Over [-pi/4, pi/4] the polynomials must be as good as float sin and cos: within one ulp
+  // of the true value (a correctly rounded result is within half an ulp).
+  const int n = 1 << 20;
+  double worst = 0.0;
+  for (int i = 0; i <= n; ++i) {
+    const float a = std::clamp(-kPi / 4.0f + (kPi / 2.0f) * float(i) / float(n), -kPi / 4.0f, kPi / 4.0f);
+    const SinCos sc = sincos_quarter(a);
+    const double s = std::sin(double(a)), c = std::cos(double(a));
+    const auto ulp = [](double v) {
+      const float f = std::abs(float(v));
+      return double(std::nextafter(f, std::numeric_limits<float>::infinity()) - f);
+    };
+    if (s != 0.0) worst = std::max(worst, std::abs(double(sc.sin) - s) / ulp(s));
+    worst = std::max(worst, std::abs(double(sc.cos) - c) / ulp(c));
+  }
+  EXPECT_LE(worst, 1.0);
+}
+
+TEST(Sampling, ConcentricDiskMatchesThePolarMap) {
+  // Shirley & Chiu's map with the library's sin and cos, in double: the float map must agree
+  // to a few ulps of the unit radius everywhere, including the wedges' borders and the centre.
+  const int n = 512;
+  double worst = 0.0;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const glm::vec2 u(float(i) / float(n), float(j) / float(n));
+      const double ox = 2.0 * u.x - 1.0, oy = 2.0 * u.y - 1.0;
+      double x = 0.0, y = 0.0;
+      if (std::abs(ox) > std::abs(oy)) {
+        const double t = 3.14159265358979323846 / 4.0 * (oy / ox);
+        x = ox * std::cos(t), y = ox * std::sin(t);
+      } else if (oy != 0.0) {
+        const double t = 3.14159265358979323846 / 2.0 - 3.14159265358979323846 / 4.0 * (ox / oy);
+        x = oy * std::cos(t), y = oy * std::sin(t);
+      }
+      const glm::vec2 d = square_to_concentric_disk(u);
+      worst = std::max({worst, std::abs(d.x - x), std::abs(d.y - y)});
+    }
+  EXPECT_LE(worst, 4.0 * 0x1p-24);
 }
 
 TEST(Sampling, UniformTriangleBarycentricsAreUniform) {

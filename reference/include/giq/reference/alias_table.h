@@ -3,6 +3,7 @@
 // numerically stable construction (Vose 1991, "A Linear Algorithm for Generating Random
 // Numbers with a Given Distribution", IEEE TSE 17(9)). The reference picks lights with it.
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -26,7 +27,11 @@ class AliasTable {
   };
   // u_bin selects a bin, u_alias the bin's own entry or its alias. Two numbers, because the
   // fraction left in one float after selecting among a million bins has only a few bits.
-  Pick sample(float u_bin, float u_alias) const;
+  Pick sample(float u_bin, float u_alias) const {
+    const uint32_t bin = std::min(uint32_t(double(u_bin) * double(bins_.size())), uint32_t(bins_.size() - 1));
+    const uint32_t i = u_alias < bins_[bin].threshold ? bin : bins_[bin].alias;
+    return {i, pmf_[i]};
+  }
 
  private:
   struct Bin {

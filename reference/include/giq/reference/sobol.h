@@ -114,7 +114,7 @@ class ScrambledSobol4 {
   ScrambledSobol4() = default;
   ScrambledSobol4(uint32_t index, int bits, uint32_t seed)
       : index_(owen_scramble(index, seed) & ((1u << bits) - 1u)), seed_(seed) {}
-  uint32_t operator[](int d) const {
+  [[gnu::always_inline]] uint32_t operator[](int d) const {
     return reverse_bits(lk_hash(kSobolTable.rev[index_][size_t(d)], hash32(seed_ + 0x9e3779b9u * uint32_t(d + 1))));
   }
 
