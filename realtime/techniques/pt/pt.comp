@@ -160,9 +160,10 @@ PathResult trace_path(vec3 org, vec3 dir, inout Rng rng) {
     throughput *= brdf_eval(s, wo, wi) * dot(ns, wi) / pdf;
     prev_pdf = pdf;
     // Russian roulette after the third bounce, unbiased: survivors are divided by the
-    // survival probability.
+    // survival probability, twice the throughput's largest component as in the reference
+    // (reference/src/path_integrator.h, kRouletteScale, explains the factor).
     if (depth >= 3u) {
-      float q = clamp(max(throughput.r, max(throughput.g, throughput.b)), 0.05, 1.0);
+      float q = clamp(2.0 * max(throughput.r, max(throughput.g, throughput.b)), 0.05, 1.0);
       if (rng_next(rng) >= q) break;
       throughput /= q;
     }
