@@ -1,13 +1,15 @@
 // Benchmarks of the reference path tracer, printed as Markdown tables:
 //  1. throughput on each built-in scene: camera paths (samples) per second and rays per
 //     second, with the integrator specialised on the scene's features and with the generic
-//     variant (every feature compiled in), and the saving;
+//     variant (every feature compiled in), measured alternately several times, and the
+//     saving as the median of the pairs' ratios;
 //  2. time to error: seconds until the relative mse against a long render falls below a
 //     target (relMSE = mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01), with
 //     the long render's own variance subtracted);
 //  3. scaling with triangle count: a Cornell-like box holding a sphere of 10k to 1M triangles.
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -48,6 +50,12 @@ Throughput measure(const sc::Scene& s, const sc::Camera& cam, ref::RenderSetting
   while (seconds_since(t0) < seconds) r.render(f, ++spp, nullptr, &stats);
   const double t = seconds_since(t0);
   return {double(stats.samples) / t, double(stats.rays) / t};
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 // Seconds for an independent render to reach `target` relMSE against `reference`,
@@ -141,7 +149,7 @@ int main(int argc, char** argv) try {
   CLI::App app{"Benchmarks of the reference path tracer (Markdown on stdout)",
                "giq-bench-reference"};
   std::string scenes_dir = "scenes";
-  int size = 512, threads = 0;
+  int size = 512, threads = 0, throughput_reps = 3;
   double seconds = 5.0, target = 1e-3;
   uint32_t ref_spp = 4096, max_spp = 4096;
   std::vector<size_t> triangles = {10000, 100000, 1000000};
@@ -153,6 +161,10 @@ int main(int argc, char** argv) try {
   app.add_option("--size", size, "Image width and height")->capture_default_str();
   app.add_option("--threads", threads, "Threads (0 = all cores)")->capture_default_str();
   app.add_option("--seconds", seconds, "Seconds per throughput measurement")->capture_default_str();
+  app.add_option("--throughput-reps", throughput_reps,
+                 "Alternating specialised / generic throughput measurements per scene (medians are reported)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
   app.add_option("--ref-spp", ref_spp, "Samples per pixel of the long renders")
       ->capture_default_str();
   app.add_option("--target", target, "relMSE target of the time-to-error measurement")
@@ -175,9 +187,10 @@ int main(int argc, char** argv) try {
   rs.threads = threads;
   rs.sampler = ref::parse_sampler(sampler);
   rs.sobol_block = sobol_block;
-  std::printf("Machine: %u hardware threads; image %dx%d; threads %s; sampler %s\n\n",
+  std::printf("Machine: %u hardware threads; image %dx%d; threads %s; sampler %s; throughput: median of %d "
+              "alternating runs of %g s each\n\n",
               std::thread::hardware_concurrency(), size, size, threads == 0 ? "all" : std::to_string(threads).c_str(),
-              ref::describe_sampler(rs).c_str());
+              ref::describe_sampler(rs).c_str(), throughput_reps, seconds);
   std::printf(
       "| scene | features (mask) | Msamples/s | Mrays/s | generic Msamples/s | specialisation "
       "saving | time to relMSE %.0e | spp | long render spp |\n",
@@ -187,10 +200,16 @@ int main(int argc, char** argv) try {
     const std::filesystem::path path = std::filesystem::path(scenes_dir) / (name + ".gltf");
     const sc::Scene s = sc::load(path);
     const sc::Camera cam = s.views.at(0).camera;
-    const Throughput spec = measure(s, cam, rs, seconds);
     ref::RenderSettings generic = rs;
     generic.all_features = true;
-    const Throughput gen = measure(s, cam, generic, seconds);
+    // Alternated, so that a change in the machine's load between them does not pass for a
+    // difference between the two integrators.
+    std::vector<double> spec_paths, spec_rays, gen_paths, saving;
+    for (int rep = 0; rep < throughput_reps; ++rep) {
+      const Throughput a = measure(s, cam, rs, seconds), b = measure(s, cam, generic, seconds);
+      spec_paths.push_back(a.samples_per_s), spec_rays.push_back(a.rays_per_s), gen_paths.push_back(b.samples_per_s);
+      saving.push_back(1.0 - b.samples_per_s / a.samples_per_s);
+    }
     const ref::Renderer probe(s, cam, rs);
     ref::RenderSettings long_rs = rs;
     long_rs.seed = 777;
@@ -227,9 +246,8 @@ int main(int argc, char** argv) try {
     else
       std::snprintf(tte_text, sizeof tte_text, "not within %u spp", max_spp);
     std::printf("| %s | %s (%u) | %.3f | %.3f | %.3f | %.1f %% | %s | %u | %.0f |\n", name.c_str(),
-                feats.c_str(), probe.feature_mask(), spec.samples_per_s / 1e6,
-                spec.rays_per_s / 1e6, gen.samples_per_s / 1e6,
-                100.0 * (1.0 - gen.samples_per_s / spec.samples_per_s), tte_text, spp_reached,
+                feats.c_str(), probe.feature_mask(), median(spec_paths) / 1e6, median(spec_rays) / 1e6,
+                median(gen_paths) / 1e6, 100.0 * median(saving), tte_text, spp_reached,
                 reference.spp);
     std::fflush(stdout);
   }
