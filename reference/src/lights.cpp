@@ -9,8 +9,7 @@ double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.
 
 }  // namespace
 
-LightSampler::LightSampler(const scenes::Scene& scene, const std::vector<std::vector<glm::vec3>>& positions,
-                           glm::vec3 centre, float scene_radius)
+LightSampler::LightSampler(const scenes::Scene& scene, const EmbreeScene& bvh, glm::vec3 centre, float scene_radius)
     : scene_(scene), centre_(centre) {
   std::vector<double> weights;
   triangle_entry_.resize(scene.meshes.size());
@@ -29,11 +28,11 @@ LightSampler::LightSampler(const scenes::Scene& scene, const std::vector<std::ve
     em.mesh = &scene.meshes[t.mesh];
     em.material = &scene.materials[size_t(em.mesh->material)];
     em.triangle = em.mesh->triangles[t.triangle];
-    const std::vector<glm::vec3>& pos = positions[t.mesh];
+    const std::vector<glm::vec3>& pos = bvh.positions()[t.mesh];
     em.p0 = pos[em.triangle.x], em.p1 = pos[em.triangle.y], em.p2 = pos[em.triangle.z];
-    const glm::vec3 c = glm::cross(em.p1 - em.p0, em.p2 - em.p0);
-    em.area = 0.5f * glm::length(c);
-    em.n = c / (2.0f * em.area);
+    const TriangleShape& shape = bvh.shapes()[t.mesh][t.triangle];
+    em.area = shape.area;
+    em.n = shape.normal;
     weights.push_back(t.power);
   }
   const double r2 = double(scene_radius) * double(scene_radius);

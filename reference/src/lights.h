@@ -11,6 +11,7 @@
 #include <limits>
 #include <vector>
 
+#include "embree_scene.h"
 #include "feature_mask.h"
 #include "giq/reference/alias_table.h"
 #include "giq/reference/sampling.h"
@@ -35,9 +36,8 @@ struct LightSample {
 
 class LightSampler {
  public:
-  // positions: the meshes' vertex positions in the renderer's frame (as EmbreeScene has them).
-  LightSampler(const scenes::Scene& scene, const std::vector<std::vector<glm::vec3>>& positions,
-               glm::vec3 centre, float scene_radius);
+  // bvh: the meshes' vertex positions and triangle shapes in the renderer's frame.
+  LightSampler(const scenes::Scene& scene, const EmbreeScene& bvh, glm::vec3 centre, float scene_radius);
 
   bool empty() const { return table_.empty(); }
 

@@ -15,7 +15,7 @@ struct RenderContext {
   RenderContext(const scenes::Scene& s, const scenes::Camera& cam, const RenderSettings& rs, glm::vec3 c, float e,
                 float radius)
       : scene(s), settings(rs), camera(cam), rays(cam, rs.width, rs.height), centre(c), extent(e), eye(cam.position - c),
-        bvh(s, c, s.features.alpha_mask), lights(s, bvh.positions(), c, radius) {}
+        bvh(s, c, s.features.alpha_mask), lights(s, bvh, c, radius) {}
 
   const scenes::Scene& scene;
   RenderSettings settings;

@@ -116,8 +116,8 @@ struct SampleDimensions {
 
 // Sine and cosine of an angle in [-pi/4, pi/4], by the minimax polynomials of Cephes' sinf and
 // cosf for that interval (Moshier 1989, "Methods and Programs for Mathematical Functions",
-// cephes/single/sinf.c), accurate to an ulp or two of float there. The concentric map needs no
-// other angles, and without the general functions' range reduction the warp costs a third less.
+// cephes/single/sinf.c), within an ulp of the true values there. The concentric map needs no
+// other angles, so it can skip the general functions' range reduction and call.
 struct SinCos {
   float sin, cos;
 };
