@@ -15,7 +15,7 @@ Film render_with(const scenes::Scene& s, Estimator e, uint32_t spp) {
   rs.max_bounces = 6;
   rs.estimator = e;
   rs.seed = 100 + uint64_t(e);  // independent renders
-  Renderer r(s, scenes::Camera::look_at({0.5f, 2.2f, 3.5f}, {0.0f, 0.4f, 0.0f}, {0, 1, 0}, 0.9f), rs);
+  Renderer r(s, test::glossy_scene_camera(), rs);
   Film f = r.make_film();
   r.render(f, spp);
   EXPECT_EQ(f.nonfinite_samples(), 0u);

@@ -85,8 +85,6 @@ inline scenes::Scene cornell(float scale = 1.0f, glm::vec3 offset = glm::vec3(0.
   return s;
 }
 
-// Mean and variance of the mean of the luminance of the beauty over a block of pixels
-// (pixels are independent, so their variances add).
 // A glossy and a diffuse block on a floor, under a large area light and a dim environment,
 // so every estimator has finite variance and MIS has both strategies to weigh.
 inline scenes::Scene glossy_scene() {
@@ -111,6 +109,13 @@ inline scenes::Scene glossy_scene() {
   return s;
 }
 
+// The view of glossy_scene() the tests render: both blocks, the floor and the light's glow.
+inline scenes::Camera glossy_scene_camera() {
+  return scenes::Camera::look_at({0.5f, 2.2f, 3.5f}, {0.0f, 0.4f, 0.0f}, {0, 1, 0}, 0.9f);
+}
+
+// Mean and variance of the mean of the luminance of the beauty over a block of pixels
+// (pixels are independent, so their variances add).
 struct BlockStat {
   double mean = 0.0;
   double variance = 0.0;
