@@ -1,8 +1,9 @@
 // Benchmarks of the reference path tracer, printed as Markdown tables:
 //  1. throughput on each built-in scene: camera paths (samples) per second and rays per
-//     second, with the integrator specialised on the scene's features and with the generic
-//     variant (every feature compiled in), measured alternately several times, and the
-//     saving as the median of the pairs' ratios;
+//     second as rendered (specialised on the scene's features, eight paths at a time where the
+//     scene allows), one path at a time, and with the generic variant (every feature compiled
+//     in, one path at a time), measured alternately several times; the lanes' speed-up and
+//     the specialisation's saving as medians of the repetitions' ratios;
 //  2. time to error: seconds until the relative mse against a long render falls below a
 //     target (relMSE = mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01), with
 //     the long render's own variance subtracted);
@@ -192,25 +193,30 @@ int main(int argc, char** argv) try {
               std::thread::hardware_concurrency(), size, size, threads == 0 ? "all" : std::to_string(threads).c_str(),
               ref::describe_sampler(rs).c_str(), throughput_reps, seconds);
   std::printf(
-      "| scene | features (mask) | Msamples/s | Mrays/s | generic Msamples/s | specialisation "
-      "saving | time to relMSE %.0e | spp | long render spp |\n",
+      "| scene | features (mask) | Msamples/s | Mrays/s | one path at a time Msamples/s | lanes speed-up | "
+      "generic Msamples/s | specialisation saving | time to relMSE %.0e | spp | long render spp |\n",
       target);
-  std::printf("|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& name : names) {
     const std::filesystem::path path = std::filesystem::path(scenes_dir) / (name + ".gltf");
     const sc::Scene s = sc::load(path);
     const sc::Camera cam = s.views.at(0).camera;
-    ref::RenderSettings generic = rs;
-    generic.all_features = true;
-    // Alternated, so that a change in the machine's load between them does not pass for a
-    // difference between the two integrators.
-    std::vector<double> spec_paths, spec_rays, gen_paths, saving;
-    for (int rep = 0; rep < throughput_reps; ++rep) {
-      const Throughput a = measure(s, cam, rs, seconds), b = measure(s, cam, generic, seconds);
-      spec_paths.push_back(a.samples_per_s), spec_rays.push_back(a.rays_per_s), gen_paths.push_back(b.samples_per_s);
-      saving.push_back(1.0 - b.samples_per_s / a.samples_per_s);
-    }
+    ref::RenderSettings single = rs, generic = rs;
+    single.lanes = false;
+    generic.all_features = true, generic.lanes = false;
     const ref::Renderer probe(s, cam, rs);
+    // Alternated, so that a change in the machine's load between them does not pass for a
+    // difference between the integrators.
+    std::vector<double> paths, rays, single_paths, gen_paths, speedup, saving;
+    for (int rep = 0; rep < throughput_reps; ++rep) {
+      const Throughput a = measure(s, cam, rs, seconds);
+      const Throughput b = probe.lanes() ? measure(s, cam, single, seconds) : a;
+      const Throughput c = measure(s, cam, generic, seconds);
+      paths.push_back(a.samples_per_s), rays.push_back(a.rays_per_s);
+      single_paths.push_back(b.samples_per_s), gen_paths.push_back(c.samples_per_s);
+      speedup.push_back(a.samples_per_s / b.samples_per_s);
+      saving.push_back(1.0 - c.samples_per_s / b.samples_per_s);
+    }
     ref::RenderSettings long_rs = rs;
     long_rs.seed = 777;
     const std::filesystem::path cached = references.empty()
@@ -245,10 +251,12 @@ int main(int argc, char** argv) try {
       std::snprintf(tte_text, sizeof tte_text, "%.2f s", tte);
     else
       std::snprintf(tte_text, sizeof tte_text, "not within %u spp", max_spp);
-    std::printf("| %s | %s (%u) | %.3f | %.3f | %.3f | %.1f %% | %s | %u | %.0f |\n", name.c_str(),
-                feats.c_str(), probe.feature_mask(), median(spec_paths) / 1e6, median(spec_rays) / 1e6,
-                median(gen_paths) / 1e6, 100.0 * median(saving), tte_text, spp_reached,
-                reference.spp);
+    char speedup_text[32] = "(one at a time)";
+    if (probe.lanes()) std::snprintf(speedup_text, sizeof speedup_text, "%.2fx", median(speedup));
+    std::printf("| %s | %s (%u) | %.3f | %.3f | %.3f | %s | %.3f | %.1f %% | %s | %u | %.0f |\n", name.c_str(),
+                feats.c_str(), probe.feature_mask(), median(paths) / 1e6, median(rays) / 1e6,
+                median(single_paths) / 1e6, speedup_text, median(gen_paths) / 1e6, 100.0 * median(saving), tte_text,
+                spp_reached, reference.spp);
     std::fflush(stdout);
   }
   if (!scaling) return 0;

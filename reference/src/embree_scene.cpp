@@ -134,4 +134,16 @@ bool EmbreeScene::occluded(glm::vec3 o, glm::vec3 d, float tfar) const {
   return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
+void EmbreeScene::intersect(const int* valid, RTCRayHit8& rays) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcIntersect8(valid, scene_, &ctx, &rays);
+}
+
+void EmbreeScene::occluded(const int* valid, RTCRay8& rays) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcOccluded8(valid, scene_, &ctx, &rays);
+}
+
 }  // namespace giq::reference

@@ -44,6 +44,11 @@ class EmbreeScene {
 
   Hit intersect(glm::vec3 origin, glm::vec3 dir, float tfar = std::numeric_limits<float>::infinity()) const;
   bool occluded(glm::vec3 origin, glm::vec3 dir, float tfar) const;
+  // The same for eight rays at once (Embree's packet queries, "rtcIntersect8"), the rays of
+  // lane_integrator.h's eight paths; lanes whose `valid` is 0 are skipped. The hit is in
+  // `rays.hit`, and an occluded ray's tfar becomes -inf.
+  void intersect(const int* valid, RTCRayHit8& rays) const;
+  void occluded(const int* valid, RTCRay8& rays) const;
 
   // Per mesh, vertex positions in the renderer's frame.
   const std::vector<std::vector<glm::vec3>>& positions() const { return positions_; }

@@ -46,6 +46,28 @@ class LightSampler {
   template <unsigned F>
   LightSample sample(glm::vec3 p, float u_pick, float u_alias, glm::vec2 u) const;
 
+  // An emissive triangle as sample() reads it, set up once instead of per sample.
+  struct Emitter {
+    glm::vec3 p0{0.0f}, p1{0.0f}, p2{0.0f};  // renderer's frame
+    glm::vec3 n{0.0f};                         // unit geometric normal (counter-clockwise front)
+    float area = 0.0f;
+    const scenes::Mesh* mesh = nullptr;
+    const scenes::Material* material = nullptr;
+    glm::uvec3 triangle{0u};
+  };
+  // The light sample() picks with the same numbers, for lane_integrator.h, which places the
+  // point on an emissive triangle for several samples at once: `emitter` is that triangle,
+  // or null for any other light.
+  struct Pick {
+    const Emitter* emitter;
+    float pmf;
+  };
+  Pick pick(float u_pick, float u_alias) const {
+    const AliasTable::Pick p = table_.sample(u_pick, u_alias);
+    const Entry& e = entries_[p.index];
+    return {e.kind == LightKind::Triangle ? &emitters_[e.index] : nullptr, p.pmf};
+  }
+
   // Probability of picking the emissive triangle (mesh, triangle) / the environment.
   float triangle_pmf(uint32_t mesh, uint32_t triangle) const {
     const int32_t e = triangle_entry_[mesh].empty() ? -1 : triangle_entry_[mesh][triangle];
@@ -57,15 +79,6 @@ class LightSampler {
   struct Entry {
     LightKind kind;
     uint32_t index;  // emissive triangle index or punctual light index
-  };
-  // An emissive triangle as sample() reads it, set up once instead of per sample.
-  struct Emitter {
-    glm::vec3 p0{0.0f}, p1{0.0f}, p2{0.0f};  // renderer's frame
-    glm::vec3 n{0.0f};                         // unit geometric normal (counter-clockwise front)
-    float area = 0.0f;
-    const scenes::Mesh* mesh = nullptr;
-    const scenes::Material* material = nullptr;
-    glm::uvec3 triangle{0u};
   };
   const scenes::Scene& scene_;
   glm::vec3 centre_;

@@ -7,6 +7,10 @@
 // A sample's contributions are split as the reference EXR wants them: "direct" is emission
 // seen by the camera ray plus light arriving at the first vertex straight from an emitter
 // (by light sampling or by the first BSDF sample); everything else is "indirect".
+//
+// This is the integrator one path at a time. lane_integrator.h runs the same estimator on
+// eight paths at once where the scene allows, with the same bits; a change here is a change
+// there.
 
 #include <glm/glm.hpp>
 
@@ -38,13 +42,36 @@ namespace giq::reference {
 // lights_cameras.
 inline constexpr float kRouletteScale = 2.0f;
 
+// What one camera path brings back.
+struct PathResult {
+  glm::vec3 direct{0.0f}, indirect{0.0f};
+  uint32_t rays = 0;  // traced: camera, bounce and shadow rays
+};
+
+// Adds one path's result to its pixel. A non-finite sample is discarded as a zero-valued one,
+// so every pixel keeps the same sample count; it is counted and reported.
+inline void add_sample(PixelAccumulator& acc, glm::vec3 direct, glm::vec3 indirect) {
+  const glm::vec3 beauty = direct + indirect;
+  float b[3], d[3];
+  bool finite = true;
+  for (int k = 0; k < 3; ++k) {
+    b[k] = beauty[k], d[k] = direct[k];
+    finite = finite && std::isfinite(b[k]) && std::isfinite(d[k]);
+  }
+  if (!finite) {
+    ++acc.nonfinite;
+    for (int k = 0; k < 3; ++k) b[k] = d[k] = 0.0f;
+  }
+  acc.add(b, d);
+}
+
 template <unsigned F>
 class PathIntegrator {
  public:
   static constexpr bool kSpec = has(F, kSpecular);
   explicit PathIntegrator(const RenderContext& ctx) : c_(ctx) {}
 
-  Renderer::Sample trace(int x, int y, uint32_t sample_index) const {
+  PathResult trace(int x, int y, uint32_t sample_index) const {
     using D = SampleDimensions;
     const RenderSettings& rs = c_.settings;
     const PathSampler s(uint32_t(y) * uint32_t(rs.width) + uint32_t(x), sample_index, rs.seed, rs.block());
@@ -123,11 +150,7 @@ class PathIntegrator {
       o = origin;
       d = wi;
     }
-    Renderer::Sample out;
-    out.rays = rays;
-    const glm::vec3 beauty = direct + indirect;
-    for (int k = 0; k < 3; ++k) out.beauty[k] = beauty[k], out.direct[k] = direct[k];
-    return out;
+    return {direct, indirect, rays};
   }
 
   // First-hit layers of the pixel centre's ray.

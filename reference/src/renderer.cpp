@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "giq/base/error.h"
+#include "lane_integrator.h"
 #include "path_integrator.h"
 
 namespace giq::reference {
@@ -24,30 +25,24 @@ constexpr int kTile = 16;
 struct Kernels {
   RenderStats (*render_tile)(const RenderContext&, Film&, int x0, int y0, uint32_t target_spp);
   PixelAux (*aux)(const RenderContext&, int x, int y);
-  Renderer::Sample (*trace)(const RenderContext&, int x, int y, uint32_t sample);
 };
 
 template <unsigned F>
 RenderStats render_tile(const RenderContext& ctx, Film& film, int x0, int y0, uint32_t target_spp) {
+  const int x1 = std::min(x0 + kTile, film.width), y1 = std::min(y0 + kTile, film.height);
+  if constexpr (lanes_support(F)) {
+    if (lanes_support(F, ctx.settings)) return LaneIntegrator<F>(ctx).render_tile(film, x0, y0, x1, y1, target_spp);
+  }
   const PathIntegrator<F> integrator(ctx);
   RenderStats stats;
-  const int x1 = std::min(x0 + kTile, film.width), y1 = std::min(y0 + kTile, film.height);
   for (int y = y0; y < y1; ++y) {
     for (int x = x0; x < x1; ++x) {
       PixelAccumulator& acc = film.pixels[size_t(y) * size_t(film.width) + size_t(x)];
       while (acc.samples < target_spp) {
-        Renderer::Sample s = integrator.trace(x, y, acc.samples);
-        stats.rays += s.rays;
+        const PathResult r = integrator.trace(x, y, acc.samples);
+        stats.rays += r.rays;
         ++stats.samples;
-        bool finite = true;
-        for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(s.beauty[k]) && std::isfinite(s.direct[k]);
-        if (!finite) {
-          // A non-finite sample is discarded as a zero-valued one, so every pixel keeps the
-          // same sample count; it is counted and reported.
-          ++acc.nonfinite;
-          for (int k = 0; k < 3; ++k) s.beauty[k] = s.direct[k] = 0.0f;
-        }
-        acc.add(s.beauty, s.direct);
+        add_sample(acc, r.direct, r.indirect);
       }
     }
   }
@@ -56,8 +51,7 @@ RenderStats render_tile(const RenderContext& ctx, Film& film, int x0, int y0, ui
 
 template <unsigned F>
 constexpr Kernels kernels_for() {
-  return {&render_tile<F>, [](const RenderContext& c, int x, int y) { return PathIntegrator<F>(c).aux(x, y); },
-          [](const RenderContext& c, int x, int y, uint32_t i) { return PathIntegrator<F>(c).trace(x, y, i); }};
+  return {&render_tile<F>, [](const RenderContext& c, int x, int y) { return PathIntegrator<F>(c).aux(x, y); }};
 }
 
 template <size_t... I>
@@ -133,6 +127,7 @@ Renderer::~Renderer() = default;
 
 const RenderSettings& Renderer::settings() const { return impl_->ctx.settings; }
 unsigned Renderer::feature_mask() const { return impl_->mask; }
+bool Renderer::lanes() const { return lanes_support(impl_->mask, impl_->ctx.settings); }
 Film Renderer::make_film() const {
   const RenderSettings& s = impl_->ctx.settings;
   return Film(s.width, s.height, s.block());
@@ -173,10 +168,6 @@ bool Renderer::render(Film& film, uint32_t target_spp, const std::atomic<bool>* 
   });
   if (stats != nullptr) stats->rays += rays, stats->samples += samples;
   return !skipped;
-}
-
-Renderer::Sample Renderer::trace(int x, int y, uint32_t sample_index) const {
-  return impl_->kernels.trace(impl_->ctx, x, y, sample_index);
 }
 
 }  // namespace giq::reference

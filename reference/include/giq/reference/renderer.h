@@ -3,8 +3,9 @@
 //
 // Light transport: unidirectional path tracing with next-event estimation and multiple
 // importance sampling (Veach 1997, thesis, chapter 9; power heuristic), Russian roulette
-// after the third bounce, specialised at compile time on the scene's FeatureSet. See
-// docs/reference.md for the units, the layers and what the tests prove.
+// after the third bounce, specialised at compile time on the scene's FeatureSet, and eight
+// paths at a time where the scene's materials allow. See docs/reference.md for the units, the
+// layers and what the tests prove.
 
 #include <atomic>
 #include <cstdint>
@@ -48,6 +49,10 @@ struct RenderSettings {
   // Run the integrator variant with every feature compiled in instead of the scene's own
   // (for benchmarks: the cost of not specialising). Never changes the image.
   bool all_features = false;
+  // Trace eight paths at a time where the scene allows it (Lambertian materials, no textures,
+  // the Sobol sampler: reference/src/lane_integrator.h), else one at a time. For tests and
+  // benchmarks; never changes the image.
+  bool lanes = true;
   Sampler sampler = Sampler::Sobol;
   // Samples per independently scrambled block of the Sobol sampler, a power of two from 2 to
   // 256. Larger blocks stratify more (on the Cornell box relMSE x spp is 0.135 with 16, 0.124
@@ -86,14 +91,9 @@ class Renderer {
   // film stays valid and can be completed later). Returns false when cancelled.
   bool render(Film& film, uint32_t target_spp, const std::atomic<bool>* cancel = nullptr, RenderStats* stats = nullptr) const;
 
-  // The sample value of one pixel for one sample index, as render() accumulates it
-  // (for tests of determinism and of single pixels).
-  struct Sample {
-    float beauty[3];
-    float direct[3];
-    uint32_t rays;  // traced for this sample
-  };
-  Sample trace(int x, int y, uint32_t sample_index) const;
+  // Whether render() traces eight paths at a time (RenderSettings::lanes and a scene that
+  // allows it).
+  bool lanes() const;
 
   // The instantiation the integrator runs, as feature bits (1 specular, 2 textures,
   // 4 punctual lights, 8 emissive triangles, 16 environment).

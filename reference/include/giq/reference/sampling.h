@@ -53,6 +53,7 @@ constexpr float sample_1d(uint32_t pixel, uint32_t sample, uint32_t dimension, u
 // quadrature") and the variance of a pixel's mean is estimated from its block means.
 class PathSampler {
  public:
+  PathSampler() = default;
   PathSampler(uint32_t pixel, uint32_t sample, uint64_t seed, uint32_t block)
       : pixel_(pixel), sample_(sample), seed_(seed), block_(block) {
     if (block_ != 0) {
@@ -93,14 +94,21 @@ class PathSampler {
 
   [[gnu::always_inline]] Group get(uint32_t group) const {
     if (block_ == 0) return Group(pixel_, sample_, group, seed_);
-    const uint32_t scramble = uint32_t(mix64(key_ + uint64_t(group) * 0xbf58476d1ce4e5b9ull) >> 32);
-    return Group(ScrambledSobol4(sample_ & (block_ - 1), bits_, scramble));
+    return Group(ScrambledSobol4(index_in_block(), bits_, scramble(group)));
+  }
+
+  // The Sobol sampler's parts of get(), for the integrator that evaluates eight paths' groups
+  // at once (lane_integrator.h): the sample's index in its block and the scramble seed of a
+  // group.
+  uint32_t index_in_block() const { return sample_ & (block_ - 1); }
+  [[gnu::always_inline]] uint32_t scramble(uint32_t group) const {
+    return uint32_t(mix64(key_ + uint64_t(group) * 0xbf58476d1ce4e5b9ull) >> 32);
   }
 
  private:
-  uint32_t pixel_, sample_;
-  uint64_t seed_;
-  uint32_t block_;
+  uint32_t pixel_ = 0, sample_ = 0;
+  uint64_t seed_ = 0;
+  uint32_t block_ = 0;
   int bits_ = 0;
   uint64_t key_ = 0;
 };
@@ -118,11 +126,15 @@ struct SampleDimensions {
 // cosf for that interval (Moshier 1989, "Methods and Programs for Mathematical Functions",
 // cephes/single/sinf.c), within an ulp of the true values there. The concentric map needs no
 // other angles, so it can skip the general functions' range reduction and call.
-struct SinCos {
-  float sin, cos;
+// A template so that lane_integrator.h computes eight at once with the same operations.
+template <class T>
+struct SinCosOf {
+  T sin, cos;
 };
-inline SinCos sincos_quarter(float a) {
-  const float z = a * a;
+using SinCos = SinCosOf<float>;
+template <class T>
+inline SinCosOf<T> sincos_quarter(T a) {
+  const T z = a * a;
   return {((-1.9515295891e-4f * z + 8.3321608736e-3f) * z - 1.6666654611e-1f) * z * a + a,
           ((2.443315711809948e-5f * z - 1.388731625493765e-3f) * z + 4.166664568298827e-2f) * z * z - 0.5f * z + 1.0f};
 }

@@ -14,6 +14,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <type_traits>
 
 namespace giq::reference {
 
@@ -48,17 +49,26 @@ struct SobolMatrices {
 };
 inline constexpr SobolMatrices kSobol{};
 
-constexpr uint32_t reverse_bits(uint32_t x) {
+// The hashes and the bit reversal below are templates so that lane_integrator.h runs them on
+// eight lanes at once (T = lanes::U) with the same operations.
+template <class T>
+constexpr T reverse_bits(T x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
   x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-  return __builtin_bswap32(x);
+  if constexpr (std::is_same_v<T, uint32_t>) {
+    return __builtin_bswap32(x);
+  } else {
+    x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+    return (x >> 16) | (x << 16);
+  }
 }
 
 // A hash in which each output bit depends only on the input bits below it, so applied to
 // bit-reversed values it flips each bit according to the bits above it: a nested uniform
 // (Owen) scramble, approximated by one seeded hash (Vegdahl 2021).
-constexpr uint32_t lk_hash(uint32_t x, uint32_t seed) {
+template <class T>
+constexpr T lk_hash(T x, T seed) {
   x ^= x * 0x3d20adeau;
   x += seed;
   x *= (seed >> 16) | 1u;
@@ -67,12 +77,14 @@ constexpr uint32_t lk_hash(uint32_t x, uint32_t seed) {
   return x;
 }
 
-constexpr uint32_t owen_scramble(uint32_t x, uint32_t seed) { return reverse_bits(lk_hash(reverse_bits(x), seed)); }
+template <class T>
+constexpr T owen_scramble(T x, T seed) { return reverse_bits(lk_hash(reverse_bits(x), seed)); }
 
 // Seeds of the scrambles of one group, derived by a full-avalanche hash (Wellons 2018,
 // "Prospecting for Hash Functions", lowbias32): seeds that differ by a constant would flip
 // the leading bits of different dimensions together and correlate them.
-constexpr uint32_t hash32(uint32_t x) {
+template <class T>
+constexpr T hash32(T x) {
   x ^= x >> 16;
   x *= 0x7feb352du;
   x ^= x >> 15;
