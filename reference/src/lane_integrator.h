@@ -133,20 +133,23 @@ class LaneIntegrator {
     for (int l = 0; l < kWidth; ++l) start(tile, s, l);
     RenderStats stats;
     const LF env_weight_pdf(c_.lights.environment_pmf() * kUniformSpherePdf);
+    // The packets' fields that no query changes are set once.
+    alignas(32) RTCRayHit8 rh;
+    alignas(32) RTCRay8 r;
+    alignas(32) int valid[kWidth];
+    for (RTCRay8* ray : {&rh.ray, &r}) {
+      for (int l = 0; l < kWidth; ++l) {
+        ray->tnear[l] = 0.0f, ray->time[l] = 0.0f;
+        ray->mask[l] = 0xffffffffu, ray->id[l] = unsigned(l), ray->flags[l] = 0;
+      }
+    }
     while (any(s.live)) {
       // Trace every live lane's ray.
-      alignas(32) RTCRayHit8 rh;
-      alignas(32) int valid[kWidth];
       for (int l = 0; l < kWidth; ++l) {
         valid[l] = s.live[l];
         rh.ray.org_x[l] = s.origin.x[l], rh.ray.org_y[l] = s.origin.y[l], rh.ray.org_z[l] = s.origin.z[l];
         rh.ray.dir_x[l] = s.dir.x[l], rh.ray.dir_y[l] = s.dir.y[l], rh.ray.dir_z[l] = s.dir.z[l];
-        rh.ray.tnear[l] = 0.0f;
         rh.ray.tfar[l] = std::numeric_limits<float>::infinity();
-        rh.ray.time[l] = 0.0f;
-        rh.ray.mask[l] = 0xffffffffu;
-        rh.ray.id[l] = unsigned(l);
-        rh.ray.flags[l] = 0;
         rh.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
       }
@@ -237,17 +240,11 @@ class LaneIntegrator {
         done |= cont & ~next;
 
         if (any(shadow.rays)) {
-          alignas(32) RTCRay8 r;
           for (int l = 0; l < kWidth; ++l) {
             valid[l] = shadow.rays[l];
             r.org_x[l] = origin.x[l], r.org_y[l] = origin.y[l], r.org_z[l] = origin.z[l];
             r.dir_x[l] = shadow.dir.x[l], r.dir_y[l] = shadow.dir.y[l], r.dir_z[l] = shadow.dir.z[l];
-            r.tnear[l] = 0.0f;
             r.tfar[l] = shadow.rays[l] != 0 ? shadow.tfar[l] : 0.0f;
-            r.time[l] = 0.0f;
-            r.mask[l] = 0xffffffffu;
-            r.id[l] = unsigned(l);
-            r.flags[l] = 0;
           }
           c_.bvh.occluded(valid, r);
           LI unblocked{};
