@@ -7,27 +7,26 @@
 // formula after clipping to the horizon; Arvo 1995, "Applications of Irradiance Tensors to
 // the Simulation of Non-Lambertian Phenomena", eq. 7), the specular part uses the
 // representative point on the triangle closest to the reflection ray with energy
-// normalisation (Karis 2013, "Real Shading in Unreal Engine 4"; seed 001, "Area Lights").
+// normalisation (Karis 2013, "Real Shading in Unreal Engine 4"; Turánszki 2017, "Area Lights").
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/scene.glsl"
 #include "shaders/brdf.glsl"
 #include "shaders/surface.glsl"
 #include "shaders/lights.glsl"
+#include "shaders/closest_point.glsl"
 #include "passes/direct_light_shared.h"
 #include "passes/shadow_maps_shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = GIQ_SCENE_BINDING_COUNT + 0, rgba32f) uniform readonly image2D gb_position;
-layout(binding = GIQ_SCENE_BINDING_COUNT + 1, rgba32f) uniform readonly image2D gb_normal;
-layout(binding = GIQ_SCENE_BINDING_COUNT + 2, rgba32ui) uniform readonly uimage2D gb_ids;
-layout(binding = GIQ_SCENE_BINDING_COUNT + 3) uniform sampler2DArrayShadow shadow_map;
-layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 4) readonly buffer ShadowLayers { GpuShadowLayer shadow_layers[]; };
-layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 5) readonly buffer AreaLights { GpuAreaLight area_lights[]; };
-layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 6) readonly buffer AreaTriangles { GpuAreaTriangle area_triangles[]; };
-layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 7) readonly buffer LightShadow { uint light_shadow_layer[]; };
-layout(binding = GIQ_SCENE_BINDING_COUNT + 8, rgba32f) uniform writeonly image2D out_direct;
+#include "passes/receiver.glsl"
+layout(binding = GIQ_RECEIVER_BINDING_COUNT + 0) uniform sampler2DArrayShadow shadow_map;
+layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 1) readonly buffer ShadowLayers { GpuShadowLayer shadow_layers[]; };
+layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 2) readonly buffer AreaLights { GpuAreaLight area_lights[]; };
+layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 3) readonly buffer AreaTriangles { GpuAreaTriangle area_triangles[]; };
+layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 4) readonly buffer LightShadow { uint light_shadow_layer[]; };
+layout(binding = GIQ_RECEIVER_BINDING_COUNT + 5, rgba32f) uniform writeonly image2D out_direct;
 
 layout(push_constant) uniform Push { DirectPush pc; };
 
@@ -66,30 +65,6 @@ float polygon_irradiance(vec3 a, vec3 b, vec3 c, vec3 n) {
   }
   return 0.5 * abs(sum);
 }
-
-#ifdef GIQ_SPECULAR
-// The point of triangle (a, b, c) closest to q (Ericson 2004, "Real-Time Collision
-// Detection", 5.1.5).
-vec3 closest_on_triangle(vec3 q, vec3 a, vec3 b, vec3 c) {
-  vec3 ab = b - a, ac = c - a, ap = q - a;
-  float d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return a;
-  vec3 bp = q - b;
-  float d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0.0 && d4 <= d3) return b;
-  float vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + ab * (d1 / (d1 - d3));
-  vec3 cp = q - c;
-  float d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0.0 && d5 <= d6) return c;
-  float vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
-  float va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  float denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
-#endif
 
 vec3 area_light(GpuAreaLight l, Surface s, vec3 p, vec3 wo) {
   vec3 sum = vec3(0.0);
@@ -132,53 +107,43 @@ vec3 area_light(GpuAreaLight l, Surface s, vec3 p, vec3 wo) {
 
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-  if (px.x >= int(pc.viewport.x) || px.y >= int(pc.viewport.y)) return;
-  vec4 pos = imageLoad(gb_position, px);
-  uvec4 ids = imageLoad(gb_ids, px);
+  if (any(greaterThanEqual(uvec2(px), pc.size))) return;
+  Receiver r = load_receiver(px);
   vec3 radiance = vec3(0.0);
-  if (ids.x == 0u) {
+  if (!r.hit) {
     radiance = pc.environment.rgb;  // the camera sees the environment directly
-  } else {
-    GpuMaterial mat = scene_materials[ids.y];
-    bool back = ids.w != 0u;
-    if (!back || mat.params.w != 0.0) {  // the back of a one-sided material is black
-      vec3 p = pos.xyz;
-      vec3 n = imageLoad(gb_normal, px).xyz;
-      vec3 wo = normalize(pc.camera.position.xyz - p);
-      uint tri = ids.x - 1u;
-      vec3 ta, tb, tc;
-      triangle_vertices(tri, ta, tb, tc);
-      // The geometric normal on the viewer's side: light from below it would leak through
-      // the surface, whatever the (interpolated or mapped) shading normal says; the
-      // reference drops it too.
-      vec3 ng = normalize(cross(tb - ta, tc - ta)) * (back ? -1.0 : 1.0);
-      // Textured materials are looked up at the G-buffer point (deferred texturing): its
-      // barycentrics on the triangle's plane, as the G-buffer pass computed them.
-      vec2 bary = vec2(0.0);
-#ifdef GIQ_SURFACE_TEXTURES
-      bary = plane_barycentrics(p, ta, tb, tc);
-#endif
-      if (mat.emissive.w != 0.0) radiance += emission_at(mat, tri, bary.x, bary.y);
-      Surface s = hit_material(tri, bary.x, bary.y, n);
-      float normal_offset = pc.viewport.z;
-      int pcf = int(pc.viewport.w);
-      for (uint i = 0u; i < pc.counts.x; ++i) {
-        vec3 wi;
-        float dist;
-        vec3 e = punctual_incident(scene_lights[i], p, wi, dist);
-        float cos_i = dot(n, wi);
-        if (cos_i <= 0.0 || dot(ng, wi) <= 0.0 || all(equal(e, vec3(0.0)))) continue;
-        float vis = int(scene_lights[i].position.w) == GIQ_LIGHT_DIRECTIONAL
-                        ? shadow_cascades(light_shadow_layer[i], dot(p - pc.camera.position.xyz, pc.camera.forward.xyz), p, n, normal_offset, pcf)
-                        : shadow_cube(light_shadow_layer[i], scene_lights[i].position.xyz, p, n, normal_offset, pcf);
-        radiance += brdf_eval(s, wo, wi) * e * cos_i * vis;
-      }
-      for (uint i = 0u; i < pc.counts.y; ++i) {
-        GpuAreaLight l = area_lights[i];
-        vec3 c = area_light(l, s, p, wo);
-        if (all(equal(c, vec3(0.0)))) continue;
-        radiance += c * shadow_cube(uint(l.position.w), l.position.xyz, p, n, normal_offset, pcf);
-      }
+  } else if (r.lit) {  // the back of a one-sided material is black
+    GpuMaterial mat = scene_materials[r.material];
+    vec3 p = r.x;
+    vec3 n = r.n;
+    vec3 wo = normalize(pc.camera.position.xyz - p);
+    vec3 ta, tb, tc;
+    triangle_vertices(r.tri, ta, tb, tc);
+    // The geometric normal on the viewer's side: light from below it would leak through the
+    // surface, whatever the (interpolated or mapped) shading normal says; the reference
+    // drops it too.
+    vec3 ng = normalize(cross(tb - ta, tc - ta)) * (r.back ? -1.0 : 1.0);
+    // Textured materials are looked up at the G-buffer point (deferred texturing).
+    if (mat.emissive.w != 0.0) radiance += emission_at(mat, r.tri, r.bary.x, r.bary.y);
+    Surface s = receiver_surface(r);
+    float normal_offset = pc.normal_offset;
+    int pcf = int(pc.pcf_radius);
+    for (uint i = 0u; i < pc.light_count; ++i) {
+      vec3 wi;
+      float dist;
+      vec3 e = punctual_incident(scene_lights[i], p, wi, dist);
+      float cos_i = dot(n, wi);
+      if (cos_i <= 0.0 || dot(ng, wi) <= 0.0 || all(equal(e, vec3(0.0)))) continue;
+      float vis = int(scene_lights[i].position.w) == GIQ_LIGHT_DIRECTIONAL
+                      ? shadow_cascades(light_shadow_layer[i], dot(p - pc.camera.position.xyz, pc.camera.forward.xyz), p, n, normal_offset, pcf)
+                      : shadow_cube(light_shadow_layer[i], scene_lights[i].position.xyz, p, n, normal_offset, pcf);
+      radiance += brdf_eval(s, wo, wi) * e * cos_i * vis;
+    }
+    for (uint i = 0u; i < pc.area_light_count; ++i) {
+      GpuAreaLight l = area_lights[i];
+      vec3 c = area_light(l, s, p, wo);
+      if (all(equal(c, vec3(0.0)))) continue;
+      radiance += c * shadow_cube(uint(l.position.w), l.position.xyz, p, n, normal_offset, pcf);
     }
   }
   imageStore(out_direct, px, vec4(radiance, 1.0));

@@ -22,7 +22,7 @@ std::vector<Parameter> DirectLightPass::parameters() {
 
 DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
     : ctx_(&ci.ctx), scene_gpu_(ci.scene_gpu), width_(ci.width), height_(ci.height),
-      pcf_radius_(float(ci.parameters.get_int("pcf_radius"))),
+      pcf_radius_(uint32_t(ci.parameters.get_int("pcf_radius"))),
       normal_offset_(float(ci.parameters.get("normal_offset"))),
       shadows_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.bounds, uint32_t(ci.parameters.get_int("shadow_map_size"))) {
   shadows_.set_split_lambda(float(ci.parameters.get("cascade_split_lambda")));
@@ -38,9 +38,8 @@ DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
   light_layer_buffer_ = Buffer::storage(ci.ctx, light_layer_);
   upload_area_lights(ci.ctx);
 
-  auto bindings = SceneGpu::binding_types();
-  bindings.insert(bindings.end(), {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+  auto bindings = GBufferPass::receiver_bindings();
+  bindings.insert(bindings.end(), {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
@@ -83,10 +82,7 @@ void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer
   in.timer.begin(in.cmd, "direct_lighting");
   direct_.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
   pipeline_.bind(in.cmd);
-  auto d = scene_gpu_.descriptors();
-  d.push_back(Descriptor::storage_image(gbuffer.position()));
-  d.push_back(Descriptor::storage_image(gbuffer.normal()));
-  d.push_back(Descriptor::storage_image(gbuffer.ids()));
+  auto d = gbuffer.receiver_descriptors();
   d.push_back(Descriptor::sampled(shadows_.depth(), shadows_.sampler()));
   d.push_back(Descriptor::storage(shadows_.layers()));
   d.push_back(Descriptor::storage(area_light_buffer_));
@@ -96,44 +92,34 @@ void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer
   pipeline_.push_descriptors(in.cmd, d);
   gpu::DirectPush pc{};
   pc.camera = gpu::make_gpu_camera(in.camera);
-  pc.viewport = glm::vec4(float(width_), float(height_), normal_offset_, pcf_radius_);
   pc.environment = glm::vec4(in.scene.environment, 0.0f);
-  pc.counts = glm::uvec4(scene_gpu_.light_count(), uint32_t(area_lights_.size()), 0, 0);
+  pc.size = glm::uvec2(width_, height_);
+  pc.normal_offset = normal_offset_;
+  pc.pcf_radius = pcf_radius_;
+  pc.light_count = scene_gpu_.light_count();
+  pc.area_light_count = uint32_t(area_lights_.size());
   pipeline_.push_constants(in.cmd, pc);
   pipeline_.dispatch_2d(in.cmd, width_, height_);
   full_barrier(in.cmd);
   in.timer.end(in.cmd);
 }
 
-// One area light per emissive mesh; its representative point (for the shadow cube) is the
-// area-weighted centroid, moved a hair in front of the mesh along its mean normal so that the
-// emitter does not shadow itself. The shadow layer (position.w) is set by the caller.
+// One area light per emissive mesh (the scene's AreaLight), its triangles integrated exactly;
+// its representative point is where the shadow cube sits. The shadow layer (position.w) is set
+// by the caller.
 void DirectLightPass::build_area_lights(const scenes::Scene& scene) {
-  std::vector<std::vector<const scenes::EmissiveTriangle*>> per_mesh(scene.meshes.size());
-  for (const auto& e : scene.emissive_triangles)
-    if (e.area > 0.0f && e.power > 0.0f) per_mesh[e.mesh].push_back(&e);
-  const float offset = 1e-4f * std::max(glm::length(scene.bounds.extent()), 1e-6f);
-  for (size_t m = 0; m < per_mesh.size(); ++m) {
-    if (per_mesh[m].empty()) continue;
-    const auto& mesh = scene.meshes[m];
-    const bool two_sided = scene.materials[mesh.material].double_sided;
-    glm::vec3 centroid(0.0f), normal(0.0f);
-    float area = 0.0f;
+  for (const scenes::AreaLight& a : scene.area_lights) {
+    const scenes::Mesh& mesh = scene.meshes[a.mesh];
     gpu::GpuAreaLight l;
-    l.range = glm::uvec4(uint32_t(area_triangles_.size()), uint32_t(per_mesh[m].size()), 0, 0);
-    for (const auto* e : per_mesh[m]) {
-      const auto t = mesh.triangles[e->triangle];
-      const glm::vec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
-      centroid += e->area * (a + b + c) / 3.0f;
-      normal += glm::cross(b - a, c - a);
-      area += e->area;
-      area_triangles_.push_back({glm::vec4(a, two_sided ? 1.0f : 0.0f), glm::vec4(b, 0.0f), glm::vec4(c, 0.0f),
-                                 glm::vec4(e->radiance, 0.0f)});
+    l.range = glm::uvec4(uint32_t(area_triangles_.size()), uint32_t(a.triangles.size()), 0, 0);
+    for (const uint32_t i : a.triangles) {
+      const scenes::EmissiveTriangle& e = scene.emissive_triangles[i];
+      const auto t = mesh.triangles[e.triangle];
+      area_triangles_.push_back({glm::vec4(mesh.positions[t.x], a.two_sided ? 1.0f : 0.0f),
+                                 glm::vec4(mesh.positions[t.y], 0.0f), glm::vec4(mesh.positions[t.z], 0.0f),
+                                 glm::vec4(e.radiance, 0.0f)});
     }
-    centroid /= area;
-    const float nl = glm::length(normal);
-    if (!two_sided && nl > 0.0f) centroid += normal / nl * offset;
-    l.position = glm::vec4(centroid, 0.0f);
+    l.position = glm::vec4(a.representative, 0.0f);
     area_lights_.push_back(l);
   }
 }

@@ -49,7 +49,8 @@ class DirectLightPass {
   Context* ctx_;
   const SceneGpu& scene_gpu_;
   uint32_t width_, height_;
-  float pcf_radius_, normal_offset_;
+  uint32_t pcf_radius_;
+  float normal_offset_;
   ShadowMaps shadows_;
   std::vector<uint32_t> light_layer_;
   std::vector<gpu::GpuAreaLight> area_lights_;

@@ -6,14 +6,19 @@
 
 #ifdef __cplusplus
 namespace giq::realtime::gpu {
+using uvec2 = glm::uvec2;
 using uvec4 = glm::uvec4;
 #endif
 
 struct DirectPush {
   GpuCamera camera;
-  vec4 viewport;     // x width, y height, z normal offset (texels), w PCF radius
-  vec4 environment;  // rgb constant environment radiance
-  uvec4 counts;      // x punctual lights, y area lights
+  vec4 environment;       // rgb constant environment radiance
+  uvec2 size;             // the image's width and height
+  float normal_offset;    // receiver offset along its normal, in shadow-map texels
+  uint pcf_radius;        // PCF kernel radius in texels
+  uint light_count;       // punctual lights
+  uint area_light_count;  // emissive meshes
+  uint pad0, pad1;
 };
 
 // An emissive mesh as one area light: its triangles are integrated exactly (unshadowed), and

@@ -1,6 +1,7 @@
 #include "passes/gbuffer.h"
 
 #include "giq/realtime/context.h"
+#include "giq/realtime/raster.h"
 #include "giq/realtime/scene_gpu.h"
 #include "giq/realtime/shader.h"
 #include "giq/realtime/timer.h"
@@ -45,6 +46,21 @@ GBufferPass::GBufferPass(Context& ctx, ShaderCompiler& compiler, const SceneGpu&
   pipeline_ = Pipeline::graphics(ctx, g, SceneGpu::binding_types(), sizeof(gpu::GBufferPush));
 }
 
+GBufferPass::GBufferPass(const TechniqueCreateInfo& ci)
+    : GBufferPass(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.features, ci.width, ci.height, builder(ci.parameters)) {}
+
+std::vector<VkDescriptorType> GBufferPass::receiver_bindings() {
+  auto b = SceneGpu::binding_types();
+  b.insert(b.end(), 3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+  return b;
+}
+
+std::vector<Descriptor> GBufferPass::receiver_descriptors() {
+  auto d = scene_.descriptors();
+  for (Image* i : {&position_, &normal_, &ids_}) d.push_back(Descriptor::storage_image(*i));
+  return d;
+}
+
 void GBufferPass::record(VkCommandBuffer cmd, const scenes::Camera& camera, GpuTimer& timer) {
   // A camera without a near plane (znear 0) would map every depth to 1; 1 mm keeps the
   // rasteriser working at every scene scale the tests use.
@@ -66,40 +82,11 @@ void GBufferPass::record(VkCommandBuffer cmd, const scenes::Camera& camera, GpuT
   }
   for (Image* i : {&position_, &normal_, &ids_}) i->transition(cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
   depth_.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
-  VkRenderingAttachmentInfo colors[3];
-  Image* targets[3] = {&position_, &normal_, &ids_};
-  for (int i = 0; i < 3; ++i) {
-    colors[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    colors[i].imageView = targets[i]->view();
-    colors[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    colors[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    colors[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    colors[i].clearValue = {};
-  }
-  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-  depth.imageView = depth_.view();
-  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  depth.clearValue.depthStencil = {1.0f, 0};
-  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-  ri.renderArea = {{0, 0}, {width_, height_}};
-  ri.layerCount = 1;
-  ri.colorAttachmentCount = 3;
-  ri.pColorAttachments = colors;
-  ri.pDepthAttachment = &depth;
-  vkCmdBeginRendering(cmd, &ri);
-  VkViewport vp{0.0f, 0.0f, float(width_), float(height_), 0.0f, 1.0f};
-  VkRect2D sc{{0, 0}, {width_, height_}};
-  vkCmdSetViewport(cmd, 0, 1, &vp);
-  vkCmdSetScissor(cmd, 0, 1, &sc);
+  begin_rendering(cmd, width_, height_, {{position_.view(), normal_.view(), ids_.view()}, depth_.view(), false});
   pipeline_.bind(cmd);
   pipeline_.push_descriptors(cmd, scene_.descriptors());
   pipeline_.push_constants(cmd, pc);
-  if (scene_.triangle_count() > 0) {
-    vkCmdBindIndexBuffer(cmd, scene_.index_buffer().handle(), 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, 3 * scene_.triangle_count(), 1, 0, 0, 0);
-  }
+  draw_scene(cmd, scene_);
   vkCmdEndRendering(cmd);
   for (Image* i : {&position_, &normal_, &ids_}) i->transition(cmd, VK_IMAGE_LAYOUT_GENERAL);
   timer.end(cmd);

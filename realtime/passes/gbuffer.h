@@ -18,6 +18,7 @@
 //     for anything that did not move, it is 0. Pass "motion_vectors".
 
 #include <cstdint>
+#include <vector>
 
 #include "giq/realtime/pipeline.h"
 #include "giq/realtime/resources.h"
@@ -48,10 +49,17 @@ class GBufferPass {
 
   GBufferPass(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene, const scenes::FeatureSet& features,
               uint32_t width, uint32_t height, GBufferBuilder builder = GBufferBuilder::Raster);
+  // At the technique's resolution, with the builder its "gbuffer_ray_traced" parameter names.
+  explicit GBufferPass(const TechniqueCreateInfo& ci);
   bool ray_traced() const { return ray_traced_; }
   // For temporal techniques: also write motion vectors on every record().
   void enable_motion_vectors();
   void record(VkCommandBuffer cmd, const scenes::Camera& camera, GpuTimer& timer);
+
+  // A deferred lighting pass's first bindings: the scene's, then position, normal and ids
+  // (passes/receiver.glsl).
+  static std::vector<VkDescriptorType> receiver_bindings();
+  std::vector<Descriptor> receiver_descriptors();
 
   Image& position() { return position_; }
   Image& normal() { return normal_; }

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "giq/realtime/context.h"
+#include "giq/realtime/raster.h"
 #include "giq/realtime/scene_gpu.h"
 #include "giq/realtime/shader.h"
 #include "giq/realtime/timer.h"
@@ -26,8 +27,8 @@ void build(const scenes::Scene& scene, uint32_t ortho_size, uint32_t cube_size,
   emitters.clear();
   layers.clear();
   const scenes::Bounds& b = scene.bounds;
-  const float diag = std::max(glm::length(b.extent()), 1e-6f);
-  const glm::vec3 c0 = b.empty() ? glm::vec3(0.0f) : 0.5f * (b.lo + b.hi);
+  const float diag = b.diagonal();
+  const glm::vec3 c0 = b.centre();
   auto add_cube = [&](glm::vec3 position, glm::vec3 intensity) {
     const float emitter = float(emitters.size());
     for (int f = 0; f < 6; ++f)
@@ -57,31 +58,10 @@ void build(const scenes::Scene& scene, uint32_t ortho_size, uint32_t cube_size,
     }
     emitters.push_back(e);
   }
-  std::vector<std::vector<const scenes::EmissiveTriangle*>> per_mesh(scene.meshes.size());
-  for (const auto& e : scene.emissive_triangles)
-    if (e.area > 0.0f && e.power > 0.0f) per_mesh[e.mesh].push_back(&e);
-  const float offset = 1e-4f * diag;
-  for (size_t m = 0; m < per_mesh.size(); ++m) {
-    if (per_mesh[m].empty()) continue;
-    const auto& mesh = scene.meshes[m];
-    const bool two_sided = scene.materials[mesh.material].double_sided;
-    glm::vec3 centroid(0.0f), normal(0.0f), intensity(0.0f);
-    float area = 0.0f;
-    for (const auto* e : per_mesh[m]) {
-      const auto t = mesh.triangles[e->triangle];
-      const glm::vec3 a = mesh.positions[t.x], bb = mesh.positions[t.y], c = mesh.positions[t.z];
-      centroid += e->area * (a + bb + c) / 3.0f;
-      normal += glm::cross(bb - a, c - a);
-      area += e->area;
-      intensity += e->radiance * e->area;  // a Lambertian emitter: I(n) = L A
-    }
-    centroid /= area;
-    const float nl = glm::length(normal);
-    const glm::vec3 n = nl > 0.0f ? normal / nl : glm::vec3(0, -1, 0);
-    if (!two_sided && nl > 0.0f) centroid += n * offset;
-    gpu::GpuRsmEmitter e{glm::vec4(centroid, GIQ_RSM_AREA), glm::vec4(n, two_sided ? 1.0f : 0.0f),
-                         glm::vec4(intensity, 0.0f), glm::uvec4(uint32_t(layers.size()), 6, 0, 0)};
-    add_cube(centroid, intensity);
+  for (const scenes::AreaLight& a : scene.area_lights) {
+    gpu::GpuRsmEmitter e{glm::vec4(a.representative, GIQ_RSM_AREA), glm::vec4(a.normal, a.two_sided ? 1.0f : 0.0f),
+                         glm::vec4(a.intensity, 0.0f), glm::uvec4(uint32_t(layers.size()), 6, 0, 0)};
+    add_cube(a.representative, a.intensity);
     emitters.push_back(e);
   }
 }
@@ -158,40 +138,14 @@ void ReflectiveShadowMaps::record(const FrameInput& in) {
     pipeline_.push_descriptors(in.cmd, d);
     for (uint32_t l = 0; l < layer_count(); ++l) {
       const uint32_t size = uint32_t(layers_[l].params.y);
-      VkRenderingAttachmentInfo colors[2];
-      Image* targets[2] = {&surface_, &flux_};
-      for (int i = 0; i < 2; ++i) {
-        colors[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        colors[i].imageView = targets[i]->layer_view(l);
-        colors[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        colors[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;  // empty texels: zero flux
-        colors[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        colors[i].clearValue = {};
-      }
-      VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-      depth.imageView = depth_.view();
-      depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-      depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-      depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-      depth.clearValue.depthStencil = {1.0f, 0};
-      VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-      ri.renderArea = {{0, 0}, {extent_, extent_}};
-      ri.layerCount = 1;
-      ri.colorAttachmentCount = 2;
-      ri.pColorAttachments = colors;
-      ri.pDepthAttachment = &depth;
-      vkCmdBeginRendering(in.cmd, &ri);
-      VkViewport vp{0.0f, 0.0f, float(size), float(size), 0.0f, 1.0f};
-      VkRect2D sc{{0, 0}, {size, size}};
-      vkCmdSetViewport(in.cmd, 0, 1, &vp);
-      vkCmdSetScissor(in.cmd, 0, 1, &sc);
+      // The whole layer is cleared (empty texels hold zero flux: injection reads the array's
+      // full extent), the layer's own size drawn.
+      begin_rendering(in.cmd, extent_, extent_, {{surface_.layer_view(l), flux_.layer_view(l)}, depth_.view(), false},
+                      {size, size});
       gpu::RsmDrawPush pc{layers_[l].view_proj,
                           glm::vec4(layers_[l].params.w, draw_scale_[l], 0.0f, 0.0f)};
       pipeline_.push_constants(in.cmd, pc);
-      if (scene_gpu_.triangle_count() > 0) {
-        vkCmdBindIndexBuffer(in.cmd, scene_gpu_.index_buffer().handle(), 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(in.cmd, 3 * scene_gpu_.triangle_count(), 1, 0, 0, 0);
-      }
+      draw_scene(in.cmd, scene_gpu_);
       vkCmdEndRendering(in.cmd);
     }
     surface_.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);

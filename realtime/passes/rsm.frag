@@ -1,5 +1,5 @@
 #version 460
-// Reflective shadow map texel (seed 000, section 2.1 and 2.2: "flux is the light's colour
+// Reflective shadow map texel (Afanasev 2021, section 2.1 and 2.2: "flux is the light's colour
 // times the surface colour"): the surface the light sees through this texel as a virtual
 // point light (position, normal) and the light it reflects diffusely.
 //

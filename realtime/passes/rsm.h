@@ -1,5 +1,5 @@
 #pragma once
-// The shared reflective-shadow-map pass (seed 000, chapter II; Dachsbacher and Stamminger 2005,
+// The shared reflective-shadow-map pass (Afanasev 2021, chapter II; Dachsbacher and Stamminger 2005,
 // "Reflective Shadow Maps"): every light's view of the scene as virtual point lights (VPLs),
 // one texel each: position, normal and the flux density the surface reflects diffusely
 // (rsm.frag). `rsm` gathers one bounce from them; `lpv` downsamples and injects them.

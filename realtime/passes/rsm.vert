@@ -1,5 +1,5 @@
 #version 460
-// Reflective shadow map (seed 000, chapter II; Dachsbacher and Stamminger 2005): the scene
+// Reflective shadow map (Afanasev 2021, chapter II; Dachsbacher and Stamminger 2005): the scene
 // rasterised from one light's view into one layer. Vertices pulled from the scene buffer.
 #extension GL_GOOGLE_include_directive : require
 

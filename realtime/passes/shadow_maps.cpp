@@ -7,15 +7,11 @@
 #include "giq/realtime/context.h"
 #include "giq/realtime/scene_gpu.h"
 #include "giq/realtime/shader.h"
+#include "giq/realtime/raster.h"
 #include "giq/realtime/timer.h"
 #include "passes/shadow_maps_shared.h"
 
 namespace giq::realtime {
-
-namespace {
-float diagonal(const scenes::Bounds& b) { return std::max(glm::length(b.extent()), 1e-6f); }
-glm::vec3 centre(const scenes::Bounds& b) { return b.empty() ? glm::vec3(0.0f) : 0.5f * (b.lo + b.hi); }
-}  // namespace
 
 ShadowMaps::ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene, const scenes::Bounds& bounds,
                        uint32_t size)
@@ -41,8 +37,8 @@ uint32_t ShadowMaps::add_cube(glm::vec3 position) {
 
 glm::mat4 ShadowMaps::cube_face_view_proj(glm::vec3 position, const scenes::Bounds& bounds, int face) {
   // Near plane: a thousandth of the scene; far: beyond the farthest point of the scene.
-  const float diag = diagonal(bounds);
-  const float znear = 1e-3f * diag, zfar = 2.0f * diag + glm::length(position - centre(bounds));
+  const float diag = bounds.diagonal();
+  const float znear = 1e-3f * diag, zfar = 2.0f * diag + glm::length(position - bounds.centre());
   const glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(90.0f), 1.0f, znear, zfar);
   const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
@@ -107,8 +103,8 @@ void ShadowMaps::update_cascades(const Source& s, const scenes::Camera& camera, 
   const float t = std::tan(0.5f * camera.yfov);
   // The light's view is fixed for the scene (so texel snapping below is stable as the camera
   // moves): looking along the light from outside the scene's bounding sphere.
-  const float radius = 0.5f * diagonal(bounds_);
-  const glm::vec3 c0 = centre(bounds_);
+  const float radius = 0.5f * bounds_.diagonal();
+  const glm::vec3 c0 = bounds_.centre();
   const glm::vec3 up = std::abs(s.v.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
   const glm::mat4 view = glm::lookAtRH(c0 - s.v * (2.0f * radius), c0, up);
   auto split = [&](int i) {
@@ -154,28 +150,11 @@ void ShadowMaps::record(VkCommandBuffer cmd, const scenes::Camera& camera, float
   pipeline_.push_descriptors(cmd, scene_.descriptors());
   for (uint32_t l = 0; l < layer_count(); ++l) {
     if (cache_static_ && !cubes_stale_ && params_[l].x == GIQ_SHADOW_CUBE_FACE) continue;
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = depth_.layer_view(l);
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    depth.clearValue.depthStencil = {1.0f, 0};
-    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    ri.renderArea = {{0, 0}, {size_, size_}};
-    ri.layerCount = 1;
-    ri.pDepthAttachment = &depth;
-    vkCmdBeginRendering(cmd, &ri);
-    VkViewport vp{0.0f, 0.0f, float(size_), float(size_), 0.0f, 1.0f};
-    VkRect2D sc{{0, 0}, {size_, size_}};
-    vkCmdSetViewport(cmd, 0, 1, &vp);
-    vkCmdSetScissor(cmd, 0, 1, &sc);
+    begin_rendering(cmd, size_, size_, {{}, depth_.layer_view(l), true});
     // Slope-scaled bias: surfaces at grazing angles to the light need the most.
     vkCmdSetDepthBias(cmd, 0.0f, 0.0f, 1.5f);
     pipeline_.push_constants(cmd, layers_[l]);
-    if (scene_.triangle_count() > 0) {
-      vkCmdBindIndexBuffer(cmd, scene_.index_buffer().handle(), 0, VK_INDEX_TYPE_UINT32);
-      vkCmdDrawIndexed(cmd, 3 * scene_.triangle_count(), 1, 0, 0, 0);
-    }
+    draw_scene(cmd, scene_);
     vkCmdEndRendering(cmd);
   }
   depth_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);

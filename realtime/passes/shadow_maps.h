@@ -1,5 +1,5 @@
 #pragma once
-// The shared shadow-map pass (seed 004 section 5.4): cube maps for point and spot lights and
+// The shared shadow-map pass (Kim-Chan 2022, section 5.4): cube maps for point and spot lights and
 // for the representative points of area lights, cascaded maps for directional lights, all as
 // layers of one depth 2D array so that lookups need no descriptor indexing. A cube is six
 // 90-degree layers (+x, -x, +y, -y, +z, -z); the lighting shader picks the face by the major

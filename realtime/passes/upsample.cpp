@@ -26,6 +26,10 @@ UpsamplePass::UpsamplePass(Context& ctx, ShaderCompiler& compiler, uint32_t widt
                                 sizeof(gpu::UpsamplePush));
 }
 
+UpsamplePass::UpsamplePass(const TechniqueCreateInfo& ci)
+    : UpsamplePass(ci.ctx, ci.compiler, ci.width, ci.height, uint32_t(ci.parameters.get_int("downsample")),
+                   ci.parameters.get_int("blur") != 0) {}
+
 void UpsamplePass::dispatch(VkCommandBuffer cmd, GBufferPass& gbuffer, Image& src, Image& dst, uint32_t mode) {
   dst.transition(cmd, VK_IMAGE_LAYOUT_GENERAL);
   pipeline_.bind(cmd);

@@ -1,6 +1,6 @@
 #pragma once
 // The shared "shade at 1/k resolution, bring it back" pass of screen-space GI techniques
-// (seed 000 §II.2.2.1 and §IV: RSM and VCT compute their indirect light at 1/k of the
+// (Afanasev 2021 §II.2.2.1 and §IV: RSM and VCT compute their indirect light at 1/k of the
 // screen's resolution and restore it with UpsampleBlurCS). The thesis upsamples bilinearly
 // and blurs 9×9 with no regard for edges, which smears indirect light across depth and normal
 // discontinuities (the "glow" around objects). Here both steps are edge-aware, guided by the
@@ -34,6 +34,8 @@ class UpsamplePass {
   static std::vector<Parameter> parameters(int default_k);
 
   UpsamplePass(Context& ctx, ShaderCompiler& compiler, uint32_t width, uint32_t height, uint32_t k, bool blur);
+  // At the technique's resolution, with its "downsample" and "blur" parameters.
+  explicit UpsamplePass(const TechniqueCreateInfo& ci);
 
   uint32_t factor() const { return k_; }
   uint32_t low_width() const { return (width_ + k_ - 1) / k_; }

@@ -23,6 +23,13 @@ Descriptor Descriptor::storage_image(const Image& i) {
   return d;
 }
 
+Descriptor Descriptor::storage_image(const Image& i, uint32_t level) {
+  Descriptor d;
+  d.type = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  d.image = {VK_NULL_HANDLE, i.level_view(level), VK_IMAGE_LAYOUT_GENERAL};
+  return d;
+}
+
 Descriptor Descriptor::sampled(const Image& i, const Sampler& s) {
   Descriptor d;
   d.type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;

@@ -99,7 +99,6 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
     on_frame(out);
   }
 
-  const std::vector<std::string> declared = technique->passes();
   nlohmann::json run = {
       {"giq_version", version()},
       {"technique", info.name},
@@ -112,7 +111,6 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
                   {"vulkan", std::to_string(VK_API_VERSION_MAJOR(ctx.info().api_version)) + "." +
                                  std::to_string(VK_API_VERSION_MINOR(ctx.info().api_version)) + "." +
                                  std::to_string(VK_API_VERSION_PATCH(ctx.info().api_version))}}},
-      {"declared_passes", declared},
       {"gpu_memory_mb", {{"scene", double(memory_scene - memory_before) / (1 << 20)},
                          {"technique", double(memory_technique) / (1 << 20)}}},
       {"validation", ctx.validation_enabled()},

@@ -110,11 +110,23 @@ VkImageAspectFlags Image::aspect() const {
 }
 
 Image::Image(Context& ctx, const ImageDesc& desc) : ctx_(&ctx), desc_(desc) {
+  const bool volume = desc.depth > 1;
+  const bool mutable_format = desc.sampled_format != VK_FORMAT_UNDEFINED;
+  const VkFormat formats[2] = {desc.format, desc.sampled_format};
+  VkImageFormatListCreateInfo list{VK_STRUCTURE_TYPE_IMAGE_FORMAT_LIST_CREATE_INFO};
+  list.viewFormatCount = 2;
+  list.pViewFormats = formats;
   VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  ci.imageType = VK_IMAGE_TYPE_2D;
+  if (mutable_format) {
+    // The sampled format may lack storage support (sRGB formats do): each view declares the
+    // usage it needs.
+    ci.pNext = &list;
+    ci.flags = VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT | VK_IMAGE_CREATE_EXTENDED_USAGE_BIT;
+  }
+  ci.imageType = volume ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
   ci.format = desc.format;
-  ci.extent = {desc.width, desc.height, 1};
-  ci.mipLevels = 1;
+  ci.extent = {desc.width, desc.height, desc.depth};
+  ci.mipLevels = desc.levels;
   ci.arrayLayers = desc.layers;
   ci.samples = VK_SAMPLE_COUNT_1_BIT;
   ci.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -126,19 +138,36 @@ Image::Image(Context& ctx, const ImageDesc& desc) : ctx_(&ctx), desc_(desc) {
     vkGetImageMemoryRequirements(ctx.device(), image_, &req);
     alloc_ = ctx.allocator().allocate(req, MemoryUsage::Device, false);
     vk_check(vkBindImageMemory(ctx.device(), image_, alloc_.memory, alloc_.offset), "vkBindImageMemory");
+    VkImageViewUsageCreateInfo sampled_usage{VK_STRUCTURE_TYPE_IMAGE_VIEW_USAGE_CREATE_INFO};
+    sampled_usage.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+    VkImageViewUsageCreateInfo storage_usage{VK_STRUCTURE_TYPE_IMAGE_VIEW_USAGE_CREATE_INFO};
+    storage_usage.usage = VK_IMAGE_USAGE_STORAGE_BIT;
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vi.pNext = mutable_format ? &sampled_usage : nullptr;
     vi.image = image_;
-    vi.viewType = desc.layers > 1 || desc.array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
-    vi.format = desc.format;
-    vi.subresourceRange = {aspect(), 0, 1, 0, desc.layers};
+    vi.viewType = volume                         ? VK_IMAGE_VIEW_TYPE_3D
+                  : desc.layers > 1 || desc.array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
+                                                  : VK_IMAGE_VIEW_TYPE_2D;
+    vi.format = mutable_format ? desc.sampled_format : desc.format;
+    vi.subresourceRange = {aspect(), 0, desc.levels, 0, desc.layers};
     vk_check(vkCreateImageView(ctx.device(), &vi, nullptr, &view_), "vkCreateImageView");
-    for (uint32_t l = 0; l < desc.layers; ++l) {
-      vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-      vi.subresourceRange = {aspect(), 0, 1, l, 1};
-      VkImageView v;
-      vk_check(vkCreateImageView(ctx.device(), &vi, nullptr, &v), "vkCreateImageView");
-      layer_views_.push_back(v);
-    }
+    vi.pNext = mutable_format ? &storage_usage : nullptr;
+    vi.format = desc.format;
+    if (desc.levels > 1 || volume)
+      for (uint32_t l = 0; l < desc.levels; ++l) {
+        vi.subresourceRange = {aspect(), l, 1, 0, desc.layers};
+        VkImageView v;
+        vk_check(vkCreateImageView(ctx.device(), &vi, nullptr, &v), "vkCreateImageView");
+        level_views_.push_back(v);
+      }
+    if (!volume)
+      for (uint32_t l = 0; l < desc.layers; ++l) {
+        vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        vi.subresourceRange = {aspect(), 0, 1, l, 1};
+        VkImageView v;
+        vk_check(vkCreateImageView(ctx.device(), &vi, nullptr, &v), "vkCreateImageView");
+        layer_views_.push_back(v);
+      }
   } catch (...) {
     release();
     throw;
@@ -150,7 +179,9 @@ Image::~Image() { release(); }
 void Image::release() {
   if (!ctx_) return;
   for (auto v : layer_views_) vkDestroyImageView(ctx_->device(), v, nullptr);
+  for (auto v : level_views_) vkDestroyImageView(ctx_->device(), v, nullptr);
   layer_views_.clear();
+  level_views_.clear();
   if (view_) vkDestroyImageView(ctx_->device(), view_, nullptr);
   if (image_) vkDestroyImage(ctx_->device(), image_, nullptr);
   ctx_->allocator().free(alloc_);
@@ -160,8 +191,10 @@ void Image::release() {
 Image::Image(Image&& o) noexcept
     : ctx_(std::exchange(o.ctx_, nullptr)), image_(std::exchange(o.image_, VK_NULL_HANDLE)),
       view_(std::exchange(o.view_, VK_NULL_HANDLE)), layer_views_(std::move(o.layer_views_)),
-      alloc_(std::exchange(o.alloc_, {})), desc_(o.desc_), layout_(o.layout_) {
+      level_views_(std::move(o.level_views_)), alloc_(std::exchange(o.alloc_, {})), desc_(o.desc_),
+      layout_(o.layout_) {
   o.layer_views_.clear();
+  o.level_views_.clear();
 }
 
 Image& Image::operator=(Image&& o) noexcept {
@@ -172,6 +205,8 @@ Image& Image::operator=(Image&& o) noexcept {
     view_ = std::exchange(o.view_, VK_NULL_HANDLE);
     layer_views_ = std::move(o.layer_views_);
     o.layer_views_.clear();
+    level_views_ = std::move(o.level_views_);
+    o.level_views_.clear();
     alloc_ = std::exchange(o.alloc_, {});
     desc_ = o.desc_;
     layout_ = o.layout_;
@@ -189,7 +224,7 @@ void Image::transition(VkCommandBuffer cmd, VkImageLayout layout) {
   b.newLayout = layout;
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image_;
-  b.subresourceRange = {aspect(), 0, 1, 0, desc_.layers};
+  b.subresourceRange = {aspect(), 0, desc_.levels, 0, desc_.layers};
   VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   di.imageMemoryBarrierCount = 1;
   di.pImageMemoryBarriers = &b;
@@ -254,6 +289,10 @@ void full_barrier(VkCommandBuffer cmd) {
   vkCmdPipelineBarrier2(cmd, &di);
 }
 
+Sampler::Sampler(Context& ctx, const VkSamplerCreateInfo& ci) : device_(ctx.device()) {
+  vk_check(vkCreateSampler(device_, &ci, nullptr, &sampler_), "vkCreateSampler");
+}
+
 Sampler::Sampler(Context& ctx, bool linear, bool depth_compare) : device_(ctx.device()) {
   VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   ci.magFilter = ci.minFilter = linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
@@ -263,6 +302,16 @@ Sampler::Sampler(Context& ctx, bool linear, bool depth_compare) : device_(ctx.de
   ci.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
   ci.maxLod = 0.0f;
   vk_check(vkCreateSampler(device_, &ci, nullptr, &sampler_), "vkCreateSampler");
+}
+
+Sampler Sampler::trilinear_transparent(Context& ctx, float max_lod) {
+  VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  ci.magFilter = ci.minFilter = VK_FILTER_LINEAR;
+  ci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  ci.addressModeU = ci.addressModeV = ci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
+  ci.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;
+  ci.maxLod = max_lod;
+  return Sampler(ctx, ci);
 }
 
 Sampler::~Sampler() {

@@ -48,6 +48,25 @@ double ParameterValues::get(std::string_view name) const {
   return it->second;
 }
 
+nlohmann::json techniques_json() {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& t : techniques()) {
+    nlohmann::json params = nlohmann::json::array();
+    for (const auto& p : t.parameters)
+      params.push_back({{"name", p.name},
+                        {"default", p.default_value},
+                        {"min", p.min_value},
+                        {"max", p.max_value},
+                        {"integer", p.integer},
+                        {"description", p.description}});
+    list.push_back({{"name", t.name},
+                    {"description", t.description},
+                    {"parameters", params},
+                    {"quality", {{"parameter", t.quality.parameter}, {"values", t.quality.values}}}});
+  }
+  return {{"version", 1}, {"techniques", list}};
+}
+
 const TechniqueInfo& find_technique(std::string_view name) {
   for (const auto& t : techniques())
     if (t.name == name) return t;

@@ -1,22 +1,25 @@
-// The registry of real-time techniques: adding a technique is adding its folder and one line
-// here.
+// The registry of real-time techniques. Adding a technique is adding its folder
+// (realtime/techniques/<name>/, whose <name>.cpp defines `TechniqueInfo <name>_technique()`)
+// and one line here.
 #include "giq/realtime/technique.h"
-#include "techniques/direct/direct.h"
-#include "techniques/lpv/lpv.h"
-#include "techniques/pt/pt.h"
-#include "techniques/rsm/rsm.h"
-#include "techniques/vct/vct.h"
+
+#define GIQ_TECHNIQUES(X) \
+  X(direct)               \
+  X(pt)                   \
+  X(rsm)                  \
+  X(lpv)                  \
+  X(vct)
 
 namespace giq::realtime {
 
+#define GIQ_DECLARE(name) TechniqueInfo name##_technique();
+GIQ_TECHNIQUES(GIQ_DECLARE)
+#undef GIQ_DECLARE
+
 const std::vector<TechniqueInfo>& techniques() {
-  static const std::vector<TechniqueInfo> all = {
-      direct_technique(),
-      pt_technique(),
-      rsm_technique(),
-      lpv_technique(),
-      vct_technique(),
-  };
+#define GIQ_ENTRY(name) name##_technique(),
+  static const std::vector<TechniqueInfo> all = {GIQ_TECHNIQUES(GIQ_ENTRY)};
+#undef GIQ_ENTRY
   return all;
 }
 

@@ -3,11 +3,8 @@
 #include <cmath>
 
 namespace giq::reference {
-namespace {
 
-double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
-
-}  // namespace
+using scenes::luminance;
 
 LightSampler::LightSampler(const scenes::Scene& scene, const EmbreeScene& bvh, glm::vec3 centre, float scene_radius)
     : scene_(scene), centre_(centre) {
@@ -38,23 +35,10 @@ LightSampler::LightSampler(const scenes::Scene& scene, const EmbreeScene& bvh, g
   const double r2 = double(scene_radius) * double(scene_radius);
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const scenes::Light& l = scene.lights[i];
-    const double y = luminance(l.radiant());
-    double phi = 0.0;
-    LightKind kind = LightKind::Point;
-    switch (l.type) {
-      case scenes::LightType::Point:
-        phi = 4.0 * pi * y;
-        break;
-      case scenes::LightType::Spot:
-        // Solid angle of the cone halfway between the inner and outer angles.
-        phi = 2.0 * pi * (1.0 - std::cos(0.5 * (double(l.inner_cone) + double(l.outer_cone)))) * y;
-        kind = LightKind::Spot;
-        break;
-      case scenes::LightType::Directional:
-        phi = pi * r2 * y;  // irradiance over the scene's cross-section
-        kind = LightKind::Directional;
-        break;
-    }
+    const double phi = l.power(scene_radius);
+    const LightKind kind = l.type == scenes::LightType::Spot          ? LightKind::Spot
+                           : l.type == scenes::LightType::Directional ? LightKind::Directional
+                                                                      : LightKind::Point;
     if (!(phi > 0.0) || !std::isfinite(phi)) continue;
     entries_.push_back({kind, uint32_t(i)});
     weights.push_back(phi);

@@ -72,11 +72,6 @@ void validate(const RenderSettings& s) {
   if (s.threads < 0) throw InputError("", "--threads", "threads " + std::to_string(s.threads) + " must be >= 0 (0 = all cores)");
 }
 
-glm::vec3 bounds_centre(const scenes::Scene& scene) {
-  if (scene.bounds.empty()) return glm::vec3(0.0f);
-  return 0.5f * (scene.bounds.lo + scene.bounds.hi);
-}
-
 float bounds_extent(const scenes::Scene& scene) {
   const glm::vec3 e = scene.bounds.extent();
   const float m = std::max(e.x, std::max(e.y, e.z));
@@ -87,7 +82,7 @@ float bounds_extent(const scenes::Scene& scene) {
 
 struct Renderer::Impl {
   Impl(const scenes::Scene& scene, const scenes::Camera& camera, const RenderSettings& settings)
-      : ctx(scene, camera, settings, bounds_centre(scene), bounds_extent(scene),
+      : ctx(scene, camera, settings, scene.bounds.centre(), bounds_extent(scene),
             std::max(1e-30f, 0.5f * glm::length(scene.bounds.extent()))),
         mask(settings.all_features ? (1u << kFeatureCount) - 1 : reference::feature_mask(scene.features)),
         kernels(kKernels[mask]) {}

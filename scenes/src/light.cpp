@@ -2,8 +2,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace giq::scenes {
+
+double luminance(glm::vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+double Light::power(double scene_radius) const {
+  const double y = luminance(radiant());
+  switch (type) {
+    case LightType::Point: return 4.0 * std::numbers::pi * y;
+    case LightType::Spot:
+      return 2.0 * std::numbers::pi * (1.0 - std::cos(0.5 * (double(inner_cone) + double(outer_cone)))) * y;
+    case LightType::Directional: return std::numbers::pi * (scene_radius * scene_radius) * y;
+  }
+  return 0.0;
+}
 
 float range_window(float distance, float range) {
   // KHR_lights_punctual, "Range Property", recommended implementation:

@@ -12,7 +12,6 @@ namespace giq::scenes {
 namespace {
 
 // Rec. ITU-R BT.709 relative luminance of linear RGB.
-double luminance(glm::vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
 // Mean of the emissive texture over a triangle: the triangle is split into k^2 congruent
 // sub-triangles (k even and at least the longest edge in texels) and the texture is sampled
@@ -43,6 +42,39 @@ glm::vec3 mean_emission(const Mesh& m, const glm::uvec3& t, const Texture& tex, 
 }
 
 }  // namespace
+
+void Scene::derive_area_lights() {
+  area_lights.clear();
+  std::vector<std::vector<uint32_t>> per_mesh(meshes.size());
+  for (uint32_t i = 0; i < emissive_triangles.size(); ++i)
+    if (emissive_triangles[i].power > 0.0f) per_mesh[emissive_triangles[i].mesh].push_back(i);
+  const float offset = 1e-4f * bounds.diagonal();
+  for (uint32_t m = 0; m < per_mesh.size(); ++m) {
+    if (per_mesh[m].empty()) continue;
+    const Mesh& mesh = meshes[m];
+    AreaLight l;
+    l.mesh = m;
+    l.triangles = per_mesh[m];
+    l.two_sided = materials[size_t(mesh.material)].double_sided;
+    glm::vec3 normal(0.0f);
+    for (const uint32_t i : l.triangles) {
+      const EmissiveTriangle& e = emissive_triangles[i];
+      const glm::uvec3 t = mesh.triangles[e.triangle];
+      const glm::vec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
+      l.centroid += e.area * (a + b + c) / 3.0f;
+      normal += glm::cross(b - a, c - a);
+      l.area += e.area;
+      l.intensity += e.radiance * e.area;  // a Lambertian emitter: I(n) = L A
+    }
+    l.centroid /= l.area;
+    const float nl = glm::length(normal);
+    l.flat = nl > 0.0f;
+    if (l.flat) l.normal = normal / nl;
+    l.representative = l.centroid;
+    if (!l.two_sided && l.flat) l.representative += l.normal * offset;
+    area_lights.push_back(std::move(l));
+  }
+}
 
 void Scene::derive() {
   features = FeatureSet{};
@@ -97,21 +129,12 @@ void Scene::derive() {
   }
   features.emissive_meshes = !emissive_triangles.empty();
 
-  // Punctual lights, roughly: a point light of intensity I emits 4 pi I; a spot, the solid
-  // angle of its cone (mid-way between inner and outer) times I; a directional light, its
-  // irradiance over the scene's bounding disc.
-  const glm::vec3 ext = bounds.extent();
-  const double radius = 0.5 * glm::length(glm::dvec3(ext));
-  for (const Light& l : lights) {
-    const double lum = luminance(l.radiant());
-    switch (l.type) {
-      case LightType::Point: stats.total_light_power += 4.0 * std::numbers::pi * lum; break;
-      case LightType::Spot:
-        stats.total_light_power += 2.0 * std::numbers::pi * (1.0 - std::cos(0.5 * (double(l.inner_cone) + l.outer_cone))) * lum;
-        break;
-      case LightType::Directional: stats.total_light_power += std::numbers::pi * radius * radius * lum; break;
-    }
-  }
+  // Punctual lights, roughly (Light::power), a directional light over the scene's bounding
+  // disc.
+  const double radius = 0.5 * glm::length(glm::dvec3(bounds.extent()));
+  for (const Light& l : lights) stats.total_light_power += l.power(radius);
+
+  derive_area_lights();
 
   // The sequence moves something when the playing clip has a channel whose keys differ and
   // there is more than one frame to see it.

@@ -18,7 +18,7 @@
 // Images are 0.5 grey with a small variance layer (references); "realtime": "brighten" makes
 // the technique's top-left quarter four times brighter.
 //
-// For sweeps it lists two techniques (`realtime --list`, in giq realtime's format). A frame
+// For sweeps it lists two techniques (`realtime --list --json`, in giq realtime's format). A frame
 // rendered with parameters costs 1 + (sum of the values) ms, twice that for "pt", and the
 // fake score of such a frame has flip_mean = 1 / (1 + sum), so every setting lies on a known
 // curve. A reference records its spp; its fake rmse is 0.5 / sqrt(spp) and its render time
@@ -135,11 +135,14 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (cmd == "realtime" && o.count("--list")) {
-    std::printf("direct\n    shadow maps\n");
-    std::printf("    --param pcf_radius=1   [0, 4] integer  PCF kernel radius\n");
-    std::printf("    --param normal_offset=1.5   [0, 8]  texels\n");
-    std::printf(
-        "pt\n    path tracer\n    --param samples_per_frame=1   [1, 64] integer  samples\n");
+    std::printf("%s\n", R"({"version": 1, "techniques": [
+      {"name": "direct", "description": "shadow maps", "parameters": [
+        {"name": "pcf_radius", "default": 1, "min": 0, "max": 4, "integer": true, "description": "PCF kernel radius"},
+        {"name": "normal_offset", "default": 1.5, "min": 0, "max": 8, "integer": false, "description": "texels"}],
+       "quality": {"parameter": "pcf_radius", "values": [0, 1, 2]}},
+      {"name": "pt", "description": "path tracer", "parameters": [
+        {"name": "samples_per_frame", "default": 1, "min": 1, "max": 64, "integer": true, "description": "samples"}],
+       "quality": {"parameter": "samples_per_frame", "values": [1, 4]}}]})");
     return 0;
   }
   if (cmd == "realtime") {

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "giq/base/error.h"
+#include "giq/base/frames.h"
 #include "giq/gate/config.h"
 #include "giq/gate/escape.h"
 #include "giq/gate/golden_manifest.h"
@@ -36,7 +37,7 @@ class GoldenManifest : public testing::Test {
     e.render_seconds = 1.5;
     e.giq_version = "0.1.0";
     for (int f = 0; f <= 1; ++f) {
-      const fs::path p = config_.golden_dir / key_ / giq::gate::golden_frame_name(f);
+      const fs::path p = config_.golden_dir / key_ / giq::frame_file(f);
       std::ofstream(p) << "frame " << f;
       e.files[p.filename().string()] = giq::gate::file_hash(p);
     }

@@ -1,4 +1,4 @@
-// giq sweep: the technique listing parser and the settings plan, then sweeps end to end with
+// giq sweep: the technique listing reader and the settings plan, then sweeps end to end with
 // fake_giq, whose costs and errors follow known curves, so the Pareto front and the
 // convergence slopes are known exactly.
 
@@ -23,13 +23,16 @@ namespace fs = std::filesystem;
 using giq::cli::Setting;
 using nlohmann::json;
 
-const char* kListing =
-    "direct\n    Shadow maps and one lighting pass\n"
-    "    --param shadow_map_size=2048   [256, 4096] integer  texels\n"
-    "    --param normal_offset=1.5   [0, 8]  texels\n"
-    "pt\n    Progressive path tracer\n    --param samples_per_frame=1   [1, 64] integer  samples\n";
+const char* kListing = R"({"version": 1, "techniques": [
+  {"name": "direct", "description": "Shadow maps and one lighting pass", "parameters": [
+    {"name": "shadow_map_size", "default": 2048, "min": 256, "max": 4096, "integer": true, "description": "texels"},
+    {"name": "normal_offset", "default": 1.5, "min": 0, "max": 8, "integer": false, "description": "texels"}],
+   "quality": {"parameter": "shadow_map_size", "values": [256, 1024]}},
+  {"name": "pt", "description": "Progressive path tracer", "parameters": [
+    {"name": "samples_per_frame", "default": 1, "min": 1, "max": 64, "integer": true, "description": "samples"}],
+   "quality": {"parameter": "samples_per_frame", "values": [1, 2, 4]}}]})";
 
-TEST(SweepPlan, ParsesTheListing) {
+TEST(SweepPlan, ReadsTheJsonListing) {
   const auto t = giq::cli::parse_technique_list(kListing);
   ASSERT_EQ(t.size(), 2u);
   EXPECT_EQ(t[0].name, "direct");
@@ -41,7 +44,9 @@ TEST(SweepPlan, ParsesTheListing) {
   EXPECT_FALSE(t[0].parameters[1].integer);
   EXPECT_DOUBLE_EQ(t[0].parameters[1].default_value, 1.5);
   EXPECT_EQ(t[1].parameters[0].name, "samples_per_frame");
-  EXPECT_THROW(giq::cli::parse_technique_list("x\n    --param broken\n"), giq::InputError);
+  EXPECT_EQ(giq::cli::quality_axis(t[1]), "pt.samples_per_frame=1,2,4");
+  EXPECT_THROW(giq::cli::parse_technique_list("direct\n    --param x=1   [0, 2]\n"), giq::InputError);
+  EXPECT_THROW(giq::cli::parse_technique_list(R"({"techniques": [{"name": "x"}]})"), giq::InputError);
 }
 
 TEST(SweepPlan, GridAutoAndDefaults) {

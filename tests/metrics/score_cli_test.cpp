@@ -4,15 +4,19 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
 #include <string>
 
 #include "giq/image/io.h"
 #include "giq/image/srgb.h"
+#include "giq/metrics/catalogue.h"
 #include "giq/scenes/scene.h"
 #include "synthetic.h"
 
@@ -64,6 +68,30 @@ image::Image reference() {
 
 }  // namespace
 
+TEST(MetricCatalogue, NamesAreUniqueAndEachIsDefinedInTheDocs) {
+  std::ifstream in(std::string(GIQ_SOURCE_DIR) + "/docs/metrics.md");
+  ASSERT_TRUE(in);
+  std::set<std::string> anchors;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("#", 0) != 0) continue;
+    // GitHub's anchor of a heading: lower case, letters, digits, spaces as '-', '-' and '_'.
+    std::string a;
+    for (char ch : line.substr(line.find_first_not_of('#')))
+      if (std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_') a += char(std::tolower(ch));
+      else if (ch == ' ') a += '-';
+    anchors.insert(a.substr(a.find_first_not_of('-')));
+  }
+  std::set<std::string_view> names;
+  for (const metrics::MetricInfo& m : metrics::kMetricCatalogue) {
+    EXPECT_TRUE(names.insert(m.name).second) << m.name;
+    EXPECT_TRUE(anchors.count(std::string(m.anchor))) << m.name << ": no section #" << m.anchor << " in docs/metrics.md";
+    EXPECT_EQ(metrics::find_metric_info(m.name), &m);
+  }
+  EXPECT_EQ(metrics::better_direction("psnr"), metrics::Better::Higher);
+  EXPECT_EQ(metrics::better_direction("last_frame.metrics.ssim"), metrics::Better::Higher);
+  EXPECT_EQ(metrics::better_direction("leak.declared.leak"), metrics::Better::Lower);
+}
+
 TEST(ScoreCli, SingleImageWritesMetricsMapsAndStrip) {
   const fs::path d = fresh_dir("single");
   image::Image ref = reference();
@@ -93,6 +121,20 @@ TEST(ScoreCli, SingleImageWritesMetricsMapsAndStrip) {
   EXPECT_GT(flip, 0.0);
   EXPECT_LT(flip, 1.0);
   EXPECT_EQ(j["inputs"]["dynamic_range"], "hdr");
+  // Every per-image metric of the catalogue is where the catalogue says, in its unit.
+  for (const metrics::MetricInfo& info : metrics::kMetricCatalogue) {
+    if (info.scope != metrics::Scope::Image) continue;
+    bool found = false;
+    for (std::string_view path : info.paths) {
+      if (path.empty()) continue;
+      const json::json_pointer pointer("/" + std::regex_replace(std::string(path), std::regex("\\."), "/"));
+      if (!m.contains(pointer)) continue;
+      found = true;
+      const json& v = m[pointer];
+      if (v.is_object()) EXPECT_EQ(v["unit"], std::string(info.unit)) << info.name;
+    }
+    EXPECT_TRUE(found) << info.name << " is not in metrics.json";
+  }
   const fs::path out = d / "out";
   for (const char* f : {"metrics.json", "abs_error.exr", "abs_error.png", "relative_error.exr", "relative_error.png",
                         "signed_luminance_error.exr", "signed_luminance_error.png", "leak.exr", "leak.png",

@@ -1,5 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <string>
+
 #include "giq/base/error.h"
 #include "giq/realtime/renderer.h"
 #include "giq/realtime/technique.h"
@@ -8,18 +13,51 @@
 namespace giq::realtime {
 namespace {
 
-TEST(Techniques, RegistryListsDirectAndPtWithTheirParameters) {
-  std::vector<std::string> names;
+TEST(Techniques, EveryRegisteredTechniqueDeclaresValidParametersAndAQualityKnob) {
+  std::set<std::string> names;
   for (const auto& t : techniques()) {
-    names.push_back(t.name);
+    EXPECT_TRUE(names.insert(t.name).second) << "registered twice: " << t.name;
+    EXPECT_FALSE(t.description.empty()) << t.name;
+    std::set<std::string> parameters;
     for (const auto& p : t.parameters) {
+      EXPECT_TRUE(parameters.insert(p.name).second) << t.name << " declares " << p.name << " twice";
       EXPECT_LE(p.min_value, p.default_value) << t.name << "." << p.name;
       EXPECT_LE(p.default_value, p.max_value) << t.name << "." << p.name;
-      EXPECT_FALSE(p.description.empty());
+      EXPECT_FALSE(p.description.empty()) << t.name << "." << p.name;
     }
+    // The quality knob is a declared parameter, swept from cheapest to best within its range.
+    const auto knob = std::find_if(t.parameters.begin(), t.parameters.end(),
+                                   [&](const Parameter& p) { return p.name == t.quality.parameter; });
+    ASSERT_NE(knob, t.parameters.end()) << t.name << "'s quality knob '" << t.quality.parameter << "'";
+    ASSERT_GE(t.quality.values.size(), 2u) << t.name;
+    for (size_t i = 0; i < t.quality.values.size(); ++i) {
+      EXPECT_GE(t.quality.values[i], knob->min_value) << t.name;
+      EXPECT_LE(t.quality.values[i], knob->max_value) << t.name;
+      if (i > 0) EXPECT_GT(t.quality.values[i], t.quality.values[i - 1]) << t.name;
+    }
+    EXPECT_EQ(&find_technique(t.name), &t);
   }
-  EXPECT_EQ(names, (std::vector<std::string>{"direct", "pt", "rsm", "lpv", "vct"}));
   EXPECT_THROW(find_technique("rtx"), InputError);
+}
+
+TEST(Techniques, TheJsonListingIsTheRegistry) {
+  const nlohmann::json j = techniques_json();
+  ASSERT_EQ(j["techniques"].size(), techniques().size());
+  for (size_t i = 0; i < techniques().size(); ++i) {
+    const TechniqueInfo& t = techniques()[i];
+    const nlohmann::json& e = j["techniques"][i];
+    EXPECT_EQ(e["name"], t.name);
+    ASSERT_EQ(e["parameters"].size(), t.parameters.size());
+    for (size_t k = 0; k < t.parameters.size(); ++k) {
+      EXPECT_EQ(e["parameters"][k]["name"], t.parameters[k].name);
+      EXPECT_EQ(e["parameters"][k]["default"].get<double>(), t.parameters[k].default_value);
+      EXPECT_EQ(e["parameters"][k]["min"].get<double>(), t.parameters[k].min_value);
+      EXPECT_EQ(e["parameters"][k]["max"].get<double>(), t.parameters[k].max_value);
+      EXPECT_EQ(e["parameters"][k]["integer"].get<bool>(), t.parameters[k].integer);
+    }
+    EXPECT_EQ(e["quality"]["parameter"], t.quality.parameter);
+    EXPECT_EQ(e["quality"]["values"].get<std::vector<double>>(), t.quality.values);
+  }
 }
 
 TEST(Techniques, ParametersAreValidated) {
@@ -133,6 +171,36 @@ TEST_F(RendererTest, PtAccumulatesAcrossFramesDeterministically) {
   for (size_t k = 0; k < 3; ++k)
     for (size_t i = 0; i < a[k].pixel_count(); ++i) ASSERT_EQ(a[k].channel("R")[i], b[k].channel("R")[i]);
   EXPECT_EQ(a[2].metadata.at("giq.technique_frame"), "3");
+}
+
+TEST_F(RendererTest, EveryRegisteredTechniqueRendersFiniteLayersAndTimesItsPasses) {
+  // Whatever a technique is, the renderer gets beauty, direct and indirect from it, finite,
+  // with beauty = direct + indirect where it composites, and timings for what it recorded.
+  const scenes::Scene s = test::cornell_box();
+  for (const auto& t : techniques()) {
+    SCOPED_TRACE(t.name);
+    RenderOptions o;
+    o.technique = t.name;
+    o.width = o.height = 16;
+    o.frames = 2;
+    // Cheap settings: the quality knob's cheapest value, small shadow and reflective shadow maps.
+    o.parameters = {t.quality.parameter + "=" + nlohmann::json(t.quality.values.front()).dump()};
+    for (const auto& p : t.parameters)
+      if (p.name != t.quality.parameter &&
+          (p.name == "shadow_map_size" || p.name == "rsm_size" || p.name == "rsm_cube_size"))
+        o.parameters.push_back(p.name + "=64");
+    image::Image last;
+    const auto j = render_sequence(*ctx, *compiler, s, o, [&](RenderedFrame& f) { last = std::move(f.image); });
+    for (const char* c : {"R", "G", "B", "direct.R", "direct.G", "direct.B", "indirect.R", "indirect.G", "indirect.B"}) {
+      ASSERT_TRUE(last.has_channel(c)) << c;
+      for (size_t i = 0; i < last.pixel_count(); ++i) ASSERT_TRUE(std::isfinite(last.channel(c)[i])) << c << " " << i;
+    }
+    double beauty = 0.0;
+    for (size_t i = 0; i < last.pixel_count(); ++i) beauty += last.channel("G")[i];
+    EXPECT_GT(beauty, 0.0) << "a lit Cornell box renders black";
+    ASSERT_FALSE(j["passes"].empty());
+    for (const auto& p : j["passes"]) EXPECT_FALSE(p["name"].get<std::string>().empty());
+  }
 }
 
 }  // namespace

@@ -1,8 +1,7 @@
 // `giq gate`: renders each case of the gate config with its technique, scores it against its
 // golden reference and checks the bounds; prints a table, writes gate-report.xml (JUnit),
 // gate-summary.md and gate.json, and exits 0 (pass or warn), 1 (any failure) or 2 (bad input).
-// `giq golden update`: renders the golden references the config needs (missing or stale
-// ones, or all with --force) and records them in the manifest. See docs/gate.md.
+// See docs/gate.md.
 
 #include <unistd.h>
 
@@ -12,7 +11,6 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
-#include <set>
 
 #include "command.h"
 #include "gate_runner.h"
@@ -31,34 +29,9 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 struct GateArgs {
-  std::string config = "golden/gate.json";
-  std::string only;
-  int jobs = 1;
+  CaseOptions cases;
   std::string out = "gate-out";
-  std::string device;
-  std::string giq;
-  bool rerender = false;
-  bool force = false;
 };
-
-Toolchain toolchain(const GateArgs& a) {
-  Toolchain t;
-  t.giq = a.giq.empty() ? self_executable() : fs::absolute(a.giq);
-  if (!fs::exists(t.giq))
-    throw InputError(a.giq, "--giq", "no such program; expected the path of a giq binary");
-  t.device = a.device;
-  t.rerender = a.rerender;
-  return t;
-}
-
-std::vector<const gate::Case*> load_cases(const GateArgs& a, gate::Config& config) {
-  if (a.jobs < 1) throw InputError("", "--jobs", std::to_string(a.jobs) + "; expected at least 1");
-  config = gate::read_config(a.config);
-  gate::check_golden_conflicts(config);
-  auto cases = gate::select_cases(config, a.only);
-  if (cases.empty()) throw InputError(a.config, "--only", "'" + a.only + "' matches no case name");
-  return cases;
-}
 
 json outcome_json(const gate::Outcome& o) {
   return {{"case", o.case_name},
@@ -72,8 +45,8 @@ json outcome_json(const gate::Outcome& o) {
 
 int run_gate(const GateArgs& a) {
   gate::Config config;
-  const auto cases = load_cases(a, config);
-  const Toolchain tools = toolchain(a);
+  const auto cases = load_cases(a.cases, config);
+  const Toolchain tools = toolchain(a.cases);
   const gate::Manifest manifest = gate::read_manifest(config.golden_dir / "manifest.json");
   const fs::path out = a.out;
   fs::create_directories(out);
@@ -82,7 +55,7 @@ int run_gate(const GateArgs& a) {
   std::vector<CaseRun> runs(cases.size());
   std::mutex progress;
   size_t done = 0;
-  parallel_for(cases.size(), a.jobs, [&](size_t i) {
+  parallel_for(cases.size(), a.cases.jobs, [&](size_t i) {
     runs[i] = run_case(tools, *cases[i], config, manifest, out);
     std::lock_guard<std::mutex> g(progress);
     ++done;
@@ -120,7 +93,7 @@ int run_gate(const GateArgs& a) {
   write_file_atomically(out / "gate-summary.md", gate::markdown_summary(outcomes));
   write_file_atomically(out / "gate.json", json{{"version", 1},
                                                 {"giq_version", giq::version()},
-                                                {"config", a.config},
+                                                {"config", a.cases.config},
                                                 {"passed", code == 0},
                                                 {"cases", case_list},
                                                 {"outcomes", outcome_list}}
@@ -133,70 +106,21 @@ int run_gate(const GateArgs& a) {
   return code;
 }
 
-int run_golden_update(const GateArgs& a) {
-  gate::Config config;
-  const auto cases = load_cases(a, config);
-  const Toolchain tools = toolchain(a);
-  fs::create_directories(config.golden_dir);
-  gate::Manifest manifest = gate::read_manifest(config.golden_dir / "manifest.json");
-  // One golden per key, even when several cases share it.
-  std::vector<const gate::Case*> unique;
-  std::set<std::string> keys;
-  for (const gate::Case* c : cases)
-    if (keys.insert(gate::golden_key(*c)).second) unique.push_back(c);
-  std::vector<GoldenRun> runs(unique.size());
-  std::mutex lock;
-  parallel_for(unique.size(), a.jobs, [&](size_t i) {
-    runs[i] = update_golden(tools, *unique[i], config, a.force, manifest, lock);
-  });
-  int failed = 0, rendered = 0;
-  for (const GoldenRun& r : runs) {
-    std::cout << "  " << r.key << ": " << r.action << (r.message.empty() ? "" : "  " + r.message)
-              << '\n';
-    failed += r.action == "failed";
-    rendered += r.action == "rendered";
-  }
-  std::cout << "giq golden update: " << rendered << " rendered, "
-            << (runs.size() - size_t(rendered + failed)) << " fresh, " << failed
-            << " failed; manifest " << (config.golden_dir / "manifest.json").string() << '\n';
-  return failed ? 1 : 0;
-}
-
-void common_options(CLI::App* cmd, GateArgs& a) {
-  cmd->add_option("--config", a.config, "Gate config (JSON, docs/gate.md)")->capture_default_str();
-  cmd->add_option("--only", a.only, "Only the cases whose name matches this glob ('*', '?')");
-  cmd->add_option("--jobs", a.jobs, "Cases run in parallel")->capture_default_str();
-  cmd->add_option(
-      "--giq", a.giq,
-      "giq binary whose reference/realtime/score subcommands are run (default: this one)");
-}
-
 }  // namespace
 
 void add_gate_command(CLI::App& app, int& exit_code) {
   auto a = std::make_shared<GateArgs>();
   CLI::App* cmd = app.add_subcommand(
       "gate", "Render, score and check every case of a gate config (exit 1 on failure)");
-  common_options(cmd, *a);
+  add_case_options(cmd, a->cases);
   cmd->add_option("--out", a->out,
                   "Folder for gate-report.xml, gate-summary.md, gate.json and each case's outputs")
       ->capture_default_str();
-  cmd->add_option("--device", a->device,
+  cmd->add_option("--device", a->cases.device,
                   "Vulkan device for giq realtime (index or part of its name)");
-  cmd->add_flag("--rerender", a->rerender,
+  cmd->add_flag("--rerender", a->cases.rerender,
                 "Render and score again even where outputs of an identical run exist");
   cmd->callback([a, &exit_code] { exit_code = run_gate(*a); });
-}
-
-void add_golden_command(CLI::App& app, int& exit_code) {
-  auto a = std::make_shared<GateArgs>();
-  CLI::App* golden = app.add_subcommand("golden", "Golden references of the gate");
-  golden->require_subcommand(1);
-  CLI::App* update = golden->add_subcommand(
-      "update", "Render the missing or stale golden references of a gate config");
-  common_options(update, *a);
-  update->add_flag("--force", a->force, "Render every golden again, fresh or not");
-  update->callback([a, &exit_code] { exit_code = run_golden_update(*a); });
 }
 
 }  // namespace giq::cli

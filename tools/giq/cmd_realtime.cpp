@@ -13,6 +13,7 @@
 #include "command.h"
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
+#include "giq/base/frames.h"
 #include "giq/image/io.h"
 #include "giq/realtime/context.h"
 #include "giq/realtime/renderer.h"
@@ -38,6 +39,7 @@ struct RealtimeArgs {
   std::string device;
   std::string out;
   bool list = false;
+  bool json = false;
   bool list_devices = false;
   bool validation = false;
   bool no_images = false;
@@ -49,6 +51,13 @@ void print_techniques() {
     for (const auto& p : t.parameters)
       std::printf("    --param %s=%.10g   [%.10g, %.10g]%s  %s\n", p.name.c_str(), p.default_value, p.min_value, p.max_value,
                   p.integer ? " integer" : "", p.description.c_str());
+    std::string values;
+    for (double v : t.quality.values) {
+      char number[32];
+      std::snprintf(number, sizeof number, "%.10g", v);
+      values += (values.empty() ? "" : ",") + std::string(number);
+    }
+    std::printf("    quality knob: %s=%s\n", t.quality.parameter.c_str(), values.c_str());
   }
 }
 
@@ -69,7 +78,10 @@ fs::path resolve_scene(const std::string& s) {
 
 int run(const RealtimeArgs& a) {
   if (a.list) {
-    print_techniques();
+    if (a.json)
+      std::printf("%s\n", rt::techniques_json().dump(2).c_str());
+    else
+      print_techniques();
     return 0;
   }
   if (a.list_devices) {
@@ -101,9 +113,7 @@ int run(const RealtimeArgs& a) {
   int written = 0;
   const nlohmann::json timings = rt::render_sequence(ctx, compiler, scene, o, [&](rt::RenderedFrame& f) {
     if (!a.no_images) {
-      char name[32];
-      std::snprintf(name, sizeof name, "frame_%04d.exr", f.frame);
-      image::write_exr(f.image, out / name);
+      image::write_exr(f.image, out / frame_file(f.frame));
     }
     ++written;
     if (tty) std::fprintf(stderr, "\rframe %d/%d  %.3f ms GPU", written, a.frames, f.timing.gpu_ms);
@@ -134,7 +144,8 @@ void add_realtime_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--height", a.height, "Image height")->capture_default_str();
   cmd->add_option("--device", a.device, "Vulkan device: index or part of its name (default: a discrete GPU, else lavapipe)");
   cmd->add_option("--out", a.out, "Output folder for frame_NNNN.exr and timings.json");
-  cmd->add_flag("--list", a.list, "List techniques and their parameters");
+  cmd->add_flag("--list", a.list, "List techniques, their parameters and quality knobs");
+  cmd->add_flag("--json", a.json, "With --list: the listing as JSON, the form tools read");
   cmd->add_flag("--list-devices", a.list_devices, "List Vulkan devices");
   cmd->add_flag("--validation", a.validation, "Enable the Khronos validation layer (any message makes the run fail)");
   cmd->add_flag("--no-images", a.no_images, "Write timings.json only (benchmarks)");

@@ -11,10 +11,12 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "command.h"
 #include "giq/base/error.h"
+#include "giq/base/frames.h"
 #include "giq/image/io.h"
 #include "giq/reference/progressive_render.h"
 #include "giq/reference/reference_exr.h"
@@ -114,9 +116,9 @@ sc::Camera parse_camera(const std::vector<std::string>& args, const sc::Scene& s
 std::pair<int, int> frame_range(const Options& o, const sc::Scene& scene) {
   int a = o.frame, b = o.frame;
   if (!o.frames.empty()) {
-    char tail;
-    if (std::sscanf(o.frames.c_str(), "%d:%d%c", &a, &b, &tail) != 2 || a > b)
-      throw InputError("", "--frames", "'" + o.frames + "' is not a range A:B with A <= B");
+    const auto range = parse_frame_range(o.frames);
+    if (!range) throw InputError("", "--frames", "'" + o.frames + "' is not a range A:B with 0 <= A <= B");
+    std::tie(a, b) = *range;
   }
   if (a < 0 || b >= scene.sequence.frames)
     throw InputError(scene.path.string(), "--frame", "frames " + std::to_string(a) + " to " + std::to_string(b) +

@@ -9,6 +9,8 @@
 
 #include "command.h"
 #include "giq/base/error.h"
+#include "giq/base/frames.h"
+#include "giq/gate/metric_lookup.h"
 #include "giq/metrics/score.h"
 #include "giq/scenes/scene.h"
 
@@ -24,40 +26,8 @@ struct ScoreArgs {
 };
 
 std::pair<int, int> parse_frames(const std::string& s) {
-  const size_t colon = s.find(':');
-  try {
-    if (colon == std::string::npos) throw std::invalid_argument("no colon");
-    size_t used_a = 0, used_b = 0;
-    const int a = std::stoi(s.substr(0, colon), &used_a);
-    const int b = std::stoi(s.substr(colon + 1), &used_b);
-    if (used_a != colon || used_b != s.size() - colon - 1) throw std::invalid_argument("trailing characters");
-    return {a, b};
-  } catch (const std::exception&) {
-    throw InputError("", "--frames", "'" + s + "' is not A:B (first and last frame numbers, e.g. 0:59)");
-  }
-}
-
-// The technique's frame time: frame_ms.median, or frame_gpu_ms.median as `giq realtime` writes.
-std::pair<double, std::string> read_frame_ms(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open timings file");
-  json j;
-  try {
-    in >> j;
-  } catch (const json::exception& e) {
-    throw InputError(path, "", std::string("not valid JSON: ") + e.what());
-  }
-  for (const char* key : {"frame_ms", "frame_gpu_ms"}) {
-    if (!j.is_object() || !j.contains(key)) continue;
-    const json& m = j[key];
-    if (!m.is_object() || !m.contains("median") || !m["median"].is_number())
-      throw InputError(path, std::string(key) + ".median", "missing or not a number; expected milliseconds");
-    const double v = m["median"].get<double>();
-    if (!std::isfinite(v) || v <= 0.0)
-      throw InputError(path, std::string(key) + ".median", std::to_string(v) + " ms; expected a positive frame time");
-    return {v, std::string(key) + ".median"};
-  }
-  throw InputError(path, "frame_ms.median", "missing; expected {\"frame_ms\": {\"median\": <ms>}}");
+  if (const auto range = parse_frame_range(s)) return *range;
+  throw InputError("", "--frames", "'" + s + "' is not A:B (first and last frame numbers, 0 <= A <= B, e.g. 0:59)");
 }
 
 int run_score(const ScoreArgs& a) {
@@ -74,9 +44,9 @@ int run_score(const ScoreArgs& a) {
     req.leak_object_ids = scene.leak_object_ids;
   }
   if (!a.timings.empty()) {
-    const auto [ms, key] = read_frame_ms(a.timings);
-    req.frame_ms = ms;
-    req.timings = a.timings + ":" + key;
+    const gate::FrameTime t = gate::read_timings(a.timings);
+    req.frame_ms = *t.gpu_ms;
+    req.timings = a.timings + ":" + t.key;
   }
   const json result = metrics::score(req);
   if (a.json_output) std::cout << result.dump(2) << '\n';

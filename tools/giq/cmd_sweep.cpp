@@ -18,12 +18,14 @@
 #include "command.h"
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
+#include "giq/base/frames.h"
 #include "giq/gate/config.h"
 #include "giq/gate/fit.h"
 #include "giq/gate/metric_lookup.h"
 #include "giq/gate/plot.h"
 #include "giq/gate/sweep_table.h"
 #include "giq/image/io.h"
+#include "giq/metrics/catalogue.h"
 #include "subprocess.h"
 #include "sweep_plan.h"
 
@@ -33,8 +35,13 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const std::vector<std::string> kMetrics = {"flip_mean", "relmse", "mse", "smape",
-                                           "ssim",      "psnr",   "leak"};
+// The per-image metrics of the catalogue, the sweep's error metric first: the sweep's columns.
+std::vector<std::string> sweep_metrics(const std::string& error) {
+  std::vector<std::string> names = {error};
+  for (const metrics::MetricInfo& m : metrics::kMetricCatalogue)
+    if (m.scope == metrics::Scope::Image && m.name != error) names.emplace_back(m.name);
+  return names;
+}
 
 struct SweepArgs {
   std::string scene, view = "0", ref, layer = "beauty", error, out = "sweep-out", device, giq, sampler = "sobol";
@@ -43,7 +50,7 @@ struct SweepArgs {
   int auto_steps = 0, width = 128, height = 128, warmup = 10, frames = 20, jobs = 1, timing_width = 0, timing_height = 0,
       max_settings = 64;
   uint32_t ref_spp = 1024;
-  bool convergence = false, linear = false;
+  bool convergence = false, linear = false, quality = false;
 };
 
 json read_json(const fs::path& p) {
@@ -97,9 +104,9 @@ std::map<std::string, std::optional<double>> score(const SweepArgs& a, const fs:
   must(run_process(sc, log), "giq score", log);
   const json m = read_json(dir / "metrics.json");
   std::map<std::string, std::optional<double>> out;
-  for (const std::string& k : kMetrics)
-    if (const auto v = gate::find_metric(m, k)) out[k] = v->value;
-  if (const auto v = gate::find_metric(m, "rmse")) out["rmse"] = v->value;
+  for (const metrics::MetricInfo& info : metrics::kMetricCatalogue)
+    if (info.scope == metrics::Scope::Image)
+      if (const auto v = gate::find_metric(m, std::string(info.name))) out[std::string(info.name)] = v->value;
   return out;
 }
 
@@ -107,9 +114,16 @@ int run_techniques(const SweepArgs& a, const fs::path& giq, const fs::path& out)
   if (a.techniques.empty())
     throw InputError("", "--technique", "give at least one technique (giq realtime --list)");
   const std::string error = a.error.empty() ? "flip_mean" : a.error;
-  const fs::path list_log = out / "techniques.txt";
+  const metrics::MetricInfo* error_info = metrics::find_metric_info(error);
+  if (!error_info || error_info->scope != metrics::Scope::Image) {
+    std::string names;
+    for (const metrics::MetricInfo& m : metrics::kMetricCatalogue)
+      if (m.scope == metrics::Scope::Image) names += (names.empty() ? "" : ", ") + std::string(m.name);
+    throw InputError("", "--error", "unknown per-image metric '" + error + "'; expected one of: " + names);
+  }
+  const fs::path list_log = out / "techniques.json";
   fs::remove(list_log);
-  must(run_process({giq.string(), "realtime", "--list"}, list_log), "giq realtime --list",
+  must(run_process({giq.string(), "realtime", "--list", "--json"}, list_log), "giq realtime --list --json",
        list_log);
   std::string listing = slurp(list_log);
   listing = listing.substr(listing.find('\n') + 1);  // the log's first line is the command
@@ -125,7 +139,9 @@ int run_techniques(const SweepArgs& a, const fs::path& giq, const fs::path& out)
                                  [&](const auto& t) { return t.name == name; });
     if (it == declared.end())
       throw InputError("", "--technique", "'" + name + "' is not listed by giq realtime --list");
-    for (const Setting& s : plan_settings(*it, a.grid, a.auto_steps, a.max_settings))
+    std::vector<std::string> grid = a.grid;
+    if (a.quality) grid.push_back(quality_axis(*it));
+    for (const Setting& s : plan_settings(*it, grid, a.auto_steps, a.max_settings))
       jobs.push_back({&*it, s});
   }
   const fs::path ref =
@@ -175,18 +191,15 @@ int run_techniques(const SweepArgs& a, const fs::path& giq, const fs::path& out)
         must(run_process(tr, log), "giq realtime (timing)", log);
         timings = dir / "timing" / "timings.json";
       }
-      row.gpu_ms = gate::frame_time(read_json(timings)).gpu_ms;
-      char last[32];
-      std::snprintf(last, sizeof last, "frame_%04d.exr", a.warmup + a.frames - 1);
-      row.metrics = score(a, giq, ref, dir / "technique" / last, scored_timings, dir / "score", log);
+      row.gpu_ms = gate::read_timings(timings).gpu_ms;
+      row.metrics = score(a, giq, ref, dir / "technique" / frame_file(a.warmup + a.frames - 1), scored_timings,
+                          dir / "score", log);
     } catch (const std::exception& e) {
       row.error = e.what();
     }
   });
   gate::mark_front(rows, error);
-  std::vector<std::string> names = kMetrics;
-  names.push_back("rmse");
-  write_file_atomically(out / "sweep.csv", gate::sweep_csv(rows, names));
+  write_file_atomically(out / "sweep.csv", gate::sweep_csv(rows, sweep_metrics(error)));
   const json run = {{"scene", a.scene},   {"view", a.view},     {"resolution", {a.width, a.height}},
                     {"warmup", a.warmup}, {"frames", a.frames}, {"reference", ref.string()},
                     {"layer", a.layer},
@@ -295,6 +308,8 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--technique", a->techniques,
                   "Technique to sweep (repeatable; several share one plot)");
   cmd->add_option("--grid", a->grid, "Axis 'param=a,b,c' or 'technique.param=a,b,c' (repeatable)");
+  cmd->add_flag("--quality", a->quality,
+                "Sweep each technique's declared quality knob (giq realtime --list shows it)");
   cmd->add_option("--auto", a->auto_steps,
                   "Values per declared parameter range for parameters without --grid");
   cmd->add_option("--max-settings", a->max_settings,

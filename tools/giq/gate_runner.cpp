@@ -9,6 +9,7 @@
 
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
+#include "giq/base/frames.h"
 #include "giq/base/version.h"
 #include "giq/image/io.h"
 #include "giq/scenes/scene.h"
@@ -19,10 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-std::string frames_arg(int a, int b) {
-  return std::to_string(a) + ":" + std::to_string(b);
-}
 
 json read_json(const fs::path& p) {
   std::ifstream in(p);
@@ -129,22 +126,22 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
       timings = timing / "timings.json";
     }
     for (int f = c.first_frame; f <= c.last_frame; ++f)
-      if (!fs::exists(tech / gate::golden_frame_name(f)))
-        throw InputError((tech / gate::golden_frame_name(f)).string(), "",
+      if (!fs::exists(tech / frame_file(f)))
+        throw InputError((tech / frame_file(f)).string(), "",
                          "giq realtime did not write this frame");
 
     const fs::path score = run.dir / "score";
     std::vector<std::string> sc = {t.giq.string(), "score"};
     // A still golden is one image that giq score compares with every frame of the range.
     const std::string ref_frames =
-        c.golden.still ? gate::golden_frame_name(c.first_frame) : "frame_%04d.exr";
+        c.golden.still ? frame_file(c.first_frame) : kFramePattern;
     if (c.sequence())
       sc.insert(sc.end(), {"--ref", (golden / ref_frames).string(), "--test",
-                           (tech / "frame_%04d.exr").string(), "--frames",
-                           frames_arg(c.first_frame, c.last_frame)});
+                           (tech / kFramePattern).string(), "--frames",
+                           frame_range(c.first_frame, c.last_frame)});
     else
-      sc.insert(sc.end(), {"--ref", (golden / gate::golden_frame_name(c.first_frame)).string(),
-                           "--test", (tech / gate::golden_frame_name(c.first_frame)).string()});
+      sc.insert(sc.end(), {"--ref", (golden / frame_file(c.first_frame)).string(),
+                           "--test", (tech / frame_file(c.first_frame)).string()});
     sc.insert(sc.end(), {"--layer", c.layer, "--scene", c.scene.string(), "--timings",
                          (tech / "timings.json").string(), "--out", score.string()});
     problem = step(sc, score, log, "giq score",
@@ -189,7 +186,7 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
     std::vector<std::string> a = {t.giq.string(), "reference",
                                   "--scene",      scene,
                                   "--view",       c.view,
-                                  "--frames",     frames_arg(c.first_frame, c.golden_last_frame()),
+                                  "--frames",     frame_range(c.first_frame, c.golden_last_frame()),
                                   "--width",      std::to_string(c.width),
                                   "--height",     std::to_string(c.height),
                                   "--seed",       std::to_string(c.golden.seed),
@@ -215,7 +212,7 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
     e.render_seconds = r.seconds;
     e.giq_version = giq::version();
     for (int f = c.first_frame; f <= c.golden_last_frame(); ++f) {
-      const fs::path p = dir / gate::golden_frame_name(f);
+      const fs::path p = dir / frame_file(f);
       if (!fs::exists(p))
         throw InputError(p.string(), "", "giq reference did not write this frame");
       e.files[p.filename().string()] = gate::file_hash(p);
@@ -241,6 +238,31 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
     g.message = e.what();
   }
   return g;
+}
+
+void add_case_options(CLI::App* cmd, CaseOptions& o) {
+  cmd->add_option("--config", o.config, "Gate config (JSON, docs/gate.md)")->capture_default_str();
+  cmd->add_option("--only", o.only, "Only the cases whose name matches this glob ('*', '?')");
+  cmd->add_option("--jobs", o.jobs, "Cases run in parallel")->capture_default_str();
+  cmd->add_option("--giq", o.giq, "giq binary whose reference/realtime/score subcommands are run (default: this one)");
+}
+
+Toolchain toolchain(const CaseOptions& o) {
+  Toolchain t;
+  t.giq = o.giq.empty() ? self_executable() : fs::absolute(o.giq);
+  if (!fs::exists(t.giq)) throw InputError(o.giq, "--giq", "no such program; expected the path of a giq binary");
+  t.device = o.device;
+  t.rerender = o.rerender;
+  return t;
+}
+
+std::vector<const gate::Case*> load_cases(const CaseOptions& o, gate::Config& config) {
+  if (o.jobs < 1) throw InputError("", "--jobs", std::to_string(o.jobs) + "; expected at least 1");
+  config = gate::read_config(o.config);
+  gate::check_golden_conflicts(config);
+  auto cases = gate::select_cases(config, o.only);
+  if (cases.empty()) throw InputError(o.config, "--only", "'" + o.only + "' matches no case name");
+  return cases;
 }
 
 }  // namespace giq::cli

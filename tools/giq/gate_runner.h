@@ -1,5 +1,6 @@
 #pragma once
-// The pipeline behind `giq gate` and `giq golden update`: for each case it runs the same giq
+// The pipeline behind `giq gate` and `giq golden update` (cmd_gate.cpp, cmd_golden.cpp): for
+// each case it runs the same giq
 // binary's subcommands as child processes (see subprocess.h):
 //
 //   giq reference --scene S --view V --frames A:B --spp N | --rel-error E --seed K
@@ -12,6 +13,7 @@
 //
 // and evaluates the case's bounds on the resulting metrics.json and timings.json.
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <mutex>
 #include <string>
@@ -28,6 +30,23 @@ struct Toolchain {
   std::string device;         // passed to giq realtime --device when not empty
   bool rerender = false;      // ignore outputs of an earlier identical run
 };
+
+// The options `giq gate` and `giq golden update` share: which cases, how many at a time, and
+// which giq binary runs them.
+struct CaseOptions {
+  std::string config = "golden/gate.json";
+  std::string only;
+  int jobs = 1;
+  std::string giq;
+  std::string device;
+  bool rerender = false;
+};
+void add_case_options(CLI::App* cmd, CaseOptions& o);
+// Throws InputError for a giq binary that does not exist.
+Toolchain toolchain(const CaseOptions& o);
+// The config's cases that --only selects; throws InputError for a bad config, a bad --jobs or
+// a pattern that selects nothing.
+std::vector<const gate::Case*> load_cases(const CaseOptions& o, gate::Config& config);
 
 struct CaseRun {
   gate::Evidence evidence;

@@ -11,6 +11,7 @@
 #include "giq/base/error.h"
 #include "giq/gate/escape.h"
 #include "giq/image/io.h"
+#include "giq/metrics/catalogue.h"
 
 namespace giq::cli {
 namespace {
@@ -75,20 +76,23 @@ std::string value_text(const json& m) {
   return s;
 }
 
+// A row for each per-image metric of the catalogue present in `m`, with the catalogue's labels.
 void add_metric_rows(Comparison& c, const json& m, const std::string& prefix) {
-  for (const char* k :
-       {"relmse", "mse", "mae", "smape", "psnr", "ssim", "mse_debiased", "noise_floor"})
-    if (m.contains(k)) c.metrics.emplace_back(prefix + k, value_text(m[k]));
-  if (m.contains("flip")) {
-    for (const char* k : {"mean", "weighted_median", "max"})
-      if (m["flip"].contains(k))
-        c.metrics.emplace_back(prefix + "flip " + k, value_text(m["flip"][k]));
+  for (const metrics::MetricInfo& info : metrics::kMetricCatalogue) {
+    if (info.scope != metrics::Scope::Image) continue;
+    for (size_t i = 0; i < info.paths.size() && !info.paths[i].empty(); ++i) {
+      const json* v = &m;
+      for (std::string_view rest = info.paths[i]; v && !rest.empty();) {
+        const size_t dot = rest.find('.');
+        const std::string key(rest.substr(0, dot));
+        v = v->is_object() && v->contains(key) ? &(*v)[key] : nullptr;
+        rest = dot == std::string_view::npos ? std::string_view() : rest.substr(dot + 1);
+      }
+      if (v)
+        c.metrics.emplace_back(prefix + std::string(info.path_labels[i].empty() ? info.label : info.path_labels[i]),
+                               value_text(*v));
+    }
   }
-  if (m.contains("leak"))
-    for (const char* region : {"declared", "automatic"})
-      if (m["leak"].contains(region))
-        c.metrics.emplace_back(prefix + "leak (" + region + ")",
-                               value_text(m["leak"][region]["leak"]));
 }
 
 void add_maps(Comparison& c, const json& maps, const fs::path& dir) {

@@ -6,6 +6,8 @@
 #include <map>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "giq/base/error.h"
 
 namespace giq::cli {
@@ -22,32 +24,39 @@ double parse_number(const std::string& s, const std::string& field) {
 }  // namespace
 
 std::vector<TechniqueParameters> parse_technique_list(const std::string& listing) {
+  const std::string source = "giq realtime --list --json";
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(listing);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(source, "", std::string("not JSON: ") + e.what());
+  }
   std::vector<TechniqueParameters> out;
-  std::istringstream in(listing);
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty()) continue;
-    if (line[0] != ' ') {
-      out.push_back({line.substr(0, line.find_first_of(" \t")), {}});
-      continue;
+  try {
+    for (const auto& t : j.at("techniques")) {
+      TechniqueParameters tp;
+      tp.name = t.at("name").get<std::string>();
+      for (const auto& p : t.at("parameters"))
+        tp.parameters.push_back({p.at("name").get<std::string>(), p.at("default").get<double>(),
+                                 p.at("min").get<double>(), p.at("max").get<double>(), p.at("integer").get<bool>()});
+      tp.quality_parameter = t.at("quality").at("parameter").get<std::string>();
+      tp.quality_values = t.at("quality").at("values").get<std::vector<double>>();
+      out.push_back(std::move(tp));
     }
-    const size_t p = line.find("--param ");
-    if (p == std::string::npos || out.empty()) continue;
-    ParameterInfo info;
-    char name[256], def[64];
-    double lo = 0, hi = 0;
-    if (std::sscanf(line.c_str() + p, "--param %255[^=]=%63s [%lf, %lf]", name, def, &lo, &hi) != 4)
-      throw InputError("giq realtime --list", out.back().name,
-                       "cannot read the parameter line '" + line +
-                           "'; expected --param NAME=DEFAULT [MIN, MAX]");
-    info.name = name;
-    info.default_value = parse_number(def, "giq realtime --list");
-    info.min_value = lo, info.max_value = hi;
-    const size_t close = line.find(']', p);
-    info.integer =
-        line.compare(close + 1, 9, " integer ") == 0 || line.compare(close + 1, 8, " integer") == 0;
-    out.back().parameters.push_back(info);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(source, "techniques", std::string("unexpected listing: ") + e.what());
   }
   return out;
+}
+
+std::string quality_axis(const TechniqueParameters& t) {
+  std::string axis = t.name + "." + t.quality_parameter + "=";
+  for (size_t i = 0; i < t.quality_values.size(); ++i) {
+    char number[32];
+    std::snprintf(number, sizeof number, "%.10g", t.quality_values[i]);
+    axis += (i ? "," : "") + std::string(number);
+  }
+  return axis;
 }
 
 std::vector<Setting> plan_settings(const TechniqueParameters& t,

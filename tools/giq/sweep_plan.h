@@ -1,7 +1,8 @@
 #pragma once
-// What `giq sweep` runs: the techniques' declared parameters (read from `giq realtime --list`,
-// so a new technique or parameter needs no change here) and the settings to try, from --grid
-// axes or, with --auto, from each parameter's declared range.
+// What `giq sweep` runs: the techniques' declared parameters and quality knobs (read from
+// `giq realtime --list --json`, so a new technique or parameter needs no change here) and the
+// settings to try, from --grid axes, the quality knobs (--quality) or, with --auto, from each
+// parameter's declared range.
 
 #include <string>
 #include <utility>
@@ -18,12 +19,15 @@ struct ParameterInfo {
 struct TechniqueParameters {
   std::string name;
   std::vector<ParameterInfo> parameters;
+  std::string quality_parameter;  // the knob a speed-for-accuracy sweep varies
+  std::vector<double> quality_values;
 };
 
-// Parses the listing of `giq realtime --list`: a technique's name at the start of a line, then
-// indented lines, of which "--param NAME=DEFAULT [MIN, MAX] [integer] description" declare its
-// parameters. Throws InputError when a --param line does not have that shape.
+// Reads the listing `giq realtime --list --json` prints (realtime::techniques_json()). Throws
+// InputError when it is not that JSON.
 std::vector<TechniqueParameters> parse_technique_list(const std::string& listing);
+// The technique's quality knob as a --grid axis, "technique.param=a,b,c".
+std::string quality_axis(const TechniqueParameters& technique);
 
 using Setting = std::vector<std::pair<std::string, double>>;  // sorted by name
 

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "giq/base/error.h"
+#include "giq/base/frames.h"
 
 namespace giq::gate {
 namespace {
@@ -76,14 +77,12 @@ class Parser {
       return {f, f};
     }
     if (v.is_string()) {
-      int a = 0, b = 0;
-      char tail = 0;
       const std::string s = v.get<std::string>();
-      const int n = std::sscanf(s.c_str(), "%d:%d%c", &a, &b, &tail);
-      if (n == 2 && a >= 0 && a <= b) return {a, b};
-      if (n == 1 && s.find(':') == std::string::npos && a >= 0 &&
-          s.find_first_not_of("0123456789") == std::string::npos)
-        return {a, a};
+      if (const auto range = parse_frame_range(s)) return *range;
+      if (!s.empty() && s.size() <= 8 && s.find_first_not_of("0123456789") == std::string::npos) {
+        const int f = std::stoi(s);
+        return {f, f};
+      }
     }
     fail(field, show(v) + " is not a frame number or a range \"A:B\" with 0 <= A <= B");
   }
@@ -221,10 +220,7 @@ bool Case::needs_timing() const {
                      [](const Bound& b) { return b.metric == "gpu_ms"; });
 }
 
-Better default_direction(const std::string& metric) {
-  const std::string leaf = metric.substr(metric.find_last_of('.') + 1);
-  return leaf == "ssim" || leaf == "psnr" ? Better::Higher : Better::Lower;
-}
+Better default_direction(const std::string& metric) { return metrics::better_direction(metric); }
 
 Config parse_config(const std::string& text, const fs::path& file) {
   Parser p(file);

@@ -7,6 +7,7 @@
 
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
+#include "giq/base/frames.h"
 #include "giq/base/hash.h"
 
 namespace giq::gate {
@@ -41,12 +42,6 @@ json golden_settings(const Case& c) {
   if (c.golden.half) s["half"] = true;
   if (c.golden.sampler != "independent") s["sampler"] = c.golden.sampler;
   return s;
-}
-
-std::string golden_frame_name(int frame) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "frame_%04d.exr", frame);
-  return buf;
 }
 
 Manifest read_manifest(const fs::path& file) {
@@ -131,7 +126,7 @@ Freshness check_golden(const Manifest& manifest, const fs::path& golden_dir, con
     return f;
   }
   for (int frame = c.first_frame; frame <= c.golden_last_frame(); ++frame) {
-    const std::string name = golden_frame_name(frame);
+    const std::string name = frame_file(frame);
     const fs::path p = golden_dir / key / name;
     const auto h = g.files.find(name);
     if (h == g.files.end() || !fs::exists(p)) {

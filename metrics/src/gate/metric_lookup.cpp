@@ -1,8 +1,12 @@
 #include "giq/gate/metric_lookup.h"
 
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <vector>
+
+#include "giq/base/error.h"
+#include "giq/metrics/catalogue.h"
 
 namespace giq::gate {
 namespace {
@@ -55,15 +59,16 @@ std::optional<MetricValue> as_value(const json& j, const std::string& path) {
   return m;
 }
 
-// Short names for the headline metrics of docs/metrics.md. leak prefers the regions the scene
-// declares over the automatic dark region, as the scene author's regions are the ones meant.
+// A catalogue name's paths in metrics.json (leak prefers the regions the scene declares over
+// the automatic dark region, as the scene author's regions are the ones meant); any other name
+// is a dotted path itself.
 std::vector<std::string> expand(const std::string& name) {
-  if (name == "flip_mean") return {"flip.mean"};
-  if (name == "flip_median") return {"flip.weighted_median"};
-  if (name == "flip_max") return {"flip.max"};
-  if (name == "leak") return {"leak.declared.leak", "leak.automatic.leak"};
-  if (name == "leak_pixels") return {"leak.declared.leak_pixels", "leak.automatic.leak_pixels"};
-  return {name};
+  const metrics::MetricInfo* m = metrics::find_metric_info(name);
+  if (!m || m->scope == metrics::Scope::Timing) return {name};
+  std::vector<std::string> paths;
+  for (std::string_view p : m->paths)
+    if (!p.empty()) paths.emplace_back(p);
+  return paths;
 }
 
 }  // namespace
@@ -86,6 +91,7 @@ FrameTime frame_time(const json& timings) {
     const json* m = walk(timings, std::string(key) + ".median");
     if (m && m->is_number()) {
       t.gpu_ms = m->get<double>();
+      t.key = std::string(key) + ".median";
       break;
     }
   }
@@ -93,6 +99,24 @@ FrameTime frame_time(const json& timings) {
     t.device = *d;
   else if (const json* d2 = walk(timings, "device"); d2 && d2->is_string())
     t.device = *d2;
+  return t;
+}
+
+FrameTime read_timings(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string(), "", "cannot open the timings file");
+  json j;
+  try {
+    in >> j;
+  } catch (const json::exception& e) {
+    throw InputError(file.string(), "", std::string("not valid JSON: ") + e.what());
+  }
+  const FrameTime t = frame_time(j);
+  if (!t.gpu_ms)
+    throw InputError(file.string(), "frame_gpu_ms.median",
+                     "missing; expected {\"frame_gpu_ms\": {\"median\": <ms>}} or {\"frame_ms\": {\"median\": <ms>}}");
+  if (!std::isfinite(*t.gpu_ms) || *t.gpu_ms <= 0.0)
+    throw InputError(file.string(), t.key, std::to_string(*t.gpu_ms) + " ms; expected a positive frame time");
   return t;
 }
 

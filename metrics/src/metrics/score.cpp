@@ -9,6 +9,7 @@
 #include "giq/base/error.h"
 #include "giq/base/version.h"
 #include "giq/image/io.h"
+#include "giq/metrics/catalogue.h"
 #include "score_image.h"
 
 namespace giq::metrics {
@@ -79,6 +80,19 @@ void row(std::ostringstream& s, const std::string& name, const json& m) {
   s << "  " << std::left << std::setw(30) << name << std::setw(16) << value << note << '\n';
 }
 
+// The value at a dotted path ("flip.mean"), or nullptr.
+const json* at_path(const json& root, std::string_view dotted) {
+  const json* j = &root;
+  while (!dotted.empty()) {
+    const size_t dot = dotted.find('.');
+    const std::string key(dotted.substr(0, dot));
+    if (!j->is_object() || !j->contains(key)) return nullptr;
+    j = &(*j)[key];
+    dotted = dot == std::string_view::npos ? std::string_view() : dotted.substr(dot + 1);
+  }
+  return j;
+}
+
 }  // namespace
 
 bool is_pattern(const std::string& path) { return parse_pattern(path).begin != std::string::npos; }
@@ -126,34 +140,23 @@ std::string format_table(const json& j) {
   const json& in = j.at("inputs");
   s << "giq score  " << in.value("test", "") << "  vs  " << in.value("reference", "") << "  [layer "
     << in.value("layer", "beauty") << ", " << in.value("dynamic_range", "") << "]\n";
-  auto image_rows = [&](const json& m) {
-    for (const char* k : {"mse", "rmse", "mae", "relmse", "smape", "psnr", "noise_floor", "mse_debiased", "ssim"})
-      if (m.contains(k)) row(s, k, m[k]);
-    if (m.contains("flip")) {
-      row(s, "flip mean", m["flip"]["mean"]);
-      row(s, "flip weighted median", m["flip"]["weighted_median"]);
-      row(s, "flip max", m["flip"]["max"]);
+  // A row for each catalogue metric of `scope` present in `m`, in the catalogue's order.
+  auto rows = [&](const json& m, Scope scope) {
+    for (const MetricInfo& info : kMetricCatalogue) {
+      if (info.scope != scope) continue;
+      for (size_t i = 0; i < info.paths.size() && !info.paths[i].empty(); ++i)
+        if (const json* v = at_path(m, info.paths[i]))
+          row(s, std::string(info.path_labels[i].empty() ? info.label : info.path_labels[i]), *v);
     }
-    if (m.contains("leak")) {
-      row(s, "leak (automatic)", m["leak"]["automatic"]["leak"]);
-      row(s, "leak_pixels (automatic)", m["leak"]["automatic"]["leak_pixels"]);
-      if (m["leak"].contains("declared")) {
-        row(s, "leak (declared)", m["leak"]["declared"]["leak"]);
-        row(s, "leak_pixels (declared)", m["leak"]["declared"]["leak_pixels"]);
-      }
-    }
-    row(s, "nonfinite_pixels", m.value("nonfinite_pixels", json(0)));
   };
   if (j.contains("sequence")) {
     const json& q = j["sequence"];
     s << " sequence (" << cell(q["frames"]) << " frames)\n";
-    for (const char* k : {"mse_seq", "bias2", "variance", "bias2_corrected", "variance_corrected", "flicker",
-                          "temporal_flip", "lag90_frames", "lag90_ms"})
-      if (q.contains(k)) row(s, k, q[k]);
+    rows(q, Scope::Sequence);
     s << " last frame\n";
-    image_rows(j["last_frame"]["metrics"]);
+    rows(j["last_frame"]["metrics"], Scope::Image);
   } else {
-    image_rows(j["metrics"]);
+    rows(j["metrics"], Scope::Image);
   }
   return s.str();
 }

@@ -3,6 +3,7 @@
 #include "flip_valid.h"
 #include "giq/base/error.h"
 #include "giq/image/io.h"
+#include "giq/metrics/catalogue.h"
 #include "giq/metrics/error.h"
 #include "giq/metrics/leak.h"
 #include "giq/metrics/maps.h"
@@ -25,8 +26,8 @@ json map_entry(const WrittenMap& m, const Map& map) {
 json leak_region_json(const LeakRegion& g, const std::string& region, const json& inputs) {
   return {{"region", region},
           {"pixels", g.pixels},
-          {"leak", metric(g.leak, "leak", inputs, "share of sum_image Y_R")},
-          {"leak_pixels", metric(g.leak_pixels, "leak_pixels", inputs, "share of region pixels")},
+          {"leak", metric(g.leak, "leak", inputs, unit_of("leak"))},
+          {"leak_pixels", metric(g.leak_pixels, "leak_pixels", inputs, unit_of("leak_pixels"))},
           {"leak_absolute", metric(g.leak_absolute, "leak_absolute", inputs, "radiance per image pixel")}};
 }
 
@@ -76,29 +77,29 @@ json score_image(const image::Image& ref, const std::string& ref_file, const ima
     return j;
   };
   const double nf_mse = e.noise ? e.noise->mean_variance : 0.0;
-  m["mse"] = with_floor(metric(e.mse, "mse", io, "radiance^2"), e.unresolved_mse, nf_mse);
-  m["rmse"] = with_floor(metric(e.rmse, "rmse", io, "radiance"), e.unresolved_mse, std::sqrt(nf_mse));
-  m["mae"] = with_floor(metric(e.mae, "mae", io, "radiance"), e.unresolved_mae, e.noise ? e.noise->mae : 0.0);
-  m["relmse"] = with_floor(metric(e.relmse, "relmse", io, "1"), e.unresolved_relmse, e.noise ? e.noise->relmse : 0.0);
-  m["smape"] = with_floor(metric(e.smape, "smape", io, "1"), e.unresolved_smape, e.noise ? e.noise->smape : 0.0);
-  m["psnr"] = with_floor(metric(e.psnr, "psnr", io, "dB"), e.unresolved_mse, nf_mse);
+  m["mse"] = with_floor(metric(e.mse, "mse", io, unit_of("mse")), e.unresolved_mse, nf_mse);
+  m["rmse"] = with_floor(metric(e.rmse, "rmse", io, unit_of("rmse")), e.unresolved_mse, std::sqrt(nf_mse));
+  m["mae"] = with_floor(metric(e.mae, "mae", io, unit_of("mae")), e.unresolved_mae, e.noise ? e.noise->mae : 0.0);
+  m["relmse"] = with_floor(metric(e.relmse, "relmse", io, unit_of("relmse")), e.unresolved_relmse, e.noise ? e.noise->relmse : 0.0);
+  m["smape"] = with_floor(metric(e.smape, "smape", io, unit_of("smape")), e.unresolved_smape, e.noise ? e.noise->smape : 0.0);
+  m["psnr"] = with_floor(metric(e.psnr, "psnr", io, unit_of("psnr")), e.unresolved_mse, nf_mse);
   if (e.noise) {
-    m["noise_floor"] = metric(e.noise->mean_variance, "noise_floor", json{"reference:" + var_layer}, "radiance^2");
-    m["mse_debiased"] = metric(e.mse_debiased, "mse_debiased", io_noise, "radiance^2");
+    m["noise_floor"] = metric(e.noise->mean_variance, "noise_floor", json{"reference:" + var_layer}, unit_of("noise_floor"));
+    m["mse_debiased"] = metric(e.mse_debiased, "mse_debiased", io_noise, unit_of("mse_debiased"));
   }
 
   // --- SSIM
   const SsimResult s = ssim(r, t);
-  m["ssim"] = metric(s.mean, "ssim", io, "1");
+  m["ssim"] = metric(s.mean, "ssim", io, unit_of("ssim"));
 
   // --- FLIP
   FlipResult f = flip_valid(ref, test, req.layer, hdr);
   const std::string flip_def = hdr ? "hdr_flip" : "ldr_flip";
-  json fj = {{"mean", metric(f.mean, flip_def, io, "1")},
-             {"weighted_median", metric(f.weighted_median, flip_def, io, "1")},
+  json fj = {{"mean", metric(f.mean, flip_def, io, unit_of("flip_mean"))},
+             {"weighted_median", metric(f.weighted_median, flip_def, io, unit_of("flip_median"))},
              {"weighted_q1", metric(f.weighted_q1, flip_def, io, "1")},
              {"weighted_q3", metric(f.weighted_q3, flip_def, io, "1")},
-             {"max", metric(f.max, flip_def, io, "1")},
+             {"max", metric(f.max, flip_def, io, unit_of("flip_max"))},
              {"pixels_per_degree", FlipOptions{}.pixels_per_degree}};
   if (hdr) fj["exposure"] = {{"start", f.start_exposure}, {"stop", f.stop_exposure}, {"count", f.exposures}};
   m["flip"] = fj;

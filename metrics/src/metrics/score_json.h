@@ -7,6 +7,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 
 namespace giq::metrics::detail {
 
@@ -16,9 +17,10 @@ inline nlohmann::json number(double v) {
   return v;
 }
 
+// `unit`: the catalogue's (unit_of(), giq/metrics/catalogue.h) for the metrics it lists.
 inline nlohmann::json metric(double value, const std::string& definition, const nlohmann::json& inputs,
-                             const std::string& unit) {
-  return {{"value", number(value)}, {"definition", definition}, {"inputs", inputs}, {"unit", unit}};
+                             std::string_view unit) {
+  return {{"value", number(value)}, {"definition", definition}, {"inputs", inputs}, {"unit", std::string(unit)}};
 }
 
 }  // namespace giq::metrics::detail

@@ -8,6 +8,7 @@
 #include "flip_valid.h"
 #include "giq/base/error.h"
 #include "giq/image/io.h"
+#include "giq/metrics/catalogue.h"
 #include "giq/metrics/error.h"
 #include "giq/metrics/lag.h"
 #include "giq/metrics/maps.h"
@@ -138,18 +139,18 @@ json score_sequence(const ScoreRequest& req) {
   q["per_frame_reference"] = per_frame_ref;
   q["pixels"] = s.pixels;
   q["nonfinite_pixel_frames"] = s.nonfinite_pixel_frames;
-  q["mse_seq"] = metric(s.mse_seq, "mse_seq", io, "radiance^2");
-  q["bias2"] = metric(s.bias2, "bias2", io, "radiance^2");
-  q["variance"] = metric(s.variance, "variance", io, "radiance^2");
+  q["mse_seq"] = metric(s.mse_seq, "mse_seq", io, unit_of("mse_seq"));
+  q["bias2"] = metric(s.bias2, "bias2", io, unit_of("bias2"));
+  q["variance"] = metric(s.variance, "variance", io, unit_of("variance"));
   q["reference_noise"] = metric(s.reference_noise, "reference_noise", json{"reference:variance"}, "radiance^2");
-  q["bias2_corrected"] = metric(s.bias2_corrected, "bias2_corrected", io, "radiance^2");
-  q["variance_corrected"] = metric(s.variance_corrected, "variance_corrected", io, "radiance^2");
+  q["bias2_corrected"] = metric(s.bias2_corrected, "bias2_corrected", io, unit_of("bias2_corrected"));
+  q["variance_corrected"] = metric(s.variance_corrected, "variance_corrected", io, unit_of("variance_corrected"));
   q["mean_reference_luminance"] = number(s.mean_reference_luminance);
-  q["flicker"] = metric(s.flicker, "flicker", io, "1");
-  q["flicker_uncorrected"] = metric(s.flicker_uncorrected, "flicker", io, "1");
+  q["flicker"] = metric(s.flicker, "flicker", io, unit_of("flicker"));
+  q["flicker_uncorrected"] = metric(s.flicker_uncorrected, "flicker", io, unit_of("flicker"));
   const double tf_test = flip_pairs ? flip_test / flip_pairs : std::numeric_limits<double>::quiet_NaN();
   const double tf_ref = flip_pairs ? flip_ref / flip_pairs : std::numeric_limits<double>::quiet_NaN();
-  q["temporal_flip"] = metric(tf_test - tf_ref, "temporal_flip", io, "1");
+  q["temporal_flip"] = metric(tf_test - tf_ref, "temporal_flip", io, unit_of("temporal_flip"));
   q["temporal_flip"]["technique_consecutive_flip"] = number(tf_test);
   q["temporal_flip"]["reference_consecutive_flip"] = number(tf_ref);
   if (!region.empty()) {
@@ -165,11 +166,11 @@ json score_sequence(const ScoreRequest& req) {
     for (double v : r_t) rs.push_back(number(v));
     lag["r"] = rs;
     q["lag90_frames"] = metric(lr.lag_frames ? double(*lr.lag_frames) : std::numeric_limits<double>::quiet_NaN(),
-                               "lag90", io, "frames");
+                               "lag90", io, unit_of("lag90_frames"));
     if (req.frame_ms) {
       json ms_in = io;
       ms_in.push_back("timings:" + req.timings);
-      q["lag90_ms"] = metric(lr.lag_ms ? *lr.lag_ms : std::numeric_limits<double>::quiet_NaN(), "lag90", ms_in, "ms");
+      q["lag90_ms"] = metric(lr.lag_ms ? *lr.lag_ms : std::numeric_limits<double>::quiet_NaN(), "lag90", ms_in, unit_of("lag90_ms"));
     }
   }
   q["lag"] = lag;

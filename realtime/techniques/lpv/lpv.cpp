@@ -2,7 +2,7 @@
 // then injection (lpv_inject.comp, lpv_resolve.comp), propagation steps
 // (lpv_propagate.comp) and the per-pixel lookup (lpv_lookup.comp); beauty = direct + indirect.
 //
-// What the thesis's propagation shader (seed 000, appendix "LPVPropagation.hlsl") gets wrong,
+// What the thesis's propagation shader (Afanasev 2021, appendix "LPVPropagation.hlsl") gets wrong,
 // and what is done here instead:
 //   1. The side faces are built from cellDirections[face] (face = 0..3) instead of
 //      cellDirections[neighbourCell]: every neighbour uses the same four side faces whatever
@@ -21,27 +21,22 @@
 // 2-band SH rings negative behind a lobe, and the negative flux it sends backwards is what keeps
 // a step's total flux at what entered the cell (clamping it adds light: +8% on the Cornell
 // box's mean at 50 steps).
-#include "techniques/lpv/lpv.h"
-
 #include <algorithm>
 #include <cmath>
 
 #include "giq/realtime/context.h"
 #include "giq/realtime/resources.h"
-#include "giq/realtime/scene_gpu.h"
 #include "giq/realtime/shader.h"
 #include "giq/realtime/timer.h"
-#include "passes/composite.h"
-#include "passes/direct_light.h"
-#include "passes/gbuffer.h"
-#include "passes/rsm.h"
+#include "passes/cube_grid.h"
+#include "passes/deferred_gi.h"
 #include "techniques/lpv/lpv_shared.h"
 
 namespace giq::realtime {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// seed 000, appendix "LPVPropagation.hlsl".
+// Afanasev 2021, appendix "LPVPropagation.hlsl".
 constexpr float kDirectFaceSolidAngle = 0.4006696846f;
 constexpr float kSideFaceSolidAngle = 0.4234413544f;
 
@@ -77,25 +72,14 @@ std::vector<glm::vec4> face_table() {
   return t;
 }
 
-class Lpv : public Technique {
+class Lpv : public IndirectLight {
  public:
-  explicit Lpv(const TechniqueCreateInfo& ci)
-      : ctx_(ci.ctx),
-        scene_gpu_(ci.scene_gpu),
-        width_(ci.width),
-        height_(ci.height),
-        gbuffer_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.features, ci.width, ci.height,
-                 GBufferPass::builder(ci.parameters)),
-        lighting_(ci),
-        rsm_(ci),
-        composite_(ci.ctx, ci.compiler, ci.width, ci.height),
-        res_(uint32_t(ci.parameters.get_int("lpv_grid"))),
+  Lpv(const TechniqueCreateInfo& ci, DeferredGi& /*frame*/)
+      : res_(uint32_t(ci.parameters.get_int("lpv_grid"))),
         steps_(ci.parameters.get_int("propagation_steps")),
         placement_(ci.parameters.get_int("lpv_placement")),
         downsample_(uint32_t(ci.parameters.get_int("rsm_downsample"))),
-        intensity_(float(ci.parameters.get("intensity"))),
-        indirect_(ci.ctx, {ci.width, ci.height, 1, VK_FORMAT_R32G32B32A32_SFLOAT,
-                           VK_IMAGE_USAGE_STORAGE_BIT}) {
+        intensity_(float(ci.parameters.get("intensity"))) {
     const uint64_t cells = uint64_t(res_) * res_ * res_;
     inject_ = Buffer(ci.ctx, cells * 12 * sizeof(int32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     for (auto& v : volume_)
@@ -113,25 +97,18 @@ class Lpv : public Technique {
     propagate_pipeline_ =
         Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/lpv/lpv_propagate.comp"),
                           {s, s, s, s}, sizeof(gpu::LpvGrid));
-    auto bindings = SceneGpu::binding_types();
-    bindings.insert(bindings.end(), {i, i, i, s, i});
+    auto bindings = GBufferPass::receiver_bindings();
+    bindings.insert(bindings.end(), {s, i});
     lookup_pipeline_ = Pipeline::compute(
         ci.ctx,
         ci.compiler.compile("techniques/lpv/lpv_lookup.comp", feature_defines(ci.scene.features)),
         bindings, sizeof(gpu::LpvLookupPush));
   }
 
-  std::vector<std::string> passes() const override {
-    return {"shadow_maps", "rsm",           "gbuffer",    "direct_lighting",
-            "lpv_inject",  "lpv_propagate", "lpv_lookup", "composite"};
-  }
-
-  void render(const FrameInput& in) override {
-    lighting_.record_shadows(in);
-    rsm_.record(in);
-    gbuffer_.record(in.cmd, in.camera, in.timer);
-    lighting_.record_lighting(in, gbuffer_);
-    const gpu::LpvGrid grid = make_grid(in);
+  void record(const FrameInput& in, DeferredGi& frame) override {
+    ReflectiveShadowMaps& rsm = frame.rsm();
+    Image& indirect = frame.indirect_target();
+    const gpu::LpvGrid grid = make_grid(in, rsm);
     const uint32_t cells = res_ * res_ * res_;
 
     in.timer.begin(in.cmd, "lpv_inject");
@@ -139,13 +116,13 @@ class Lpv : public Technique {
     full_barrier(in.cmd);
     inject_pipeline_.bind(in.cmd);
     inject_pipeline_.push_descriptors(
-        in.cmd, {Descriptor::storage_image(rsm_.surface()), Descriptor::storage_image(rsm_.flux()),
-                 Descriptor::storage(rsm_.layer_buffer()),
-                 Descriptor::storage(rsm_.emitter_buffer()), Descriptor::storage(inject_)});
+        in.cmd, {Descriptor::storage_image(rsm.surface()), Descriptor::storage_image(rsm.flux()),
+                 Descriptor::storage(rsm.layer_buffer()),
+                 Descriptor::storage(rsm.emitter_buffer()), Descriptor::storage(inject_)});
     inject_pipeline_.push_constants(in.cmd, grid);
-    const uint32_t blocks = (rsm_.extent() + downsample_ - 1) / downsample_;
-    if (rsm_.layer_count() > 0)
-      vkCmdDispatch(in.cmd, (blocks + 7) / 8, (blocks + 7) / 8, rsm_.layer_count());
+    const uint32_t blocks = (rsm.extent() + downsample_ - 1) / downsample_;
+    if (rsm.layer_count() > 0)
+      vkCmdDispatch(in.cmd, (blocks + 7) / 8, (blocks + 7) / 8, rsm.layer_count());
     full_barrier(in.cmd);
     resolve_pipeline_.bind(in.cmd);
     resolve_pipeline_.push_descriptors(
@@ -172,26 +149,19 @@ class Lpv : public Technique {
     in.timer.end(in.cmd);
 
     in.timer.begin(in.cmd, "lpv_lookup");
-    indirect_.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
+    indirect.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
     lookup_pipeline_.bind(in.cmd);
-    auto d = scene_gpu_.descriptors();
-    d.push_back(Descriptor::storage_image(gbuffer_.position()));
-    d.push_back(Descriptor::storage_image(gbuffer_.normal()));
-    d.push_back(Descriptor::storage_image(gbuffer_.ids()));
+    auto d = frame.gbuffer().receiver_descriptors();
     d.push_back(Descriptor::storage(accumulated_));
-    d.push_back(Descriptor::storage_image(indirect_));
+    d.push_back(Descriptor::storage_image(indirect));
     lookup_pipeline_.push_descriptors(in.cmd, d);
-    lookup_pipeline_.push_constants(in.cmd,
-                                    gpu::LpvLookupPush{grid, glm::uvec4(width_, height_, 0, 0)});
-    lookup_pipeline_.dispatch_2d(in.cmd, width_, height_);
+    gpu::LpvLookupPush lookup{};
+    lookup.grid = grid;
+    lookup.size = glm::uvec2(frame.width(), frame.height());
+    lookup_pipeline_.push_constants(in.cmd, lookup);
+    lookup_pipeline_.dispatch_2d(in.cmd, frame.width(), frame.height());
     full_barrier(in.cmd);
     in.timer.end(in.cmd);
-
-    composite_.record(in.cmd, lighting_.output(), indirect_, in.timer);
-  }
-
-  std::vector<std::pair<std::string, Image*>> outputs() override {
-    return {{"", &composite_.output()}, {"direct", &lighting_.output()}, {"indirect", &indirect_}};
   }
 
  private:
@@ -200,13 +170,10 @@ class Lpv : public Technique {
   // grid ahead of it (the last two snapped to whole cells, so that a moving camera does not
   // make the injection crawl). Grids that follow the camera are for scenes larger than them;
   // sized from the scene, they cover it only when the camera is inside or near it.
-  gpu::LpvGrid make_grid(const FrameInput& in) const {
-    const scenes::Bounds& b = in.scene.bounds;
-    const glm::vec3 ext = b.empty() ? glm::vec3(1.0f) : b.extent();
-    const float extent = std::max(std::max(ext.x, std::max(ext.y, ext.z)), 1e-6f);
-    const float cell = extent / float(std::max<uint32_t>(1, res_ - 2));
-    const glm::vec3 centre = b.empty() ? glm::vec3(0.0f) : 0.5f * (b.lo + b.hi);
-    glm::vec3 origin = centre - 0.5f * cell * float(res_);
+  gpu::LpvGrid make_grid(const FrameInput& in, const ReflectiveShadowMaps& rsm) const {
+    const CubeGrid fitted = fit_cube_grid(in.scene.bounds, res_);
+    const float cell = fitted.cell;
+    glm::vec3 origin = fitted.origin;
     if (placement_ != 0) {
       const float ahead = placement_ == 2 ? 0.5f * cell * float(res_) : 0.0f;
       const glm::vec3 c = in.camera.position + in.camera.forward * ahead;
@@ -217,29 +184,27 @@ class Lpv : public Technique {
     // light's brightest channel x 4 pi / 6 per cube face or x window area per ortho layer;
     // 2^30 units for that bound keep every int32 sum from overflowing.
     double bound = 0.0;
-    for (const auto& l : rsm_.layers())
+    for (const auto& l : rsm.layers())
       bound += double(l.params.z) *
                (l.params.x == GIQ_RSM_ORTHO ? double(l.axes.w) * l.axes.w : 4.0 * kPi / 6.0);
     const double coefficient = bound / kPi * 1.02332671;
     const float scale = coefficient > 0.0 ? float(std::ldexp(1.0, 30) / coefficient) : 0.0f;
-    return {glm::vec4(origin, cell),
-            glm::uvec4(res_, rsm_.layer_count(), downsample_, rsm_.emitter_count()),
-            glm::vec4(scale, intensity_, 0.0f, 0.0f)};
+    gpu::LpvGrid grid{};
+    grid.origin = glm::vec4(origin, cell);
+    grid.resolution = res_;
+    grid.rsm_layers = rsm.layer_count();
+    grid.rsm_downsample = downsample_;
+    grid.emitter_count = rsm.emitter_count();
+    grid.injection_scale = scale;
+    grid.intensity = intensity_;
+    return grid;
   }
 
-  Context& ctx_;
-  const SceneGpu& scene_gpu_;
-  uint32_t width_, height_;
-  GBufferPass gbuffer_;
-  DirectLightPass lighting_;
-  ReflectiveShadowMaps rsm_;
-  CompositePass composite_;
   uint32_t res_;
   int steps_;
   int placement_;  // 0 scene, 1 camera-centred, 2 half a grid ahead of the camera
   uint32_t downsample_;
   float intensity_;
-  Image indirect_;
   Buffer inject_, volume_[2], accumulated_, faces_;
   Pipeline inject_pipeline_, resolve_pipeline_, propagate_pipeline_, lookup_pipeline_;
 };
@@ -247,27 +212,22 @@ class Lpv : public Technique {
 }  // namespace
 
 TechniqueInfo lpv_technique() {
-  std::vector<Parameter> parameters = DirectLightPass::parameters();
-  parameters.push_back(GBufferPass::ray_traced_parameter());
-  for (auto& p : ReflectiveShadowMaps::parameters()) parameters.push_back(p);
-  parameters.push_back(
-      {"rsm_downsample", 4, 1, 8, true,
-       "k: one VPL per k x k RSM block, by the brightest-texel scheme (seed 000, 3.2: k = 4)"});
-  parameters.push_back({"lpv_grid", 32, 4, 128, true, "cells per side of the propagation volume"});
-  parameters.push_back({"propagation_steps", 50, 0, 100, true,
-                        "propagation steps (seed 000: 50, 1-100); 0 = the injected light only"});
-  parameters.push_back({"lpv_placement", 0, 0, 2, true,
-                        "0: the grid fits the scene's bounds; 1: centred on the camera; 2: half a "
-                        "grid ahead of it"});
-  parameters.push_back(
-      {"intensity", 1, 0, 100, false, "multiplier of the indirect light (1 = physical units)"});
-  return {
+  FrameNeeds needs;
+  needs.reflective_shadow_maps = true;
+  return deferred_technique<Lpv>(
       "lpv",
-      "Light Propagation Volumes (seed 000 ch. III): RSM VPLs (brightest texel of each 4x4 block) "
-      "injected as "
+      "Light Propagation Volumes (Afanasev 2021 ch. III): RSM VPLs (brightest texel of each 4x4 block) injected as "
       "2-band SH into a grid, propagated to the 6 face neighbours, trilinear cosine-lobe lookup",
-      std::move(parameters),
-      [](const TechniqueCreateInfo& ci) { return std::make_unique<Lpv>(ci); }};
+      needs,
+      {{"rsm_downsample", 4, 1, 8, true,
+        "k: one VPL per k x k RSM block, by the brightest-texel scheme (Afanasev 2021, III.3.2: k = 4)"},
+       {"lpv_grid", 32, 4, 128, true, "cells per side of the propagation volume"},
+       {"propagation_steps", 50, 0, 100, true,
+        "propagation steps (Afanasev 2021: 50, 1-100); 0 = the injected light only"},
+       {"lpv_placement", 0, 0, 2, true,
+        "0: the grid fits the scene's bounds; 1: centred on the camera; 2: half a grid ahead of it"},
+       {"intensity", 1, 0, 100, false, "multiplier of the indirect light (1 = physical units)"}},
+      {"lpv_grid", {8, 16, 24, 32, 48, 64}});
 }
 
 }  // namespace giq::realtime

@@ -1,5 +1,5 @@
 #version 460
-// LPV injection (seed 000, section 3.2 and appendix "RSMDownsamplerPS.hlsl", "LPVInjection.hlsl"):
+// LPV injection (Afanasev 2021, section 3.2 and appendix "RSMDownsamplerPS.hlsl", "LPVInjection.hlsl"):
 // each k x k block of a reflective-shadow-map layer (passes/rsm.h) becomes one VPL by the
 // thesis's brightest-texel scheme: the block's brightest texel (luminance of its flux plus
 // max(0, n.-light direction)) picks a cell, and the texels whose cells lie within a squared
@@ -34,16 +34,16 @@ float luminance(vec3 c) { return dot(c, vec3(0.299, 0.587, 0.114)); }
 
 void main() {
   uint l = gl_GlobalInvocationID.z;
-  if (l >= grid.size.y) return;
+  if (l >= grid.rsm_layers) return;
   GpuRsmLayer L = rsm_layers[l];
-  int size = int(L.params.y), k = int(grid.size.z);
+  int size = int(L.params.y), k = int(grid.rsm_downsample);
   ivec2 block = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(block * k, ivec2(size)))) return;
   GpuRsmEmitter e = emitters[uint(L.params.w)];
   bool ortho = L.params.x == GIQ_RSM_ORTHO;
   vec3 origin = grid.origin.xyz;
   float cell = grid.origin.w;
-  int res = int(grid.size.x);
+  int res = int(grid.resolution);
 
   // The brightest texel's cell.
   float best = -1.0;
@@ -100,7 +100,7 @@ void main() {
   if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(res)))) return;
   vec4 sh = cos_lobe_sh(nrm) / PI_LPV;
   int base = 12 * lpv_cell_index(c, res);
-  float q = grid.params.x;
+  float q = grid.injection_scale;
   for (int ch = 0; ch < 3; ++ch) {
     vec4 v = sh * flux[ch] * q;
     for (int i = 0; i < 4; ++i) {

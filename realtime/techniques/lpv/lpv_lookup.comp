@@ -1,5 +1,5 @@
 #version 460
-// LPV lookup at shading time (seed 000, chapter III; Kaplanyan and Dachsbacher 2010, section
+// LPV lookup at shading time (Afanasev 2021, chapter III; Kaplanyan and Dachsbacher 2010, section
 // 5): the accumulated volume sampled trilinearly at the G-buffer point moved half a cell along
 // its normal (less self-illumination and bleeding through thin geometry), its intensity turned
 // into radiance by the cell's face area (L = I / cell^2), integrated against the cosine lobe
@@ -15,57 +15,42 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = GIQ_SCENE_BINDING_COUNT + 0, rgba32f) uniform readonly image2D gb_position;
-layout(binding = GIQ_SCENE_BINDING_COUNT + 1, rgba32f) uniform readonly image2D gb_normal;
-layout(binding = GIQ_SCENE_BINDING_COUNT + 2, rgba32ui) uniform readonly uimage2D gb_ids;
-layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 3) readonly buffer Accumulated { vec4 accumulated[]; };
-layout(binding = GIQ_SCENE_BINDING_COUNT + 4, rgba32f) uniform writeonly image2D out_indirect;
+#include "passes/receiver.glsl"
+layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 0) readonly buffer Accumulated { vec4 accumulated[]; };
+layout(binding = GIQ_RECEIVER_BINDING_COUNT + 1, rgba32f) uniform writeonly image2D out_indirect;
 
 layout(push_constant) uniform Push { LpvLookupPush pc; };
 
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   LpvGrid grid = pc.grid;
-  if (px.x >= int(pc.size.x) || px.y >= int(pc.size.y)) return;
-  uvec4 ids = imageLoad(gb_ids, px);
+  if (any(greaterThanEqual(uvec2(px), pc.size))) return;
+  Receiver r = load_receiver(px);
   vec3 radiance = vec3(0.0);
-  if (ids.x != 0u) {
-    GpuMaterial mat = scene_materials[ids.y];
-    if (ids.w == 0u || mat.params.w != 0.0) {
-      vec3 x = imageLoad(gb_position, px).xyz;
-      vec3 n = imageLoad(gb_normal, px).xyz;
-      float cell = grid.origin.w;
-      int res = int(grid.size.x);
-      // Cell centres at integer coordinates of g.
-      vec3 g = (x - grid.origin.xyz) / cell + 0.5 * n - 0.5;
-      ivec3 g0 = ivec3(floor(g));
-      vec3 t = g - vec3(g0);
-      vec4 r = vec4(0.0), gg = vec4(0.0), b = vec4(0.0);
-      for (int i = 0; i < 8; ++i) {
-        ivec3 o = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-        ivec3 c = clamp(g0 + o, ivec3(0), ivec3(res - 1));
-        vec3 w3 = mix(1.0 - t, t, vec3(o));
-        float w = w3.x * w3.y * w3.z;
-        int k = 3 * lpv_cell_index(c, res);
-        r += w * accumulated[k];
-        gg += w * accumulated[k + 1];
-        b += w * accumulated[k + 2];
-      }
-      // Outside the grid: no indirect light.
-      bool inside = all(greaterThanEqual(g, vec3(-0.5))) && all(lessThan(g, vec3(float(res) - 0.5)));
-      vec4 lobe = cos_lobe_sh(-n);
-      vec3 e = inside ? max(vec3(dot(r, lobe), dot(gg, lobe), dot(b, lobe)), vec3(0.0)) / (cell * cell) : vec3(0.0);
-      // The receiver's material at the G-buffer point (deferred texturing, as direct_light.comp).
-      uint tri = ids.x - 1u;
-      vec2 bary = vec2(0.0);
-#ifdef GIQ_SURFACE_TEXTURES
-      vec3 ta, tb, tc;
-      triangle_vertices(tri, ta, tb, tc);
-      bary = plane_barycentrics(x, ta, tb, tc);
-#endif
-      vec3 albedo = diffuse_albedo(hit_material(tri, bary.x, bary.y, n));
-      radiance = albedo / PI * e * grid.params.y;
+  if (r.lit) {
+    vec3 x = r.x, n = r.n;
+    float cell = grid.origin.w;
+    int res = int(grid.resolution);
+    // Cell centres at integer coordinates of g.
+    vec3 g = (x - grid.origin.xyz) / cell + 0.5 * n - 0.5;
+    ivec3 g0 = ivec3(floor(g));
+    vec3 t = g - vec3(g0);
+    vec4 sr = vec4(0.0), sg = vec4(0.0), sb = vec4(0.0);
+    for (int i = 0; i < 8; ++i) {
+      ivec3 o = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+      ivec3 c = clamp(g0 + o, ivec3(0), ivec3(res - 1));
+      vec3 w3 = mix(1.0 - t, t, vec3(o));
+      float w = w3.x * w3.y * w3.z;
+      int k = 3 * lpv_cell_index(c, res);
+      sr += w * accumulated[k];
+      sg += w * accumulated[k + 1];
+      sb += w * accumulated[k + 2];
     }
+    // Outside the grid: no indirect light.
+    bool inside = all(greaterThanEqual(g, vec3(-0.5))) && all(lessThan(g, vec3(float(res) - 0.5)));
+    vec4 lobe = cos_lobe_sh(-n);
+    vec3 e = inside ? max(vec3(dot(sr, lobe), dot(sg, lobe), dot(sb, lobe)), vec3(0.0)) / (cell * cell) : vec3(0.0);
+    radiance = diffuse_albedo(receiver_surface(r)) / PI * e * grid.intensity;
   }
   imageStore(out_indirect, px, vec4(radiance, 1.0));
 }

@@ -1,5 +1,5 @@
 #version 460
-// One LPV propagation step (seed 000, chapter III and appendix "LPVPropagation.hlsl";
+// One LPV propagation step (Afanasev 2021, chapter III and appendix "LPVPropagation.hlsl";
 // Kaplanyan and Dachsbacher 2010): every cell gathers from its 6 face neighbours. A neighbour
 // at cell - d sends light along d; the flux it sends through each of the 5 faces of this cell
 // that it does not share (the far face, solid angle 0.4006696846 sr from the neighbour's
@@ -28,7 +28,7 @@ layout(push_constant) uniform Push { LpvGrid grid; };
 
 void main() {
   ivec3 c = ivec3(gl_GlobalInvocationID);
-  int res = int(grid.size.x);
+  int res = int(grid.resolution);
   if (any(greaterThanEqual(c, ivec3(res)))) return;
   vec4 r = vec4(0.0), g = vec4(0.0), b = vec4(0.0);
   for (int n = 0; n < 6; ++n) {

@@ -15,9 +15,9 @@ layout(push_constant) uniform Push { LpvGrid grid; };
 
 void main() {
   uint i = gl_GlobalInvocationID.x;  // one SH vector (cell x 3 + channel)
-  uint n = grid.size.x * grid.size.x * grid.size.x * 3u;
+  uint n = grid.resolution * grid.resolution * grid.resolution * 3u;
   if (i >= n) return;
-  float inv = grid.params.x > 0.0 ? 1.0 / grid.params.x : 0.0;
+  float inv = grid.injection_scale > 0.0 ? 1.0 / grid.injection_scale : 0.0;
   vec4 v = vec4(inject[4u * i], inject[4u * i + 1u], inject[4u * i + 2u], inject[4u * i + 3u]) * inv;
   current[i] = v;
   accumulated[i] = v;

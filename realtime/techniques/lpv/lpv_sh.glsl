@@ -1,4 +1,4 @@
-// Two-band spherical harmonics of LPV (seed 000, appendix "LPVInjection.hlsl",
+// Two-band spherical harmonics of LPV (Afanasev 2021, appendix "LPVInjection.hlsl",
 // "LPVPropagation.hlsl", whose Common.hlsl they come from; Kaplanyan and Dachsbacher 2010,
 // "Cascaded Light Propagation Volumes for Real-Time Indirect Illumination"): real SH with
 // Y00 = 1 / (2 sqrt(pi)), Y1m = sqrt(3) / (2 sqrt(pi)) (-y, z, -x).

@@ -1,7 +1,10 @@
 // `pt`: one compute pass per frame that adds samples_per_frame paths per pixel to running
 // sums and writes the means; the sums restart when the scene or the camera moves. Parameters:
-// samples_per_frame, max_bounces, seed.
-#include "techniques/pt/pt.h"
+// samples_per_frame, max_bounces, seed. It is the one technique outside the deferred frame
+// (passes/deferred_gi.h): it traces its own camera rays, so its direct light comes from the
+// same paths as its indirect light (the reference's split), not from the shared direct pass,
+// and it needs no G-buffer.
+#include "giq/realtime/technique.h"
 
 #include "giq/realtime/context.h"
 #include "giq/realtime/pipeline.h"
@@ -29,8 +32,6 @@ class PathTracer : public Technique {
     pipeline_ = Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/pt/pt.comp", feature_defines(ci.scene.features)),
                                   bindings, sizeof(gpu::PtPush));
   }
-
-  std::vector<std::string> passes() const override { return {"path_trace"}; }
 
   void render(const FrameInput& in) override {
     if (in.frame == 0)
@@ -96,6 +97,7 @@ TechniqueInfo pt_technique() {
           {{"samples_per_frame", 1, 1, 1024, true, "paths per pixel added each frame"},
            {"max_bounces", 64, 1, 1024, true, "surface interactions after the camera ray; Russian roulette after 3"},
            {"seed", 0, 0, 2147483647, true, "random sequence; same seed, same image"}},
+          {"samples_per_frame", {1, 2, 4, 8, 16}},
           [](const TechniqueCreateInfo& ci) { return std::make_unique<PathTracer>(ci); }};
 }
 

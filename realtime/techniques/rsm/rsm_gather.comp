@@ -1,5 +1,5 @@
 #version 460
-// `rsm`'s gather (seed 000, section 2.1 and appendix "ReflectiveShadowMappingPS.hlsl";
+// `rsm`'s gather (Afanasev 2021, section 2.1 and appendix "ReflectiveShadowMappingPS.hlsl";
 // Dachsbacher and Stamminger 2005): one bounce of diffuse light from the virtual point lights
 // of every reflective shadow map (passes/rsm.h), N samples per pixel at the thesis's polar
 // pattern p' = p + r_max xi1 (sin 2 pi xi2, cos 2 pi xi2), the same N (xi1, xi2) pairs for
@@ -7,7 +7,7 @@
 //
 // Each sample's VPL contributes with the thesis's irradiance formula, written with the
 // unnormalised offset v = x - x_p as there:
-//   E_p = flux max(0, n_p.v) max(0, n.(-v)) / dot(v, v)^2          (seed 000, eq. in 2.2)
+//   E_p = flux max(0, n_p.v) max(0, n.(-v)) / dot(v, v)^2          (Afanasev 2021, eq. in 2.2)
 // with two changes a reviewer should know of:
 //   - units: a VPL of flux F emits intensity F/pi cos (a Lambertian patch), so E_p gets 1/pi,
 //     and the stored flux is a density (per steradian or per m^2, rsm.frag), so each sample is
@@ -34,15 +34,13 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = GIQ_SCENE_BINDING_COUNT + 0, rgba32f) uniform readonly image2D gb_position;
-layout(binding = GIQ_SCENE_BINDING_COUNT + 1, rgba32f) uniform readonly image2D gb_normal;
-layout(binding = GIQ_SCENE_BINDING_COUNT + 2, rgba32ui) uniform readonly uimage2D gb_ids;
-layout(binding = GIQ_SCENE_BINDING_COUNT + 3, rgba32ui) uniform readonly uimage2DArray rsm_surface;
-layout(binding = GIQ_SCENE_BINDING_COUNT + 4, rgba16f) uniform readonly image2DArray rsm_flux;
-layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 5) readonly buffer Layers { GpuRsmLayer rsm_layers[]; };
-layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 6) readonly buffer Emitters { GpuRsmEmitter emitters[]; };
-layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 7) readonly buffer Samples { vec4 xi[]; };
-layout(binding = GIQ_SCENE_BINDING_COUNT + 8, rgba32f) uniform writeonly image2D out_indirect;
+#include "passes/receiver.glsl"
+layout(binding = GIQ_RECEIVER_BINDING_COUNT + 0, rgba32ui) uniform readonly uimage2DArray rsm_surface;
+layout(binding = GIQ_RECEIVER_BINDING_COUNT + 1, rgba16f) uniform readonly image2DArray rsm_flux;
+layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 2) readonly buffer Layers { GpuRsmLayer rsm_layers[]; };
+layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 3) readonly buffer Emitters { GpuRsmEmitter emitters[]; };
+layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 4) readonly buffer Samples { vec4 xi[]; };
+layout(binding = GIQ_RECEIVER_BINDING_COUNT + 5, rgba32f) uniform writeonly image2D out_indirect;
 
 layout(push_constant) uniform Push { RsmGatherPush pc; };
 
@@ -64,8 +62,8 @@ vec3 gather_ortho(uint l, vec3 x, vec3 n) {
   GpuRsmLayer L = rsm_layers[l];
   float size = L.params.y;
   vec2 uv0 = (L.view_proj * vec4(x, 1.0)).xy * 0.5 + 0.5;
-  float r = pc.params.x, width = L.axes.w;
-  float n_samples = pc.params.y;
+  float r = pc.r_max, width = L.axes.w;
+  float n_samples = float(pc.samples);
   float rw2 = (r * width) * (r * width);
   float eps = rw2 / n_samples;  // (pi (r width)^2 / N) / pi
   vec3 sum = vec3(0.0);
@@ -87,8 +85,8 @@ vec3 gather_cube(uint first, vec3 c, vec3 x, vec3 n) {
   vec3 w0 = d0 / dl;
   vec3 t = normalize(abs(w0.x) < 0.9 ? cross(w0, vec3(1.0, 0.0, 0.0)) : cross(w0, vec3(0.0, 1.0, 0.0)));
   vec3 b = cross(w0, t);
-  float theta_max = PI * pc.params.x;
-  float n_samples = pc.params.y;
+  float theta_max = PI * pc.r_max;
+  float n_samples = float(pc.samples);
   float size = rsm_layers[first].params.y;
   // The area one sample stands for at the receiver's distance: the cone's solid angle / N.
   float eps = dl * dl * 2.0 * (1.0 - cos(theta_max)) / n_samples;
@@ -113,32 +111,16 @@ vec3 gather_cube(uint first, vec3 c, vec3 x, vec3 n) {
 
 void main() {
   ivec2 lo = ivec2(gl_GlobalInvocationID.xy);
-  if (lo.x >= int(pc.size.z) || lo.y >= int(pc.size.w)) return;
-  int k = int(pc.params.z);
-  ivec2 px = min(lo * k + k / 2, ivec2(pc.size.xy) - 1);
-  uvec4 ids = imageLoad(gb_ids, px);
+  if (any(greaterThanEqual(uvec2(lo), pc.low_size))) return;
+  Receiver r = load_receiver(receiver_pixel(lo, int(pc.factor), ivec2(pc.size)));
   vec3 radiance = vec3(0.0);
-  if (ids.x != 0u) {
-    GpuMaterial mat = scene_materials[ids.y];
-    if (ids.w == 0u || mat.params.w != 0.0) {
-      vec3 x = imageLoad(gb_position, px).xyz;
-      vec3 n = imageLoad(gb_normal, px).xyz;
-      vec3 e = vec3(0.0);
-      for (uint i = 0u; i < uint(pc.params.w); ++i) {
-        GpuRsmEmitter em = emitters[i];
-        e += em.layers.y == 1u ? gather_ortho(em.layers.x, x, n) : gather_cube(em.layers.x, em.position.xyz, x, n);
-      }
-      // The receiver's material at the G-buffer point (deferred texturing, as direct_light.comp).
-      uint tri = ids.x - 1u;
-      vec2 bary = vec2(0.0);
-#ifdef GIQ_SURFACE_TEXTURES
-      vec3 ta, tb, tc;
-      triangle_vertices(tri, ta, tb, tc);
-      bary = plane_barycentrics(x, ta, tb, tc);
-#endif
-      vec3 albedo = diffuse_albedo(hit_material(tri, bary.x, bary.y, n));
-      radiance = albedo / PI * e;
+  if (r.lit) {
+    vec3 e = vec3(0.0);
+    for (uint i = 0u; i < pc.emitter_count; ++i) {
+      GpuRsmEmitter em = emitters[i];
+      e += em.layers.y == 1u ? gather_ortho(em.layers.x, r.x, r.n) : gather_cube(em.layers.x, em.position.xyz, r.x, r.n);
     }
+    radiance = diffuse_albedo(receiver_surface(r)) / PI * e;
   }
   imageStore(out_indirect, lo, vec4(radiance, 1.0));
 }

@@ -5,13 +5,17 @@
 #ifdef __cplusplus
 #include <glm/glm.hpp>
 namespace giq::realtime::gpu {
-using vec4 = glm::vec4;
-using uvec4 = glm::uvec4;
+using uvec2 = glm::uvec2;
+using uint = uint32_t;
 #endif
 
 struct RsmGatherPush {
-  uvec4 size;    // x, y: full resolution; z, w: the resolution gathered at
-  vec4 params;   // x: r_max; y: samples; z: downsample factor k; w: emitters
+  uvec2 size;          // full resolution
+  uvec2 low_size;      // the resolution gathered at
+  float r_max;         // sampling radius (rsm.cpp's parameter)
+  uint samples;        // N
+  uint factor;         // downsample factor k
+  uint emitter_count;  // GpuRsmEmitter entries
 };
 
 #ifdef __cplusplus

@@ -29,8 +29,8 @@ vec4 sample_voxels(vec3 uvw, vec3 dir, float lod) {
 // follows the thesis's AO with falloff 1 / (1 + falloff x diameter in voxels).
 vec4 trace_cone(vec3 p, vec3 dir, float aperture, out float occlusion) {
   float voxel = VCT_GRID.origin.w;
-  float inv_extent = 1.0 / (voxel * float(VCT_GRID.size.x));
-  float max_lod = float(VCT_GRID.size.y);
+  float inv_extent = 1.0 / (voxel * float(VCT_GRID.resolution));
+  float max_lod = float(VCT_GRID.levels);
   float dist = voxel;
   vec4 acc = vec4(0.0);
   occlusion = 0.0;
@@ -39,7 +39,7 @@ vec4 trace_cone(vec3 p, vec3 dir, float aperture, out float occlusion) {
     // The footprint guard: a cell of the level sampled, with the trilinear filter's reach of
     // about 1.5 cells, must not extend behind the surface the cone leaves, or a thick wall's
     // far (possibly sunlit) face is composited first by the directional mips and leaks in.
-    // The cell size is capped at (distance from the surface) / guard; guard 0 = seed 000's
+    // The cell size is capped at (distance from the surface) / guard; guard 0 = Afanasev 2021's
     // level log2(diameter / voxel).
     float cell = VCT_GUARD > 0.0 ? min(diameter, max((dist + VCT_START) / VCT_GUARD, voxel)) : diameter;
     float lod = min(log2(cell / voxel), max_lod);

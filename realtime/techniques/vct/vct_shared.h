@@ -6,33 +6,57 @@
 
 #ifdef __cplusplus
 namespace giq::realtime::gpu {
-using uvec4 = glm::uvec4;
+using uvec2 = glm::uvec2;
+using uint = uint32_t;
 #endif
 
-// The voxel cube: `origin` its min corner and voxel edge length (w); size.x voxels per side
-// of the base level. Empty voxels of the base level hold GIQ_VCT_EMPTY while voxelising.
+// The voxel cube: `origin` its min corner and voxel edge length (w). Empty voxels of the base level hold GIQ_VCT_EMPTY while voxelising.
 #define GIQ_VCT_EMPTY 0xffffffffu
 // Anisotropic volumes: +X, -X, +Y, -Y, +Z, -Z (the direction a cone travels).
 #define GIQ_VCT_DIRECTIONS 6
 
 struct VctGrid {
-  vec4 origin;  // xyz min corner; w voxel edge length
-  uvec4 size;   // x voxels per side (base); y anisotropic levels; z, w per pass
+  vec4 origin;      // xyz min corner; w voxel edge length
+  uint resolution;  // voxels per side of the base level
+  uint levels;      // levels of each anisotropic chain
+  uint pad0, pad1;
 };
 
-// voxelize.comp: size.z triangle count, size.w column slices (workgroups per triangle).
-// voxel_light.comp: size.z punctual lights, size.w emitters; params.x = encode scale (stored
-// value = radiance * scale), params.y = shadow-ray origin offset (world units), params.z =
-// diffuse cone count, params.w = 1 to add the light the voxel's surface receives from the
-// current mips (one more bounce); cone = aperture, max distance, step factor, start offset;
-// guard.x = footprint guard (cone.glsl).
-// voxel_mip.comp: size.z target anisotropic level, size.w 1 = blend with the previous frame;
-// params.x = weight of the new voxels.
-struct VctVoxelPush {
+// How cones march (cone.glsl).
+struct VctCone {
+  float aperture;      // diffuse cones' tan(half angle)
+  float max_distance;  // world units
+  float step_factor;   // step as a fraction of the cone's diameter there
+  float start_offset;  // apex offset along the normal, in base voxels
+  float guard;         // footprint guard (0: the thesis's log2(diameter / voxel))
+  float ao_falloff;    // AO attenuation with cone diameter, per voxel
+  uint count;          // diffuse cones
+  uint pad;
+};
+
+struct VctVoxelizePush {  // voxelize.comp
   VctGrid grid;
-  vec4 params;
-  vec4 cone;
-  vec4 guard;
+  uint triangle_count;
+  uint pad0, pad1, pad2;
+};
+
+struct VctLightPush {  // voxel_light.comp
+  VctGrid grid;
+  VctCone cone;
+  uint light_count;    // punctual lights
+  uint emitter_count;  // VctEmitter entries
+  float scale;         // stored value = radiance x scale
+  float ray_offset;    // shadow-ray origin offset (world units)
+  uint add_bounce;     // 1: add the light the voxel receives from the current mips
+  uint pad0, pad1, pad2;
+};
+
+struct VctMipPush {  // voxel_mip.comp
+  VctGrid grid;
+  uint level;        // the anisotropic level written
+  uint blend;        // 1: blend with what the level held (the previous frame)
+  float new_weight;  // weight of the new voxels in that blend
+  uint pad;
 };
 
 // An emissive mesh for voxel lighting: a cosine-weighted emitter at its area-weighted
@@ -43,14 +67,16 @@ struct VctEmitter {
   vec4 power;     // rgb: sum of radiance x area (W/sr along the normal); w: total area
 };
 
-struct VctConePush {
-  vec4 eye;         // xyz camera position
-  VctGrid grid;     // size.z cone count, size.w flags (1: AO)
-  vec4 viewport;    // x full width, y full height, z low width, w low height
-  vec4 cone;        // x diffuse aperture (tan of the half angle), y max distance (world),
-                    // z step factor, w start offset (voxels)
-  vec4 params;      // x decode scale (radiance = stored / scale), y k, z AO falloff,
-                    // w footprint guard (cone.glsl)
+struct VctConePush {  // cone_trace.comp
+  vec4 eye;            // xyz camera position
+  VctGrid grid;
+  VctCone cone;
+  uvec2 size;          // full resolution
+  uvec2 low_size;      // the resolution traced at
+  float decode_scale;  // radiance = stored / scale: 1 / scale
+  uint factor;         // downsample factor k
+  uint ao;             // 1: write the ambient occlusion layer
+  uint pad;
 };
 
 #ifdef __cplusplus

@@ -1,6 +1,6 @@
 #version 460
-// Voxel direct lighting (seed 000 ch. IV and its VoxelConeTracingVoxelization.hlsl: albedo x
-// shadowed direct light; seed 001 part 1: diffuse part of the main lighting model only).
+// Voxel direct lighting (Afanasev 2021 ch. IV and its VoxelConeTracingVoxelization.hlsl: albedo x
+// shadowed direct light; Turánszki 2017 part 1: diffuse part of the main lighting model only).
 // Each voxel that voxelize.comp marked holds the index of one triangle overlapping it; this
 // pass replaces it by the radiance that triangle's surface reflects, at the point of the
 // triangle nearest the voxel centre: (diffuse BRDF) x irradiance, stored isotropically with
@@ -10,7 +10,7 @@
 // frustum while voxels fill the whole scene, and only surface voxels (a few percent of the
 // grid) run this code.
 // With more than one bounce the pass runs again after the mips are built, and each voxel adds
-// the light its surface receives through the diffuse cones from those mips (seed 001, part 1:
+// the light its surface receives through the diffuse cones from those mips (Turánszki 2017, part 1:
 // "we can dispatch additional cone tracing compute shader passes for the whole structure").
 // Those cones read only the anisotropic chains, never the base level this pass writes.
 // Light types: punctual lights exactly (glTF units); an emissive mesh as one cosine-weighted
@@ -24,6 +24,7 @@
 #include "shaders/brdf.glsl"
 #include "shaders/surface.glsl"
 #include "shaders/lights.glsl"
+#include "shaders/closest_point.glsl"
 #include "techniques/vct/vct_shared.h"
 #include "techniques/vct/voxel.glsl"
 
@@ -36,48 +37,26 @@ layout(binding = GIQ_SCENE_BINDING_COUNT + 4) uniform sampler3D chain_py;
 layout(binding = GIQ_SCENE_BINDING_COUNT + 5) uniform sampler3D chain_ny;
 layout(binding = GIQ_SCENE_BINDING_COUNT + 6) uniform sampler3D chain_pz;
 layout(binding = GIQ_SCENE_BINDING_COUNT + 7) uniform sampler3D chain_nz;
-layout(push_constant) uniform Push { VctVoxelPush pc; };
+layout(push_constant) uniform Push { VctLightPush pc; };
 
 #define GIQ_VCT_CHAINS_ONLY
 #define VCT_GRID pc.grid
-#define VCT_MAX_DISTANCE pc.cone.y
-#define VCT_STEP_FACTOR pc.cone.z
+#define VCT_MAX_DISTANCE pc.cone.max_distance
+#define VCT_STEP_FACTOR pc.cone.step_factor
 #define VCT_AO_FALLOFF 0.0
-#define VCT_START (pc.cone.w * pc.grid.origin.w)
-#define VCT_GUARD pc.guard.x
+#define VCT_START (pc.cone.start_offset * pc.grid.origin.w)
+#define VCT_GUARD pc.cone.guard
 #include "techniques/vct/cone.glsl"
-
-// The point of triangle (a, b, c) closest to q (Ericson 2004, "Real-Time Collision
-// Detection", 5.1.5; the same routine as passes/direct_light.comp's).
-vec3 closest_on_triangle(vec3 q, vec3 a, vec3 b, vec3 c) {
-  vec3 ab = b - a, ac = c - a, ap = q - a;
-  float d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return a;
-  vec3 bp = q - b;
-  float d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0.0 && d4 <= d3) return b;
-  float vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + ab * (d1 / (d1 - d3));
-  vec3 cp = q - c;
-  float d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0.0 && d5 <= d6) return c;
-  float vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
-  float va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  float denom = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denom) + ac * (vc * denom);
-}
 
 // Visibility from p (on a surface of geometric normal ng) towards wi up to dist.
 float visible(vec3 p, vec3 ng, vec3 wi, float dist) {
-  vec3 o = p + ng * (dot(ng, wi) >= 0.0 ? pc.params.y : -pc.params.y);
+  vec3 o = p + ng * (dot(ng, wi) >= 0.0 ? pc.ray_offset : -pc.ray_offset);
   return trace_ray(o, wi, dist, true).triangle == 0xffffffffu ? 1.0 : 0.0;
 }
 
 void main() {
   ivec3 cell = ivec3(gl_GlobalInvocationID);
-  int res = int(pc.grid.size.x);
+  int res = int(pc.grid.resolution);
   if (any(greaterThanEqual(cell, ivec3(res)))) return;
   uint tri = imageLoad(voxels, cell).x;
   if (tri == GIQ_VCT_EMPTY) {
@@ -102,7 +81,7 @@ void main() {
   brdf_parts(s, ng, ng, fd, fs);
 
   vec3 e = vec3(0.0);
-  for (uint i = 0u; i < pc.grid.size.z; ++i) {
+  for (uint i = 0u; i < pc.light_count; ++i) {
     vec3 wi;
     float dist;
     vec3 li = punctual_incident(scene_lights[i], p, wi, dist);
@@ -111,7 +90,7 @@ void main() {
     if (cos_r <= 0.0 || all(equal(li, vec3(0.0)))) continue;
     e += li * cos_r * visible(p, ng, wi, dist);
   }
-  for (uint i = 0u; i < pc.grid.size.w; ++i) {
+  for (uint i = 0u; i < pc.emitter_count; ++i) {
     VctEmitter em = emitters[i];
     vec3 to = em.position.xyz - p;
     float d2 = dot(to, to);
@@ -126,18 +105,18 @@ void main() {
     // Stop short of the emitter so that its own triangles do not shadow it.
     e += em.power.rgb * (cos_e * cos_r / (d2 + em.power.w / PI)) * visible(p, ng, wi, dist * 0.999);
   }
-  vec3 stored = fd * e * pc.params.x;
-  if (pc.params.w != 0.0) {
+  vec3 stored = fd * e * pc.scale;
+  if (pc.add_bounce != 0u) {
     // The surface's side that faces the voxel centre (a one-sided surface: its front).
     vec3 n = two_sided && dot(centre - p, ng) < 0.0 ? -ng : ng;
-    vec3 start = p + n * (pc.cone.w * pc.grid.origin.w);
-    uint cones = uint(pc.params.z);
+    vec3 start = p + n * (pc.cone.start_offset * pc.grid.origin.w);
+    uint cones = pc.cone.count;
     vec3 sum = vec3(0.0);
     for (uint i = 0u; i < cones; ++i) {
       vec3 dir;
       float weight, occ;
       diffuse_cone(i, cones, n, dir, weight);
-      sum += weight * trace_cone(start, dir, pc.cone.x, occ).rgb;
+      sum += weight * trace_cone(start, dir, pc.cone.aperture, occ).rgb;
     }
     stored += fd * PI * sum;  // already in stored units
   }

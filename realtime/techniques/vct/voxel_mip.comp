@@ -1,12 +1,12 @@
 #version 460
 // One level of the six anisotropic mip chains (Crassin et al. 2011, "Interactive Indirect
-// Illumination Using Voxel Cone Tracing"; seed 000 ch. IV uses their six
+// Illumination Using Voxel Cone Tracing"; Afanasev 2021 ch. IV uses their six
 // directional textures, VoxelConeTracingPS.hlsl). Chain D holds what a cone travelling along
 // D sees: the 2x2x2 children are composited front to back in pairs along D (near + (1 - near
 // alpha) far, premultiplied radiance) and the four pairs averaged. Level 0 of the chains
 // (half the base resolution) is built from the isotropic base level, level l from level l-1
 // of the same chain. At level 0 the new value may be blended with the previous frame's
-// (seed 001 part 2: "interpolating with old values so that abrupt changes in lighting ...
+// (Turánszki 2017 part 2: "interpolating with old values so that abrupt changes in lighting ...
 // don't cause much flickering").
 #extension GL_GOOGLE_include_directive : require
 
@@ -27,7 +27,7 @@ layout(binding = 9, r32ui) uniform uimage3D out2;
 layout(binding = 10, r32ui) uniform uimage3D out3;
 layout(binding = 11, r32ui) uniform uimage3D out4;
 layout(binding = 12, r32ui) uniform uimage3D out5;
-layout(push_constant) uniform Push { VctVoxelPush pc; };
+layout(push_constant) uniform Push { VctMipPush pc; };
 
 vec4 child(int d, ivec3 p, int level) {
   switch (d) {
@@ -63,8 +63,8 @@ void store_out(int d, ivec3 p, uint v) {
 }
 
 void main() {
-  int level = int(pc.grid.size.z);
-  int size = int(pc.grid.size.x) >> (level + 1);
+  int level = int(pc.level);
+  int size = int(pc.grid.resolution) >> (level + 1);
   ivec3 cell = ivec3(gl_GlobalInvocationID);
   if (any(greaterThanEqual(cell, ivec3(size)))) return;
   ivec3 first = 2 * cell;
@@ -96,7 +96,7 @@ void main() {
         sum += n + (1.0 - n.a) * f;
       }
     vec4 v = 0.25 * sum;
-    if (pc.grid.size.w != 0u) v = mix(unpack_voxel(load_out(d, cell)), v, pc.params.x);
+    if (pc.blend != 0u) v = mix(unpack_voxel(load_out(d, cell)), v, pc.new_weight);
     store_out(d, cell, pack_voxel(v));
   }
 }

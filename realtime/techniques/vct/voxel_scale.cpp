@@ -40,28 +40,11 @@ float max_channel(glm::vec3 v) {
 
 std::vector<gpu::VctEmitter> voxel_emitters(const scenes::Scene& scene) {
   std::vector<gpu::VctEmitter> out;
-  std::vector<std::vector<const scenes::EmissiveTriangle*>> per_mesh(scene.meshes.size());
-  for (const auto& e : scene.emissive_triangles)
-    if (e.area > 0.0f && e.power > 0.0f) per_mesh[e.mesh].push_back(&e);
-  for (size_t m = 0; m < per_mesh.size(); ++m) {
-    if (per_mesh[m].empty()) continue;
-    const auto& mesh = scene.meshes[m];
-    glm::vec3 centroid(0.0f), normal(0.0f), power(0.0f);
-    float area = 0.0f;
-    for (const auto* e : per_mesh[m]) {
-      const auto t = mesh.triangles[e->triangle];
-      const glm::vec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
-      centroid += e->area * (a + b + c) / 3.0f;
-      normal += glm::cross(b - a, c - a);
-      power += e->radiance * e->area;
-      area += e->area;
-    }
-    const float nl = glm::length(normal);
+  for (const scenes::AreaLight& a : scene.area_lights) {
     gpu::VctEmitter em;
-    em.position = glm::vec4(centroid / area, 0.0f);
-    em.normal = glm::vec4(nl > 0.0f ? normal / nl : glm::vec3(0.0f, -1.0f, 0.0f),
-                          scene.materials[mesh.material].double_sided ? 1.0f : 0.0f);
-    em.power = glm::vec4(power, area);
+    em.position = glm::vec4(a.centroid, 0.0f);
+    em.normal = glm::vec4(a.normal, a.two_sided ? 1.0f : 0.0f);
+    em.power = glm::vec4(a.intensity, a.area);
     out.push_back(em);
   }
   return out;

@@ -1,8 +1,8 @@
 #version 460
-// Voxelisation of the scene's triangles into the base level (seed 000 ch. IV, "voxelization";
-// seed 001, "Voxel-based Global Illumination", part 1). Instead of the geometry-shader
+// Voxelisation of the scene's triangles into the base level (Afanasev 2021 ch. IV, "voxelization";
+// Turánszki 2017, "Voxel-based Global Illumination", part 1). Instead of the geometry-shader
 // rasteriser of the sources, a compute pass walks each triangle's footprint on its dominant
-// axis plane (seed 001's axis choice) and keeps every voxel that the triangle overlaps by the
+// axis plane (Turánszki 2017's axis choice) and keeps every voxel that the triangle overlaps by the
 // separating-axis test of Akenine-Moeller 2001 ("Fast 3D Triangle-Box Overlap Testing"):
 // coverage is exactly conservative (touching counts), needs no hardware conservative
 // rasterisation, and runs the same on lavapipe and on NVIDIA.
@@ -15,7 +15,7 @@
 
 layout(local_size_x = 64) in;
 layout(binding = GIQ_SCENE_BINDING_COUNT + 0, r32ui) uniform uimage3D voxel_ids;
-layout(push_constant) uniform Push { VctVoxelPush pc; };
+layout(push_constant) uniform Push { VctVoxelizePush pc; };
 
 // Akenine-Moeller's axis tests for one edge e (f = |e|) against the box [-h, h]^3 centred at
 // the origin, the triangle's vertices v0, v1, v2 relative to the box centre.
@@ -43,8 +43,8 @@ bool triangle_box_overlap(vec3 c, vec3 h, vec3 a, vec3 b, vec3 d, vec3 n) {
 
 void main() {
   uint tri = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
-  if (tri >= pc.grid.size.z) return;
-  int res = int(pc.grid.size.x);
+  if (tri >= pc.triangle_count) return;
+  int res = int(pc.grid.resolution);
   vec3 a, b, c;
   triangle_vertices(tri, a, b, c);
   // Voxel units: voxel (i, j, k) is the box [i, i+1] x [j, j+1] x [k, k+1].

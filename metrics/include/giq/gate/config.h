@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "giq/metrics/catalogue.h"
+
 namespace giq::gate {
 
 // How a golden reference is rendered: stop at `spp` samples per pixel or at a mean relative
@@ -35,7 +37,7 @@ struct GoldenSpec {
   std::string sampler = "independent";
 };
 
-enum class Better { Lower, Higher };
+using Better = metrics::Better;  // the catalogue's (giq/metrics/catalogue.h)
 
 // One bound: the metric must stay at or below `fail` (at or above for higher-is-better
 // metrics such as ssim and psnr); beyond `warn` it is reported as WARN. A bound with a

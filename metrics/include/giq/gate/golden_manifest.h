@@ -38,8 +38,8 @@ struct Manifest {
 std::string golden_key(const Case& c);
 // {"view", "frames": [A, B], "resolution": [W, H], "spp" or "rel_error", "seed"[, "half"]}
 nlohmann::json golden_settings(const Case& c);
-// frame_NNNN.exr, as `giq reference --out <dir>/frame_####.exr` names frame N.
-std::string golden_frame_name(int frame);
+// A golden's frame N is frame_file(N) (giq/base/frames.h), as `giq reference --out
+// <dir>/frame_####.exr` names it.
 
 // A missing file is an empty manifest; a malformed one throws InputError.
 Manifest read_manifest(const std::filesystem::path& file);

@@ -11,6 +11,7 @@
 // the top of the file.
 
 #include <nlohmann/json.hpp>
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -26,11 +27,16 @@ struct MetricValue {
 // Empty when the file does not hold the metric.
 std::optional<MetricValue> find_metric(const nlohmann::json& metrics, const std::string& name);
 
-// timings.json: frame_gpu_ms.median (or frame_ms.median) and device.name.
+// timings.json (`giq realtime`'s, docs/realtime.md; or an engine's own with frame_ms):
+// frame_gpu_ms.median (else frame_ms.median) and device.name. The one reader of that file.
 struct FrameTime {
   std::optional<double> gpu_ms;
+  std::string key;  // where gpu_ms was found, e.g. "frame_gpu_ms.median"
   std::string device;
 };
 FrameTime frame_time(const nlohmann::json& timings);
+// Reads the file; throws InputError (file, field, what was expected) when it cannot be read,
+// is not JSON, or holds no positive, finite frame time.
+FrameTime read_timings(const std::filesystem::path& file);
 
 }  // namespace giq::gate

@@ -24,6 +24,7 @@ struct Descriptor {
 
   static Descriptor storage(const Buffer& b);
   static Descriptor storage_image(const Image& i);  // the image must be in GENERAL layout
+  static Descriptor storage_image(const Image& i, uint32_t level);  // one mip level, GENERAL
   static Descriptor sampled(const Image& i, const Sampler& s);
 };
 

@@ -55,6 +55,13 @@ struct ImageDesc {
   VkFormat format = VK_FORMAT_R32G32B32A32_SFLOAT;
   VkImageUsageFlags usage = 0;
   bool array = false;  // a 2D-array view even for one layer (shaders that index layers)
+  uint32_t depth = 1;   // > 1: a 3D image (one layer)
+  uint32_t levels = 1;  // mip levels
+  // A format of the same texel size the image is also read in (MUTABLE_FORMAT): view() then
+  // samples through it (all levels), while level_view() keeps `format` for storage. For
+  // example R32_UINT written with atomics and read as R8G8B8A8_SRGB, which the hardware
+  // decodes before it filters.
+  VkFormat sampled_format = VK_FORMAT_UNDEFINED;
 };
 
 class Image {
@@ -70,6 +77,7 @@ class Image {
   VkImage handle() const { return image_; }
   VkImageView view() const { return view_; }              // all layers (2D array when layers > 1 or desc.array)
   VkImageView layer_view(uint32_t layer) const { return layer_views_.at(layer); }
+  VkImageView level_view(uint32_t level) const { return level_views_.at(level); }  // in `format`
   const ImageDesc& desc() const { return desc_; }
   VkImageAspectFlags aspect() const;
   VkImageLayout layout() const { return layout_; }
@@ -91,7 +99,7 @@ class Image {
   Context* ctx_ = nullptr;
   VkImage image_ = VK_NULL_HANDLE;
   VkImageView view_ = VK_NULL_HANDLE;
-  std::vector<VkImageView> layer_views_;
+  std::vector<VkImageView> layer_views_, level_views_;
   Allocation alloc_;
   ImageDesc desc_;
   VkImageLayout layout_ = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -105,11 +113,14 @@ void full_barrier(VkCommandBuffer cmd);
 void compute_barrier(VkCommandBuffer cmd);
 
 // A sampler object: linear or nearest filtering, clamp to edge, optional depth compare
-// (for PCF shadow lookups).
+// (for PCF shadow lookups); or, for mipmapped volumes, trilinear with linear blending between
+// `max_lod` + 1 levels and transparent black outside (so that what leaves the volume sees
+// nothing, not a smeared border).
 class Sampler {
  public:
   Sampler() = default;
   Sampler(Context& ctx, bool linear, bool depth_compare);
+  static Sampler trilinear_transparent(Context& ctx, float max_lod);
   ~Sampler();
   Sampler(Sampler&& o) noexcept : device_(o.device_), sampler_(o.sampler_) { o.sampler_ = VK_NULL_HANDLE; }
   Sampler& operator=(Sampler&& o) noexcept;
@@ -117,6 +128,7 @@ class Sampler {
   VkSampler handle() const { return sampler_; }
 
  private:
+  Sampler(Context& ctx, const VkSamplerCreateInfo& ci);
   VkDevice device_ = VK_NULL_HANDLE;
   VkSampler sampler_ = VK_NULL_HANDLE;
 };

@@ -6,6 +6,8 @@
 // techniques/registry.cpp. It is created from the scene and its parameter values, records one
 // frame at a time into a command buffer, brackets each of its passes with the GPU timer, and
 // exposes RGBA32F output images: "" (beauty R,G,B), "direct", "indirect" and any extra layers.
+// A GI technique implements only its indirect light (IndirectLight in passes/deferred_gi.h);
+// the deferred frame records the shared steps around it.
 
 #include <functional>
 #include <map>
@@ -16,6 +18,8 @@
 #include <vector>
 
 #include <vulkan/vulkan.h>
+
+#include <nlohmann/json.hpp>
 
 #include "giq/scenes/scene.h"
 
@@ -81,23 +85,32 @@ struct FrameInput {
 class Technique {
  public:
   virtual ~Technique() = default;
-  // Names of the passes this technique times, in order (shared passes included).
-  virtual std::vector<std::string> passes() const = 0;
-  // Records one frame; each pass between timer.begin(name) and timer.end().
+  // Records one frame; each pass between timer.begin(name) and timer.end() (timings.json
+  // lists the passes as the timer recorded them).
   virtual void render(const FrameInput& in) = 0;
   // Output layers after render(): ("", beauty), ("direct", ...), ("indirect", ...), extras.
   virtual std::vector<std::pair<std::string, Image*>> outputs() = 0;
+};
+
+// The parameter a speed-for-accuracy sweep varies, and its values from cheapest to best.
+struct QualityKnob {
+  std::string parameter;
+  std::vector<double> values;
 };
 
 struct TechniqueInfo {
   std::string name;
   std::string description;
   std::vector<Parameter> parameters;
+  QualityKnob quality;
   std::function<std::unique_ptr<Technique>(const TechniqueCreateInfo&)> create;
 };
 
 // Every registered technique, in registration order (techniques/registry.cpp).
 const std::vector<TechniqueInfo>& techniques();
+// The listing every tool reads (`giq realtime --list --json`): per technique its name,
+// description, parameters (name, default, min, max, integer, description) and quality knob.
+nlohmann::json techniques_json();
 // Throws InputError (field --technique) naming the available techniques.
 const TechniqueInfo& find_technique(std::string_view name);
 

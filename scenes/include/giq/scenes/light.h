@@ -28,7 +28,14 @@ struct Light {
   glm::vec3 direction{0.0f, 0.0f, -1.0f}; // unit, the way the light travels (node's -Z)
 
   glm::vec3 radiant() const { return color * intensity; }
+  // Emitted power, luminance-weighted (pbrt-v4's Light::Phi): 4 pi I for a point light, the
+  // solid angle of the cone half-way between inner and outer times I for a spot, and for a
+  // directional light its irradiance over a disc of `scene_radius` (the scene's cross-section).
+  double power(double scene_radius) const;
 };
+
+// Rec. 709 luminance of a linear RGB colour: the weight light powers are compared by.
+double luminance(glm::vec3 rgb);
 
 // KHR_lights_punctual, "Range Property": the recommended smooth window,
 // clamp(1 - (d / range)^4, 0, 1), multiplied onto the inverse-square law. 1 when range is 0.

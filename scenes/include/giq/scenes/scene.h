@@ -6,6 +6,7 @@
 // A Scene is a value: renderers only read it; Scene::at(t) returns the scene posed at another
 // time. Tests may also build one in code: fill the content fields, then call derive().
 
+#include <algorithm>
 #include <filesystem>
 #include <glm/glm.hpp>
 #include <limits>
@@ -29,6 +30,15 @@ struct Bounds {
   void extend(glm::vec3 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
   bool empty() const { return lo.x > hi.x; }
   glm::vec3 extent() const { return empty() ? glm::vec3(0.0f) : hi - lo; }
+  // The origin for an empty box, so that nothing derived from it is NaN.
+  glm::vec3 centre() const { return empty() ? glm::vec3(0.0f) : 0.5f * (lo + hi); }
+  // The diagonal's length, at least 1e-6, so that lengths scaled from it never vanish.
+  float diagonal() const { return std::max(glm::length(extent()), 1e-6f); }
+  // The largest side, at least 1e-6.
+  float largest_side() const {
+    const glm::vec3 e = extent();
+    return std::max(std::max(e.x, std::max(e.y, e.z)), 1e-6f);
+  }
 };
 
 // Frames of a sequence: frame f shows the scene at time f / fps.
@@ -45,6 +55,23 @@ struct EmissiveTriangle {
   float area = 0.0f;
   glm::vec3 radiance{0.0f};  // mean emitted radiance over the triangle (texture averaged)
   float power = 0.0f;        // pi * area * luminance(radiance), times 2 when double-sided
+};
+
+// An emissive mesh as one area light: what the real-time passes shade and shadow as a unit (the
+// reference samples its triangles one by one). Derived once from the emissive triangles.
+struct AreaLight {
+  uint32_t mesh = 0;                    // index into Scene::meshes
+  std::vector<uint32_t> triangles;      // indices into Scene::emissive_triangles, in order
+  bool two_sided = false;               // the material is double-sided
+  float area = 0.0f;                    // sum of the triangles' areas
+  glm::vec3 centroid{0.0f};             // area-weighted
+  glm::vec3 intensity{0.0f};            // sum of radiance x area: W/sr along the normal of a flat emitter
+  bool flat = false;                    // the triangles' area vectors do not cancel
+  glm::vec3 normal{0.0f, -1.0f, 0.0f};  // unit mean normal (their area vectors' sum); -y when they cancel
+  // Where the mesh is shadowed and seen from as a point: the centroid, moved 1e-4 of the
+  // scene's diagonal in front of a one-sided flat emitter so that the emitter does not
+  // shadow itself.
+  glm::vec3 representative{0.0f};
 };
 
 struct SceneStats {
@@ -81,10 +108,11 @@ class Scene {
   // --- derived by derive(); do not edit
   FeatureSet features;
   std::vector<EmissiveTriangle> emissive_triangles;
+  std::vector<AreaLight> area_lights;  // one per mesh with emissive triangles, in mesh order
   Bounds bounds;
   SceneStats stats;
 
-  // Recomputes features, emissive triangles, bounds and stats from the content.
+  // Recomputes features, emissive triangles, area lights, bounds and stats from the content.
   void derive();
 
   // The scene posed at time t in seconds (animations evaluated, lights and cameras moved).
@@ -98,6 +126,7 @@ class Scene {
   const View& view(std::string_view name_or_index) const;
 
  private:
+  void derive_area_lights();
   friend Scene load(const std::filesystem::path&);
   std::shared_ptr<const SceneSource> source_;
 };

@@ -1,0 +1,53 @@
+// The receiver of a deferred lighting pass (passes/deferred_gi.h): the G-buffer texel it
+// shades. The G-buffer is bound right after the scene, so a pass's own bindings start at
+// GIQ_RECEIVER_BINDING_COUNT (the C++ side: DeferredGi::receiver_descriptors()). Needs
+// shaders/scene.glsl and shaders/surface.glsl.
+#ifndef GIQ_RECEIVER_GLSL
+#define GIQ_RECEIVER_GLSL
+
+layout(binding = GIQ_SCENE_BINDING_COUNT + 0, rgba32f) uniform readonly image2D gb_position;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 1, rgba32f) uniform readonly image2D gb_normal;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 2, rgba32ui) uniform readonly uimage2D gb_ids;
+#define GIQ_RECEIVER_BINDING_COUNT (GIQ_SCENE_BINDING_COUNT + 3)
+
+// The full-resolution pixel that texel `lo` of a pass at 1/k resolution shades
+// (passes/upsample.h restores the image from exactly these pixels).
+ivec2 receiver_pixel(ivec2 lo, int k, ivec2 size) { return min(lo * k + k / 2, size - 1); }
+
+struct Receiver {
+  bool hit;    // a surface was hit (else the camera sees the environment)
+  bool lit;    // it can receive light: a front face, or either face of a double-sided material
+  bool back;   // the back face was hit
+  uint tri;    // triangle index
+  uint material;
+  vec3 x;      // local-frame position
+  vec3 n;      // shading normal, on the viewer's side (passes/gbuffer.h)
+  vec2 bary;   // barycentrics on the triangle's plane (deferred texturing); 0 without textures
+};
+
+Receiver load_receiver(ivec2 px) {
+  Receiver r;
+  uvec4 ids = imageLoad(gb_ids, px);
+  r.hit = ids.x != 0u;
+  r.back = ids.w != 0u;
+  r.tri = ids.x - 1u;
+  r.material = ids.y;
+  r.lit = r.hit && (!r.back || scene_materials[ids.y].params.w != 0.0);
+  r.x = vec3(0.0);
+  r.n = vec3(0.0);
+  r.bary = vec2(0.0);
+  if (!r.lit) return r;
+  r.x = imageLoad(gb_position, px).xyz;
+  r.n = imageLoad(gb_normal, px).xyz;
+#ifdef GIQ_SURFACE_TEXTURES
+  vec3 ta, tb, tc;
+  triangle_vertices(r.tri, ta, tb, tc);
+  r.bary = plane_barycentrics(r.x, ta, tb, tc);
+#endif
+  return r;
+}
+
+// The receiver's material at its G-buffer point, textures looked up again there.
+Surface receiver_surface(Receiver r) { return hit_material(r.tri, r.bary.x, r.bary.y, r.n); }
+
+#endif
