@@ -54,7 +54,7 @@ LongRender LongRender::from_exr(const std::filesystem::path& path) {
   }
   const float* spp = img.has_channel("spp") ? img.channel("spp") : nullptr;
   r.spp = spp ? double(spp[0]) : 0.0;
-  if (const auto it = img.metadata.find("giq.sceneHash"); it != img.metadata.end())
+  if (const auto it = img.metadata.find("giq.scene_hash"); it != img.metadata.end())
     r.scene_hash = it->second;
   if (const auto it = img.metadata.find("giq.view"); it != img.metadata.end()) r.view = it->second;
   if (const auto it = img.metadata.find("giq.settings"); it != img.metadata.end())

@@ -25,7 +25,7 @@ struct LongRender {
   std::vector<double> variance;  // of the mean, 3 per pixel
   double variance_term = 0.0;    // its own contribution to relMSE (subtracted)
   double spp = 0.0;
-  std::string scene_hash, view, settings;  // of a file: giq.sceneHash, giq.view, giq.settings
+  std::string scene_hash, view, settings;  // of a file: giq.scene_hash, giq.view, giq.settings
 
   static LongRender from_film(const reference::Film& film);
   // A reference EXR (R,G,B, variance.R/G/B, spp) as `giq reference` writes it.

@@ -1,6 +1,6 @@
 // The receiver of a deferred lighting pass (passes/deferred_gi.h): the G-buffer texel it
 // shades. The G-buffer is bound right after the scene, so a pass's own bindings start at
-// GIQ_RECEIVER_BINDING_COUNT (the C++ side: DeferredGi::receiver_descriptors()). Needs
+// GIQ_RECEIVER_BINDING_COUNT (the C++ side: GBufferPass::receiver_descriptors()). Needs
 // shaders/scene.glsl and shaders/surface.glsl.
 #ifndef GIQ_RECEIVER_GLSL
 #define GIQ_RECEIVER_GLSL
@@ -10,9 +10,7 @@ layout(binding = GIQ_SCENE_BINDING_COUNT + 1, rgba32f) uniform readonly image2D 
 layout(binding = GIQ_SCENE_BINDING_COUNT + 2, rgba32ui) uniform readonly uimage2D gb_ids;
 #define GIQ_RECEIVER_BINDING_COUNT (GIQ_SCENE_BINDING_COUNT + 3)
 
-// The full-resolution pixel that texel `lo` of a pass at 1/k resolution shades
-// (passes/upsample.h restores the image from exactly these pixels).
-ivec2 receiver_pixel(ivec2 lo, int k, ivec2 size) { return min(lo * k + k / 2, size - 1); }
+#include "passes/low_resolution.glsl"
 
 struct Receiver {
   bool hit;    // a surface was hit (else the camera sees the environment)

@@ -142,8 +142,10 @@ void ReflectiveShadowMaps::record(const FrameInput& in) {
       // full extent), the layer's own size drawn.
       begin_rendering(in.cmd, extent_, extent_, {{surface_.layer_view(l), flux_.layer_view(l)}, depth_.view(), false},
                       {size, size});
-      gpu::RsmDrawPush pc{layers_[l].view_proj,
-                          glm::vec4(layers_[l].params.w, draw_scale_[l], 0.0f, 0.0f)};
+      gpu::RsmDrawPush pc{};
+      pc.view_proj = layers_[l].view_proj;
+      pc.emitter = uint32_t(layers_[l].params.w);
+      pc.flux_scale = draw_scale_[l];
       pipeline_.push_constants(in.cmd, pc);
       draw_scene(in.cmd, scene_gpu_);
       vkCmdEndRendering(in.cmd);

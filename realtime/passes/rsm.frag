@@ -34,7 +34,7 @@ void main() {
   triangle_vertices(tri, a, b, c);
   vec3 ng = normalize(cross(b - a, c - a));
   vec3 p = in_position;
-  GpuRsmEmitter e = emitters[uint(pc.params.x)];
+  GpuRsmEmitter e = emitters[pc.emitter];
   vec3 wi;       // towards the light
   vec3 density;  // intensity towards p (W/sr) or irradiance (W/m^2, directional)
   if (e.position.w == GIQ_RSM_AREA) {
@@ -62,5 +62,5 @@ void main() {
   if (h.black || dot(h.ng, wi) <= 0.0 || dot(ns, wi) <= 0.0) density = vec3(0.0);
   Surface s = hit_material(tri, bary.x, bary.y, ns);
   out_surface = rsm_encode_surface(p, ns);
-  out_flux = vec4(diffuse_albedo(s) * density * pc.params.y, 0.0);
+  out_flux = vec4(diffuse_albedo(s) * density * pc.flux_scale, 0.0);
 }

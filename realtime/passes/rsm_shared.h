@@ -8,6 +8,7 @@ namespace giq::realtime::gpu {
 using vec4 = glm::vec4;
 using uvec4 = glm::uvec4;
 using mat4 = glm::mat4;
+using uint = uint32_t;
 #endif
 
 // Layer kinds.
@@ -39,7 +40,9 @@ struct GpuRsmEmitter {
 // Push constants of rsm.vert / rsm.frag.
 struct RsmDrawPush {
   mat4 view_proj;
-  vec4 params;  // x: emitter index; y: flux scale (stored value = flux density x scale)
+  uint emitter;      // index into the GpuRsmEmitter buffer
+  float flux_scale;  // stored value = flux density x scale
+  uint pad0, pad1;
 };
 
 #ifdef __cplusplus

@@ -2,6 +2,7 @@
 // Edge-aware upsample and 9×9 cross-bilateral blur (passes/upsample.h).
 #extension GL_GOOGLE_include_directive : require
 #include "passes/upsample_shared.h"
+#include "passes/low_resolution.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, rgba32f) uniform readonly image2D gb_position;
@@ -23,13 +24,10 @@ float geometric_weight(vec4 p_pos, vec3 p_n, vec4 q_pos, vec3 q_n) {
   return wn * exp(-(s * s) / (0.1 * 0.1));
 }
 
-ivec2 full_of_low(ivec2 q) {
-  int k = int(pc.size.z);
-  return min(q * k + k / 2, ivec2(pc.size.xy) - 1);
-}
+ivec2 full_of_low(ivec2 q) { return full_resolution_pixel(q, int(pc.factor), ivec2(pc.size)); }
 
 vec4 upsample(ivec2 px, vec4 p_pos, vec3 p_n) {
-  int k = int(pc.size.z);
+  int k = int(pc.factor);
   ivec2 low_size = imageSize(src);
   // The low samples left of/above and right of/below this pixel, and where they stand in
   // full-resolution pixels (the last one is clamped to the border, so spacing is not always k).
@@ -70,7 +68,7 @@ vec4 upsample(ivec2 px, vec4 p_pos, vec3 p_n) {
 const float kBinomial[5] = float[5](70.0, 56.0, 28.0, 8.0, 1.0);
 
 vec4 blur(ivec2 px, vec4 p_pos, vec3 p_n, ivec2 axis) {
-  ivec2 size = ivec2(pc.size.xy);
+  ivec2 size = ivec2(pc.size);
   vec4 sum = kBinomial[0] * imageLoad(src, px);
   float wsum = kBinomial[0];
   for (int t = 1; t <= 4; ++t)
@@ -86,7 +84,7 @@ vec4 blur(ivec2 px, vec4 p_pos, vec3 p_n, ivec2 axis) {
 
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(uvec2(px), pc.size.xy))) return;
+  if (any(greaterThanEqual(uvec2(px), pc.size))) return;
   vec4 p_pos = imageLoad(gb_position, px);
   if (p_pos.w == 0.0) {  // background: nothing to light
     imageStore(dst, px, vec4(0.0, 0.0, 0.0, 1.0));
@@ -94,9 +92,9 @@ void main() {
   }
   vec3 p_n = imageLoad(gb_normal, px).xyz;
   vec4 v;
-  if (pc.size.w == GIQ_UPSAMPLE_MODE_UPSAMPLE)
-    v = pc.size.z == 1u ? imageLoad(src, px) : upsample(px, p_pos, p_n);
+  if (pc.mode == GIQ_UPSAMPLE_MODE_UPSAMPLE)
+    v = pc.factor == 1u ? imageLoad(src, px) : upsample(px, p_pos, p_n);
   else
-    v = blur(px, p_pos, p_n, pc.size.w == GIQ_UPSAMPLE_MODE_BLUR_X ? ivec2(1, 0) : ivec2(0, 1));
+    v = blur(px, p_pos, p_n, pc.mode == GIQ_UPSAMPLE_MODE_BLUR_X ? ivec2(1, 0) : ivec2(0, 1));
   imageStore(dst, px, vec4(v.rgb, 1.0));
 }

@@ -36,7 +36,7 @@ void UpsamplePass::dispatch(VkCommandBuffer cmd, GBufferPass& gbuffer, Image& sr
   pipeline_.push_descriptors(cmd, {Descriptor::storage_image(gbuffer.position()),
                                    Descriptor::storage_image(gbuffer.normal()), Descriptor::storage_image(src),
                                    Descriptor::storage_image(dst)});
-  pipeline_.push_constants(cmd, gpu::UpsamplePush{glm::uvec4(width_, height_, k_, mode)});
+  pipeline_.push_constants(cmd, gpu::UpsamplePush{glm::uvec2(width_, height_), k_, mode});
   pipeline_.dispatch_2d(cmd, width_, height_);
   full_barrier(cmd);
 }

@@ -5,7 +5,8 @@
 #ifdef __cplusplus
 #include <glm/glm.hpp>
 namespace giq::realtime::gpu {
-using uvec4 = glm::uvec4;
+using uvec2 = glm::uvec2;
+using uint = uint32_t;
 #endif
 
 #define GIQ_UPSAMPLE_MODE_UPSAMPLE 0u
@@ -13,7 +14,9 @@ using uvec4 = glm::uvec4;
 #define GIQ_UPSAMPLE_MODE_BLUR_Y 2u
 
 struct UpsamplePush {
-  uvec4 size;  // x, y full resolution; z factor k; w mode
+  uvec2 size;   // full resolution
+  uint factor;  // k: the low-resolution image is 1/k of it per axis
+  uint mode;    // GIQ_UPSAMPLE_MODE_*
 };
 
 #ifdef __cplusplus

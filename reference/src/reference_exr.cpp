@@ -53,18 +53,18 @@ image::Image reference_image(const Film& film, const RenderSettings& settings, c
   image::Image img = film.to_image();
   img.metadata["giq.version"] = giq::version();
   img.metadata["giq.scene"] = meta.scene;
-  img.metadata["giq.sceneHash"] = meta.scene_hash;
+  img.metadata["giq.scene_hash"] = meta.scene_hash;
   img.metadata["giq.view"] = meta.view;
   img.metadata["giq.camera"] = describe_camera(meta.camera);
   img.metadata["giq.frame"] = std::to_string(meta.frame);
   img.metadata["giq.spp"] = std::to_string(film.min_samples());
   img.metadata["giq.seed"] = std::to_string(settings.seed);
   img.metadata["giq.settings"] = settings_json(settings);
-  img.metadata["giq.nonFiniteSamples"] = std::to_string(film.nonfinite_samples());
+  img.metadata["giq.nonfinite_samples"] = std::to_string(film.nonfinite_samples());
   if (meta.render_seconds >= 0.0) {
     char b[32];
     std::snprintf(b, sizeof b, "%.3f", meta.render_seconds);
-    img.metadata["giq.renderTime"] = b;
+    img.metadata["giq.render_time"] = b;
   }
   return img;
 }

@@ -129,6 +129,7 @@ int main(int argc, char** argv) {
           w, h,
           {{"giq.spp", one(o, "--spp", "77")},
            {"giq.version", "fake-reference"},
+           // The header key as references before the unified key style wrote it: still read.
            {"giq.renderTime", std::to_string(0.01 * std::atof(one(o, "--spp", "77").c_str()))}},
           true);
     }

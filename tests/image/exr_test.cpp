@@ -143,6 +143,22 @@ TEST(Exr, MetadataKeyCollidingWithStandardAttributeIsRejected) {
   EXPECT_EQ(entries(d), 0u);
 }
 
+TEST(Exr, LegacyCamelCaseHeaderKeysAreReadUnderTheirSnakeCaseNames) {
+  // References written before the header keys were unified (the committed goldens among them).
+  fs::path d = fresh_dir("legacy_keys");
+  Image img(2, 2);
+  img.add_channel("R");
+  img.metadata = {{"giq.sceneHash", "abc"}, {"giq.renderTime", "1.5"}, {"giq.nonFiniteSamples", "0"},
+                  {"giq.gpu_ms", "0.25"}};
+  giq::image::write_exr(img, d / "a.exr");
+  const Image back = giq::image::read_image(d / "a.exr");
+  EXPECT_EQ(back.metadata.at("giq.scene_hash"), "abc");
+  EXPECT_EQ(back.metadata.at("giq.render_time"), "1.5");
+  EXPECT_EQ(back.metadata.at("giq.nonfinite_samples"), "0");
+  EXPECT_EQ(back.metadata.at("giq.gpu_ms"), "0.25");
+  EXPECT_EQ(back.metadata.count("giq.sceneHash"), 0u);
+}
+
 TEST(Exr, TruncatedFileIsInputErrorNamingTheFile) {
   fs::path d = fresh_dir("truncated");
   Image img = reference_like(64, 64);

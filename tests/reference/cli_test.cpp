@@ -132,11 +132,11 @@ TEST(ReferenceCli, WritesEveryLayerWithBeautyEqualToDirectPlusIndirect) {
   }
   EXPECT_GT(indirect, 0.0);  // the wall lights the floor: there is indirect light
   for (size_t k = 0; k < img.pixel_count(); ++k) EXPECT_EQ(img.channel("spp")[k], 16.0f);
-  for (const char* key : {"giq.version", "giq.sceneHash", "giq.view", "giq.frame", "giq.spp", "giq.seed", "giq.settings",
-                          "giq.nonFiniteSamples", "giq.camera"})
+  for (const char* key : {"giq.version", "giq.scene_hash", "giq.view", "giq.frame", "giq.spp", "giq.seed", "giq.settings",
+                          "giq.nonfinite_samples", "giq.camera"})
     EXPECT_TRUE(img.metadata.count(key)) << key;
   EXPECT_EQ(img.metadata.at("giq.spp"), "16");
-  EXPECT_EQ(img.metadata.at("giq.nonFiniteSamples"), "0");
+  EXPECT_EQ(img.metadata.at("giq.nonfinite_samples"), "0");
   EXPECT_EQ(img.metadata.at("giq.view"), "cam");
 }
 

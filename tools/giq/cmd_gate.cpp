@@ -120,7 +120,10 @@ void add_gate_command(CLI::App& app, int& exit_code) {
                   "Vulkan device for giq realtime (index or part of its name)");
   cmd->add_flag("--rerender", a->cases.rerender,
                 "Render and score again even where outputs of an identical run exist");
-  cmd->callback([a, &exit_code] { exit_code = run_gate(*a); });
+  CLI::App* calibrate = add_gate_calibrate_command(*cmd, exit_code);
+  cmd->callback([a, calibrate, &exit_code] {
+    if (!calibrate->parsed()) exit_code = run_gate(*a);
+  });
 }
 
 }  // namespace giq::cli

@@ -26,6 +26,7 @@
 #include "giq/gate/sweep_table.h"
 #include "giq/image/io.h"
 #include "giq/metrics/catalogue.h"
+#include "json_file.h"
 #include "subprocess.h"
 #include "sweep_plan.h"
 
@@ -52,12 +53,6 @@ struct SweepArgs {
   uint32_t ref_spp = 1024;
   bool convergence = false, linear = false, quality = false;
 };
-
-json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  if (!in) throw InputError(p.string(), "", "missing");
-  return json::parse(in);
-}
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p);
@@ -87,7 +82,7 @@ fs::path reference(const SweepArgs& a, const fs::path& giq, const fs::path& out,
     // The renderer's own time (without scene loading and BVH build) when it recorded it.
     *seconds = r.seconds;
     const image::Image img = image::read_image(file);
-    if (auto it = img.metadata.find("giq.renderTime"); it != img.metadata.end())
+    if (auto it = img.metadata.find("giq.render_time"); it != img.metadata.end())
       *seconds = std::strtod(it->second.c_str(), nullptr);
   }
   return file;
@@ -102,7 +97,7 @@ std::map<std::string, std::optional<double>> score(const SweepArgs& a, const fs:
                                  "--scene",    a.scene,       "--out",   dir.string()};
   if (!timings.empty()) sc.insert(sc.end(), {"--timings", timings.string()});
   must(run_process(sc, log), "giq score", log);
-  const json m = read_json(dir / "metrics.json");
+  const json m = read_json_file(dir / "metrics.json");
   std::map<std::string, std::optional<double>> out;
   for (const metrics::MetricInfo& info : metrics::kMetricCatalogue)
     if (info.scope == metrics::Scope::Image)

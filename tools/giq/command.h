@@ -16,6 +16,8 @@ void add_reference_command(CLI::App& app, int& exit_code);
 void add_realtime_command(CLI::App& app, int& exit_code);
 #endif
 void add_gate_command(CLI::App& app, int& exit_code);
+// `giq gate calibrate`, a subcommand of `giq gate` (cmd_gate_calibrate.cpp).
+CLI::App* add_gate_calibrate_command(CLI::App& gate, int& exit_code);
 void add_golden_command(CLI::App& app, int& exit_code);
 void add_report_command(CLI::App& app, int& exit_code);
 void add_sweep_command(CLI::App& app, int& exit_code);

@@ -13,6 +13,7 @@
 #include "giq/base/version.h"
 #include "giq/image/io.h"
 #include "giq/scenes/scene.h"
+#include "json_file.h"
 #include "subprocess.h"
 
 namespace giq::cli {
@@ -21,21 +22,11 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  if (!in) throw InputError(p.string(), "", "missing");
-  try {
-    return json::parse(in);
-  } catch (const json::exception& e) {
-    throw InputError(p.string(), "", std::string("not valid JSON: ") + e.what());
-  }
-}
-
 // Whether `dir` holds the outputs of exactly this command (same arguments, same giq binary,
 // same golden files), so the gate renders only what is missing.
 bool up_to_date(const fs::path& dir, const json& stamp) {
   try {
-    return fs::exists(dir / "stamp.json") && read_json(dir / "stamp.json") == stamp;
+    return fs::exists(dir / "stamp.json") && read_json_file(dir / "stamp.json") == stamp;
   } catch (const InputError&) {
     return false;
   }
@@ -148,11 +139,11 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
                    {{"argv", sc},
                     {"giq", binary_hash},
                     {"golden", golden_files},
-                    {"technique", read_json(tech / "stamp.json")}},
+                    {"technique", read_json_file(tech / "stamp.json")}},
                    t.rerender);
     if (!problem.empty()) throw InputError("", "score", problem);
-    run.evidence.metrics = read_json(score / "metrics.json");
-    run.evidence.timings = read_json(timings);
+    run.evidence.metrics = read_json_file(score / "metrics.json");
+    run.evidence.timings = read_json_file(timings);
   } catch (const std::exception& e) {
     run.evidence.problem = e.what();
   }

@@ -31,6 +31,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// giq's header keys are snake_case ("giq.scene_hash", "giq.gpu_ms"); references written
+// before the reference and the real-time module shared that style used camelCase for three
+// of them. They are read under today's names, so older goldens and references stay readable.
+std::string current_key(const std::string& key) {
+  if (key == "giq.sceneHash") return "giq.scene_hash";
+  if (key == "giq.renderTime") return "giq.render_time";
+  if (key == "giq.nonFiniteSamples") return "giq.nonfinite_samples";
+  return key;
+}
+
 Imf::Compression to_imf(ExrOptions::Compression c) {
   switch (c) {
     case ExrOptions::Compression::None: return Imf::NO_COMPRESSION;
@@ -124,7 +134,7 @@ Image read_exr(const fs::path& path) {
       for (auto a = h.begin(); a != h.end(); ++a) {
         if (auto* s = dynamic_cast<const Imf::StringAttribute*>(&a.attribute())) {
           if (std::string(a.name()) == "name" || std::string(a.name()) == "type") continue;
-          image.metadata[a.name()] = s->value();
+          image.metadata[current_key(a.name())] = s->value();
         }
       }
       const std::string part_prefix = (file.parts() > 1 && h.hasName()) ? h.name() + "." : "";

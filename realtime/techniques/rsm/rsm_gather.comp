@@ -112,7 +112,7 @@ vec3 gather_cube(uint first, vec3 c, vec3 x, vec3 n) {
 void main() {
   ivec2 lo = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(lo), pc.low_size))) return;
-  Receiver r = load_receiver(receiver_pixel(lo, int(pc.factor), ivec2(pc.size)));
+  Receiver r = load_receiver(full_resolution_pixel(lo, int(pc.factor), ivec2(pc.size)));
   vec3 radiance = vec3(0.0);
   if (r.lit) {
     vec3 e = vec3(0.0);

@@ -45,7 +45,7 @@ layout(push_constant) uniform Push { VctConePush pc; };
 void main() {
   ivec2 lp = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(lp), pc.low_size))) return;
-  Receiver r = load_receiver(receiver_pixel(lp, int(pc.factor), ivec2(pc.size)));
+  Receiver r = load_receiver(full_resolution_pixel(lp, int(pc.factor), ivec2(pc.size)));
   vec4 result = vec4(0.0);
   if (r.lit) {  // the back of a one-sided material is black
     vec3 p = r.x;

@@ -2,9 +2,9 @@
 // The reference EXR of a finished render: the film's layers (Film::to_image) plus the header
 // metadata that makes the file traceable (ARCHITECTURE.md, "Reference EXR").
 //
-// Header keys (all strings): giq.version, giq.scene, giq.sceneHash, giq.view, giq.camera,
-// giq.frame, giq.spp, giq.seed, giq.settings (JSON), giq.nonFiniteSamples and, when recorded,
-// giq.renderTime (seconds). The render time is the one value that differs between two runs
+// Header keys (all strings): giq.version, giq.scene, giq.scene_hash, giq.view, giq.camera,
+// giq.frame, giq.spp, giq.seed, giq.settings (JSON), giq.nonfinite_samples and, when recorded,
+// giq.render_time (seconds). The render time is the one value that differs between two runs
 // of the same render, so it is written only on request: by default two renders with the same
 // settings, on any thread count, resumed or not, are byte-identical files.
 

@@ -1,0 +1,12 @@
+#pragma once
+// The JSON files the CLI reads back (metrics.json, timings.json, gate.json, stamps, plans).
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+namespace giq::cli {
+
+// Throws InputError (the file, what is wrong) when it cannot be opened or is not JSON.
+nlohmann::json read_json_file(const std::filesystem::path& file);
+
+}  // namespace giq::cli
