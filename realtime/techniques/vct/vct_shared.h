@@ -59,10 +59,12 @@ struct VctMipPush {  // voxel_mip.comp
   uint pad;
 };
 
-// An emissive mesh for voxel lighting: a cosine-weighted emitter at its area-weighted
-// centroid (Lambertian: intensity(w) = sum over triangles of L A max(n.w, 0)).
+// An emissive mesh for voxel lighting: a cosine-weighted emitter at its representative point
+// (scenes::AreaLight: the area-weighted centroid, a hair in front of a one-sided flat emitter;
+// the point every real-time pass shades and shadows the mesh from) with Lambertian intensity
+// I(w) = sum over triangles of L A max(n.w, 0).
 struct VctEmitter {
-  vec4 position;  // xyz centroid; w: first shadow layer (unused: voxels trace shadow rays)
+  vec4 position;  // xyz representative point; w: first shadow layer (unused: voxels trace shadow rays)
   vec4 normal;    // xyz unit mean normal; w: 1 when double-sided
   vec4 power;     // rgb: sum of radiance x area (W/sr along the normal); w: total area
 };

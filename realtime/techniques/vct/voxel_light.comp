@@ -14,9 +14,9 @@
 // "we can dispatch additional cone tracing compute shader passes for the whole structure").
 // Those cones read only the anisotropic chains, never the base level this pass writes.
 // Light types: punctual lights exactly (glTF units); an emissive mesh as one cosine-weighted
-// emitter at its centroid, E = P.cos_e cos_r / (d^2 + A/pi) with P = sum L A (the + A/pi keeps
-// the irradiance of a disc of area A on its axis finite and exact; far away it is the point
-// form), shadowed by one ray to the centroid.
+// emitter at its representative point (scenes::AreaLight), E = P.cos_e cos_r / (d^2 + A/pi)
+// with P = sum L A (the + A/pi keeps the irradiance of a disc of area A on its axis finite and
+// exact; far away it is the point form), shadowed by one ray to that point.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/scene.glsl"

@@ -42,7 +42,7 @@ std::vector<gpu::VctEmitter> voxel_emitters(const scenes::Scene& scene) {
   std::vector<gpu::VctEmitter> out;
   for (const scenes::AreaLight& a : scene.area_lights) {
     gpu::VctEmitter em;
-    em.position = glm::vec4(a.centroid, 0.0f);
+    em.position = glm::vec4(a.representative, 0.0f);
     em.normal = glm::vec4(a.normal, a.two_sided ? 1.0f : 0.0f);
     em.power = glm::vec4(a.intensity, a.area);
     out.push_back(em);
