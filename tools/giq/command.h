@@ -21,5 +21,6 @@ CLI::App* add_gate_calibrate_command(CLI::App& gate, int& exit_code);
 void add_golden_command(CLI::App& app, int& exit_code);
 void add_report_command(CLI::App& app, int& exit_code);
 void add_sweep_command(CLI::App& app, int& exit_code);
+void add_results_command(CLI::App& app, int& exit_code);
 
 }  // namespace giq::cli

@@ -32,9 +32,10 @@ bool up_to_date(const fs::path& dir, const json& stamp) {
   }
 }
 
-// Runs one step; a non-zero exit becomes a problem naming the step and the log.
-std::string step(const std::vector<std::string>& argv, const fs::path& dir, const fs::path& log,
-                 const std::string& what, const json& stamp, bool rerender) {
+}  // namespace
+
+std::string run_cached_step(const std::vector<std::string>& argv, const fs::path& dir, const fs::path& log,
+                            const std::string& what, const json& stamp, bool rerender) {
   if (!rerender && up_to_date(dir, stamp)) return "";
   std::error_code ec;
   fs::remove_all(dir, ec);
@@ -46,6 +47,8 @@ std::string step(const std::vector<std::string>& argv, const fs::path& dir, cons
   write_file_atomically(dir / "stamp.json", stamp.dump(2) + "\n");
   return "";
 }
+
+namespace {
 
 std::vector<std::string> realtime_args(const Toolchain& t, const gate::Case& c) {
   std::vector<std::string> a = {t.giq.string(),          "realtime",  "--scene",
@@ -103,7 +106,7 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
     rt.insert(rt.end(), {"--warmup", std::to_string(c.first_frame), "--frames",
                          std::to_string(c.last_frame - c.first_frame + 1), "--out", tech.string()});
     std::string problem =
-        step(rt, tech, log, "giq realtime", {{"argv", rt}, {"giq", binary_hash}}, t.rerender);
+        run_cached_step(rt, tech, log, "giq realtime", {{"argv", rt}, {"giq", binary_hash}}, t.rerender);
     if (!problem.empty()) throw InputError("", "realtime", problem);
     fs::path timings = tech / "timings.json";
     if (c.needs_timing()) {
@@ -111,7 +114,7 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
       const fs::path timing = run.dir / "timing";
       tm.insert(tm.end(), {"--no-images", "--warmup", std::to_string(c.timing.warmup), "--frames",
                            std::to_string(c.timing.frames), "--out", timing.string()});
-      problem = step(tm, timing, log, "giq realtime (timing)", {{"argv", tm}, {"giq", binary_hash}},
+      problem = run_cached_step(tm, timing, log, "giq realtime (timing)", {{"argv", tm}, {"giq", binary_hash}},
                      t.rerender);
       if (!problem.empty()) throw InputError("", "realtime", problem);
       timings = timing / "timings.json";
@@ -135,7 +138,7 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
                            "--test", (tech / frame_file(c.first_frame)).string()});
     sc.insert(sc.end(), {"--layer", c.layer, "--scene", c.scene.string(), "--timings",
                          (tech / "timings.json").string(), "--out", score.string()});
-    problem = step(sc, score, log, "giq score",
+    problem = run_cached_step(sc, score, log, "giq score",
                    {{"argv", sc},
                     {"giq", binary_hash},
                     {"golden", golden_files},

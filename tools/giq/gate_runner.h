@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,14 @@ struct GoldenRun {
 // interrupted update keeps what it finished).
 GoldenRun update_golden(const Toolchain& tools, const gate::Case& c, const gate::Config& config,
                         bool force, gate::Manifest& manifest, std::mutex& lock);
+
+// Runs one step (a giq subcommand writing into `dir`, its output appended to `log`) unless
+// `dir` holds the outputs of a run with the same `stamp` (the command and the giq binary's
+// hash): the cache the gate and `giq results` share. A non-zero exit becomes the returned
+// problem, naming `what` and the log; "" when the step succeeded or was fresh.
+std::string run_cached_step(const std::vector<std::string>& argv, const std::filesystem::path& dir,
+                            const std::filesystem::path& log, const std::string& what, const nlohmann::json& stamp,
+                            bool rerender);
 
 // scenes::Scene::content_hash of the case's scene (throws InputError for a bad scene).
 std::string scene_hash(const std::filesystem::path& scene);

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   giq::cli::add_golden_command(app, exit_code);
   giq::cli::add_report_command(app, exit_code);
   giq::cli::add_sweep_command(app, exit_code);
+  giq::cli::add_results_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,58 @@
+// `giq results --page-only`: the page generated from a results.json written here, so its
+// numbers and sentences are known exactly.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/subprocess.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+json row(const std::string& scene, const std::string& technique, double flip, double relmse, json flicker) {
+  const json layer = {{"flip_mean", flip}, {"relmse", relmse}, {"leak", nullptr}, {"leak_absolute", nullptr},
+                      {"flicker", flicker}, {"lag90_frames", nullptr}};
+  return {{"scene", scene},   {"technique", technique},
+          {"device", "dev"},  {"gpu_ms", 1234.5},
+          {"beauty", layer},  {"indirect", layer},
+          {"gpu_memory_mb", {{"scene", 1.0}, {"technique", 96.125}}}};
+}
+
+TEST(ResultsPage, NumbersAndComparisonsFromResultsJson) {
+  const fs::path dir = fs::temp_directory_path() / ("giq_results_page_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const json results = {
+      {"settings", {{"size", 64}, {"reference_spp", 16}, {"sequence_reference_spp", 4}, {"static_frames", 2}}},
+      {"rows",
+       {row("box", "direct", 0.5, 0.08, 7e-10), row("box", "better", 0.25, 0.02, 2e-9),
+        row("box", "worse", 0.75, 0.1, 0.3)}}};
+  std::ofstream(dir / "results.json") << results.dump(1);
+  const auto r = giq::test::run_captured(
+      giq::test::shell_quote(GIQ_BINARY) + " results --page-only --doc " + (dir / "results.md").string(), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string page = giq::test::slurp(dir / "results.md");
+  // Three significant digits, large values without decimals, memory from the row.
+  EXPECT_NE(page.find("| `direct` | 0.500 | 0.0800 | 0.500 | 0.0800 | – | – | 7.00e-10 | – | 1234 | – | 96.1 |"),
+            std::string::npos)
+      << page;
+  EXPECT_NE(page.find("- FLIP of the beauty: `better` is better than `direct` (0.250 vs 0.500, 2.00× better); "
+                      "`worse` is worse than `direct` (0.750 vs 0.500, 1.50× worse)."),
+            std::string::npos)
+      << page;
+  // Flicker below 1e-4 is float rounding: equal to direct's, which is below it too.
+  EXPECT_NE(page.find("- flicker: `better` equals `direct` (0.00); `worse` is worse than `direct` (0.300 vs 0.00)."),
+            std::string::npos)
+      << page;
+  EXPECT_NE(page.find("Local device: dev"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+}  // namespace
