@@ -2,7 +2,7 @@
 // refactoring of the real-time module must not change any technique's image: see
 // bench/realtime/bit-identity). Every *.exr under A must exist under B with the same relative
 // path, the same size and the same channels, and every float's bits must be equal (so -0 and
-// +0, or two NaN payloads, differ). Prints one line per differing file and a summary; exit 0
+// +0, or two NaN payloads, differ). B may hold more images than A. Prints one line per differing file and a summary; exit 0
 // when everything is identical, 1 otherwise, 2 for missing files or unreadable input.
 #include <cstdio>
 #include <cstring>

@@ -1,6 +1,6 @@
 #include "passes/deferred_gi.h"
 
-#include "giq/base/error.h"
+#include <stdexcept>
 
 namespace giq::realtime {
 

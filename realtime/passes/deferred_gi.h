@@ -18,7 +18,7 @@
 // it uses (FrameNeeds) and reads what the frame made through its accessors.
 
 #include <cstdint>
-#include <functional>
+#include <deque>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -100,7 +100,7 @@ class DeferredGi final : public Technique {
   std::unique_ptr<UpsamplePass> upsample_;
   std::unique_ptr<CompositePass> composite_;
   Image low_, indirect_;
-  std::vector<Layer> layers_;
+  std::deque<Layer> layers_;  // a deque: add_layer()'s references stay valid
   std::unique_ptr<IndirectLight> light_;
   const TechniqueCreateInfo ci_;  // for add_layer's upsample passes
 };

@@ -65,7 +65,7 @@ void GBufferPass::record(VkCommandBuffer cmd, const scenes::Camera& camera, GpuT
   // A camera without a near plane (znear 0) would map every depth to 1; 1 mm keeps the
   // rasteriser working at every scene scale the tests use.
   const float znear = camera.znear > 0.0f ? camera.znear : 1e-3f;
-  const gpu::GBufferPush pc{gpu::make_gpu_camera(camera), glm::vec4(float(width_), float(height_), znear, 0.0f)};
+  const gpu::GBufferPush pc{gpu::make_gpu_camera(camera), glm::vec2(float(width_), float(height_)), znear, 0.0f};
   timer.begin(cmd, "gbuffer");
   if (ray_traced_) {
     for (Image* i : {&position_, &normal_, &ids_}) i->transition(cmd, VK_IMAGE_LAYOUT_GENERAL);

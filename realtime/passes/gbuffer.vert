@@ -12,6 +12,6 @@ layout(push_constant) uniform Push { GBufferPush pc; };
 void main() {
   vec3 p = scene_vertices[gl_VertexIndex].position.xyz - pc.camera.position.xyz;
   float xv = dot(p, pc.camera.right.xyz), yv = dot(p, pc.camera.up.xyz), zv = dot(p, pc.camera.forward.xyz);
-  float tan_half = pc.camera.forward.w, aspect = pc.viewport.x / pc.viewport.y;
-  gl_Position = vec4(xv / (tan_half * aspect), -yv / tan_half, zv - pc.viewport.z, zv);
+  float tan_half = pc.camera.forward.w, aspect = pc.size.x / pc.size.y;
+  gl_Position = vec4(xv / (tan_half * aspect), -yv / tan_half, zv - pc.znear, zv);
 }

@@ -20,11 +20,11 @@ layout(push_constant) uniform Push { GBufferPush pc; };
 
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-  if (px.x >= int(pc.viewport.x) || px.y >= int(pc.viewport.y)) return;
+  if (px.x >= int(pc.size.x) || px.y >= int(pc.size.y)) return;
   vec3 o = pc.camera.position.xyz;
-  vec3 d = camera_ray_direction(pc.camera, vec2(px) + 0.5, pc.viewport.xy);
+  vec3 d = camera_ray_direction(pc.camera, vec2(px) + 0.5, pc.size);
   // The rasteriser clips at the near plane along the view axis; so does this.
-  float tmin = pc.viewport.z / max(dot(d, pc.camera.forward.xyz), 1e-6);
+  float tmin = pc.znear / max(dot(d, pc.camera.forward.xyz), 1e-6);
   RayHit hit = trace_ray(o + tmin * d, d, 1e30, false);
   if (hit.triangle == 0xffffffffu) {
     imageStore(out_position, px, vec4(0.0));

@@ -7,11 +7,14 @@
 
 #ifdef __cplusplus
 namespace giq::realtime::gpu {
+using vec2 = glm::vec2;
 #endif
 
 struct GBufferPush {
   GpuCamera camera;
-  vec4 viewport;  // x width, y height, z near plane
+  vec2 size;    // the image's width and height
+  float znear;  // the rasteriser's near plane; the ray caster's minimum distance along forward
+  float pad;
 };
 
 // Motion vectors (motion_vectors.comp): the cameras of this frame and of the previous one.

@@ -1,6 +1,7 @@
-// `lpv`: the shared direct-lighting pass, the shared reflective shadow maps (passes/rsm.h),
-// then injection (lpv_inject.comp, lpv_resolve.comp), propagation steps
-// (lpv_propagate.comp) and the per-pixel lookup (lpv_lookup.comp); beauty = direct + indirect.
+// `lpv`: Light Propagation Volumes (Afanasev 2021 ch. III; Kaplanyan and Dachsbacher 2010):
+// the frame's reflective shadow maps (passes/rsm.h) injected into a grid (lpv_inject.comp,
+// lpv_resolve.comp), propagation steps (lpv_propagate.comp) and the per-pixel lookup
+// (lpv_lookup.comp) into the frame's indirect target.
 //
 // What the thesis's propagation shader (Afanasev 2021, appendix "LPVPropagation.hlsl") gets wrong,
 // and what is done here instead:

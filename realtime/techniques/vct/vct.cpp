@@ -1,5 +1,5 @@
-// `vct`: the shared G-buffer, shadow-map and direct-lighting passes, then voxel cone tracing
-// for the indirect light (Afanasev 2021 ch. IV; Turánszki 2017, "Voxel-based Global Illumination"):
+// `vct`: voxel cone tracing for the indirect light (Afanasev 2021 ch. IV; Crassin et al. 2011;
+// Turánszki 2017, "Voxel-based Global Illumination"):
 //   voxelize     the scene's triangles into the base level (voxelize.comp)
 //   voxel_light  albedo x shadowed direct light per marked voxel (voxel_light.comp)
 //   voxel_mips   six anisotropic mip chains (voxel_mip.comp), optionally blended over time
