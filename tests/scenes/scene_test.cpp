@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 
 #include "giq/base/error.h"
@@ -45,6 +46,80 @@ TEST(Scene, EmissiveTrianglePowerIsPiAreaLuminance) {
     EXPECT_EQ(s.features.double_sided, two);
     EXPECT_EQ(s.features.one_sided, !two);
   }
+}
+
+TEST(Scene, EachEmissiveMeshIsOneAreaLight) {
+  for (bool two : {false, true}) {
+    const Scene s = emissive_quad(two);
+    ASSERT_EQ(s.area_lights.size(), 1u);
+    const AreaLight& a = s.area_lights[0];
+    EXPECT_EQ(a.mesh, 0u);
+    EXPECT_EQ(a.triangles, (std::vector<uint32_t>{0, 1}));
+    EXPECT_EQ(a.two_sided, two);
+    EXPECT_FLOAT_EQ(a.area, 2.0f);
+    // The rectangle's centre; the triangles' areas weight their centroids equally.
+    EXPECT_NEAR(a.centroid.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(a.centroid.y, 0.5f, 1e-6f);
+    EXPECT_EQ(a.centroid.z, 0.0f);
+    EXPECT_TRUE(a.flat);
+    EXPECT_EQ(a.normal, glm::vec3(0, 0, 1));            // counter-clockwise seen from +z
+    EXPECT_EQ(a.intensity, glm::vec3(2.0f, 4.0f, 6.0f));  // radiance x area
+    // A one-sided emitter's point sits 1e-4 of the scene's diagonal (sqrt 5) in front of it.
+    const float offset = two ? 0.0f : 1e-4f * std::sqrt(5.0f);
+    EXPECT_NEAR(a.representative.z, offset, 1e-9f);
+    EXPECT_EQ(glm::vec2(a.representative), glm::vec2(a.centroid));
+  }
+}
+
+TEST(Scene, ClosedEmitterHasNoMeanNormalAndStaysAtItsCentroid) {
+  // The six faces of a unit cube, outward: the area vectors cancel.
+  Scene s;
+  Material lamp;
+  lamp.emissive = {1.0f, 1.0f, 1.0f};
+  s.materials.push_back(lamp);
+  Mesh m;
+  m.material = 0;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  m.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                 {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+  s.meshes.push_back(m);
+  s.derive();
+  ASSERT_EQ(s.area_lights.size(), 1u);
+  const AreaLight& a = s.area_lights[0];
+  EXPECT_FALSE(a.flat);
+  EXPECT_EQ(a.normal, glm::vec3(0, -1, 0));
+  EXPECT_FLOAT_EQ(a.area, 6.0f);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.centroid[c], 0.5f, 1e-6f);
+  EXPECT_EQ(a.representative, a.centroid);
+}
+
+TEST(Scene, LightPowerIsPhi) {
+  Light point;
+  point.type = LightType::Point;
+  point.color = {1, 1, 1};
+  point.intensity = 2.0f;
+  EXPECT_DOUBLE_EQ(point.power(10.0), 4.0 * std::numbers::pi * 2.0);
+  Light spot = point;
+  spot.type = LightType::Spot;
+  spot.inner_cone = 0.0f;
+  spot.outer_cone = 1.0f;
+  EXPECT_NEAR(spot.power(10.0), 2.0 * std::numbers::pi * (1.0 - std::cos(0.5)) * 2.0, 1e-12);
+  Light sun = point;
+  sun.type = LightType::Directional;
+  EXPECT_DOUBLE_EQ(sun.power(3.0), std::numbers::pi * 9.0 * 2.0);  // irradiance over a disc of radius 3
+  EXPECT_DOUBLE_EQ(luminance({1, 0, 0}), 0.2126);
+}
+
+TEST(Scene, BoundsCentreDiagonalAndEmptyBounds) {
+  Bounds b;
+  EXPECT_EQ(b.centre(), glm::vec3(0.0f));
+  EXPECT_EQ(b.diagonal(), 1e-6f);
+  EXPECT_EQ(b.largest_side(), 1e-6f);
+  b.extend({-1, 0, 2});
+  b.extend({3, 2, 2});
+  EXPECT_EQ(b.centre(), glm::vec3(1, 1, 2));
+  EXPECT_FLOAT_EQ(b.diagonal(), std::sqrt(20.0f));
+  EXPECT_EQ(b.largest_side(), 4.0f);
 }
 
 TEST(Scene, DeriveFeaturesBoundsAndCounts) {
