@@ -28,7 +28,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -43,6 +42,7 @@
 #include "giq/base/error.h"
 #include "json_file.h"
 #include "subprocess.h"
+#include "technique_listing.h"
 
 namespace giq::cli {
 namespace {
@@ -64,17 +64,6 @@ struct CalibrateArgs {
   bool check = false;
 };
 
-// A JSON file in its own key order (the plan), or throws InputError.
-ordered read_ordered(const fs::path& p) {
-  std::ifstream in(p);
-  if (!in) throw InputError(p.string(), "", "cannot open the file");
-  try {
-    return ordered::parse(in);
-  } catch (const ordered::exception& e) {
-    throw InputError(p.string(), "", std::string("not valid JSON: ") + e.what());
-  }
-}
-
 void write_json_file(const fs::path& p, const ordered& j) { write_file_atomically(p, j.dump(2) + "\n"); }
 
 template <class Json>
@@ -90,25 +79,15 @@ const Json* walk(const Json& root, const std::string& dotted) {
   return j;
 }
 
-// {technique: its parameter names}, in registration order, from the binary's listing.
+// {technique: its parameter names}, in registration order.
 std::vector<std::pair<std::string, std::set<std::string>>> registered(const fs::path& giq, const fs::path& out) {
-  fs::create_directories(out);
-  const fs::path log = out / "techniques.json";
-  fs::remove(log);
-  const ProcessResult r = run_process({giq.string(), "realtime", "--list", "--json"}, log);
-  if (r.exit_code != 0) throw InputError(giq.string(), "realtime --list --json", "failed: " + r.log_tail);
-  std::ifstream in(log);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  text = text.substr(text.find('\n') + 1);  // the log's first line is the command
-  std::vector<std::pair<std::string, std::set<std::string>>> out_list;
-  const json listing = json::parse(text);
-  for (const auto& t : listing.at("techniques")) {
-    std::set<std::string> names;
-    for (const auto& p : t.at("parameters")) names.insert(p.at("name").get<std::string>());
-    out_list.emplace_back(t.at("name").get<std::string>(), names);
+  std::vector<std::pair<std::string, std::set<std::string>>> names;
+  for (const TechniqueParameters& t : list_techniques(giq, out / "techniques.json")) {
+    std::set<std::string> parameters;
+    for (const ParameterInfo& p : t.parameters) parameters.insert(p.name);
+    names.emplace_back(t.name, parameters);
   }
-  if (out_list.empty()) throw InputError(giq.string(), "realtime --list --json", "lists no technique");
-  return out_list;
+  return names;
 }
 
 struct PlannedCase {
@@ -286,7 +265,7 @@ int run_calibrate(const CalibrateArgs& a) {
   const fs::path giq = a.giq.empty() ? self_executable() : fs::absolute(a.giq);
   const fs::path plan_path = a.plan, config_path = a.config;
   // Read in the file's key order, which the written config and record keep.
-  const ordered plan = read_ordered(plan_path);
+  const ordered plan = read_ordered_json_file(plan_path);
   const auto declared = registered(giq, a.out);
   std::vector<std::string> names;
   for (const auto& [n, p] : declared) names.push_back(n);
@@ -310,11 +289,11 @@ int run_calibrate(const CalibrateArgs& a) {
   for (const auto& t : a.techniques)
     if (std::find(names.begin(), names.end(), t) == names.end())
       throw InputError("", "--technique", "'" + t + "' is not registered (giq realtime --list --json)");
-  std::vector<const PlannedCase*> todo, keep;
+  std::vector<const PlannedCase*> to_measure, keep;
   for (const PlannedCase& c : cases)
-    (a.techniques.empty() || std::count(a.techniques.begin(), a.techniques.end(), c.technique()) ? todo : keep)
+    (a.techniques.empty() || std::count(a.techniques.begin(), a.techniques.end(), c.technique()) ? to_measure : keep)
         .push_back(&c);
-  if (todo.empty()) throw InputError("", "--technique", "no planned case for these techniques");
+  if (to_measure.empty()) throw InputError("", "--technique", "no planned case for these techniques");
   for (const PlannedCase* c : keep)
     if (!old.count(c->name()) || !old[c->name()].contains("bounds"))
       throw InputError(config_path.string(), c->name(), "has no bounds yet; calibrate its technique too");
@@ -323,7 +302,7 @@ int run_calibrate(const CalibrateArgs& a) {
   // to golden/ exactly as there; they are removed afterwards. A run with "parameters" (e.g.
   // another seed) applies to the cases of techniques that declare all of them.
   std::map<std::string, ordered> measuring;
-  for (const PlannedCase* c : todo) {
+  for (const PlannedCase* c : to_measure) {
     ordered b;
     for (const auto& m : c->metrics) b[m] = {{"fail", kHuge}};
     measuring[c->name()] = b;
@@ -339,7 +318,7 @@ int run_calibrate(const CalibrateArgs& a) {
   std::vector<std::pair<std::string, GateRun>> runs;
   try {
     std::vector<PlannedCase> subset;
-    for (const PlannedCase* c : todo) subset.push_back(*c);
+    for (const PlannedCase* c : to_measure) subset.push_back(*c);
     const fs::path all = temp_config(subset);
     std::cout << "giq golden update (renders only missing or stale goldens)..." << std::endl;
     fs::create_directories(a.out);
@@ -349,7 +328,7 @@ int run_calibrate(const CalibrateArgs& a) {
     for (const auto& run : plan.at("runs")) {
       const json params = json(run.value("parameters", ordered::object()));
       std::vector<PlannedCase> varied;
-      for (const PlannedCase* c : todo) {
+      for (const PlannedCase* c : to_measure) {
         const auto& known = std::find_if(declared.begin(), declared.end(), [&](const auto& d) { return d.first == c->technique(); })->second;
         bool all_declared = true;
         for (const auto& [k, v] : params.items()) all_declared &= known.count(k) > 0;
@@ -378,7 +357,7 @@ int run_calibrate(const CalibrateArgs& a) {
   ordered record = ordered::object();
   std::vector<std::string> unresolved;
   std::printf("\n%-34s %-30s %12s %9s %12s %12s\n", "case", "metric", "value", "spread", "warn", "fail");
-  for (const PlannedCase* c : todo) {
+  for (const PlannedCase* c : to_measure) {
     ordered b, rec;
     for (const std::string& m : c->metrics) {
       std::vector<std::pair<std::string, double>> values;
@@ -421,13 +400,13 @@ int run_calibrate(const CalibrateArgs& a) {
   const fs::path rec_path = config_path.parent_path() / "calibration.json";
   std::map<std::string, ordered> cal;
   if (fs::exists(rec_path)) {
-    const ordered prev = ordered::parse(std::ifstream(rec_path));
+    const ordered prev = read_ordered_json_file(rec_path);
     for (const PlannedCase* c : keep)
       if (prev.contains("cases") && prev["cases"].contains(c->name())) cal[c->name()] = prev["cases"][c->name()];
   }
   for (const auto& [k, v] : record.items()) cal[k] = v;
   std::string device;
-  const fs::path tj = fs::path(a.out) / runs.front().first / "cases" / todo.front()->name() / "technique" / "timings.json";
+  const fs::path tj = fs::path(a.out) / runs.front().first / "cases" / to_measure.front()->name() / "technique" / "timings.json";
   if (fs::exists(tj)) device = read_json_file(tj).value("/device/name"_json_pointer, std::string());
   ordered cases_json = ordered::object();
   for (const auto& [k, v] : cal) cases_json[k] = v;

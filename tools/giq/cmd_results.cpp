@@ -21,9 +21,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
-#include <iterator>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -40,6 +38,7 @@
 #include "giq/scenes/scene.h"
 #include "json_file.h"
 #include "subprocess.h"
+#include "technique_listing.h"
 
 namespace giq::cli {
 namespace {
@@ -266,7 +265,7 @@ ordered sweep_rows(const fs::path& folder) {
   std::sort(files.begin(), files.end());
   ordered found = ordered::array();
   for (const fs::path& p : files) {
-    const ordered d = ordered(read_json_file(p));
+    const ordered d = read_ordered_json_file(p);
     for (const auto& r : d["rows"]) {
       const ordered metrics = r.value("metrics", ordered::object());
       ordered row;
@@ -287,19 +286,6 @@ ordered sweep_rows(const fs::path& folder) {
   return found;
 }
 
-std::vector<std::string> registered_techniques(const fs::path& giq, const fs::path& out) {
-  const fs::path log = out / "techniques.json";
-  fs::remove(log);
-  const ProcessResult r = run_process({giq.string(), "realtime", "--list", "--json"}, log);
-  if (r.exit_code != 0) throw InputError(giq.string(), "realtime --list --json", "failed: " + r.log_tail);
-  std::ifstream in(log);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const json listing = json::parse(text.substr(text.find('\n') + 1));  // the log's first line is the command
-  std::vector<std::string> names;
-  for (const auto& t : listing.at("techniques")) names.push_back(t.at("name").get<std::string>());
-  return names;
-}
-
 // Runs a step of the page unless its folder holds the outputs of this very command.
 void run_step(const std::vector<std::string>& argv, const fs::path& dir, const std::string& giq_hash, bool rerender) {
   const std::string problem = run_cached_step(argv, dir, dir.parent_path() / (dir.filename().string() + ".log"),
@@ -310,7 +296,7 @@ void run_step(const std::vector<std::string>& argv, const fs::path& dir, const s
 int run_results(const ResultsArgs& a) {
   const fs::path out = fs::absolute(a.out), doc = a.doc;
   if (a.page_only) {
-    const ordered results = ordered(read_json_file(doc.parent_path() / (doc.stem().string() + ".json")));
+    const ordered results = read_ordered_json_file(doc.parent_path() / (doc.stem().string() + ".json"));
     write_file_atomically(doc, page(results));
     std::cout << "giq results: " << doc.string() << " from " << (doc.parent_path() / (doc.stem().string() + ".json")).string() << '\n';
     return 0;
@@ -320,8 +306,8 @@ int run_results(const ResultsArgs& a) {
   fs::create_directories(out);
   std::vector<std::string> techs = a.techniques;
   if (techs.empty())
-    for (const auto& t : registered_techniques(giq, out))
-      if (t != "pt") techs.push_back(t);
+    for (const TechniqueParameters& t : list_techniques(giq, out / "techniques.json"))
+      if (t.name != "pt") techs.push_back(t.name);
   std::vector<fs::path> scene_files;
   for (const auto& e : fs::directory_iterator("scenes"))
     if (e.path().extension() == ".gltf" &&

@@ -29,6 +29,7 @@
 #include "json_file.h"
 #include "subprocess.h"
 #include "sweep_plan.h"
+#include "technique_listing.h"
 
 namespace giq::cli {
 namespace {
@@ -53,13 +54,6 @@ struct SweepArgs {
   uint32_t ref_spp = 1024;
   bool convergence = false, linear = false, quality = false;
 };
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 void must(const ProcessResult& r, const std::string& what, const fs::path& log) {
   if (r.exit_code != 0)
@@ -116,13 +110,7 @@ int run_techniques(const SweepArgs& a, const fs::path& giq, const fs::path& out)
       if (m.scope == metrics::Scope::Image) names += (names.empty() ? "" : ", ") + std::string(m.name);
     throw InputError("", "--error", "unknown per-image metric '" + error + "'; expected one of: " + names);
   }
-  const fs::path list_log = out / "techniques.json";
-  fs::remove(list_log);
-  must(run_process({giq.string(), "realtime", "--list", "--json"}, list_log), "giq realtime --list --json",
-       list_log);
-  std::string listing = slurp(list_log);
-  listing = listing.substr(listing.find('\n') + 1);  // the log's first line is the command
-  const auto declared = parse_technique_list(listing);
+  const auto declared = list_techniques(giq, out / "techniques.json");
 
   struct Job {
     const TechniqueParameters* technique;
