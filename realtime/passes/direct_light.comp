@@ -3,11 +3,10 @@
 // arriving straight from the light sources, each attenuated by its shadow map; no indirect
 // light. Every technique's `direct` layer comes from here.
 // Punctual lights are evaluated exactly (glTF units and falloff). Emissive meshes are area
-// lights: the diffuse part integrates each emissive triangle exactly (Lambert's polygon
-// formula after clipping to the horizon; Arvo 1995, "Applications of Irradiance Tensors to
-// the Simulation of Non-Lambertian Phenomena", eq. 7), the specular part uses the
-// representative point on the triangle closest to the reflection ray with energy
-// normalisation (Karis 2013, "Real Shading in Unreal Engine 4"; Turánszki 2017, "Area Lights").
+// lights: the diffuse part integrates each emissive triangle exactly
+// (shaders/polygon_irradiance.glsl), the specular part uses the representative point on the
+// triangle closest to the reflection ray with energy normalisation (Karis 2013, "Real Shading
+// in Unreal Engine 4"; Turánszki 2017, "Area Lights").
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/scene.glsl"
@@ -15,6 +14,7 @@
 #include "shaders/surface.glsl"
 #include "shaders/lights.glsl"
 #include "shaders/closest_point.glsl"
+#include "shaders/polygon_irradiance.glsl"
 #include "passes/direct_light_shared.h"
 #include "passes/shadow_maps_shared.h"
 
@@ -31,40 +31,6 @@ layout(binding = GIQ_RECEIVER_BINDING_COUNT + 5, rgba32f) uniform writeonly imag
 layout(push_constant) uniform Push { DirectPush pc; };
 
 #include "passes/shadow.glsl"
-
-// The triangle (a, b, c), relative to the shading point, clipped to the half-space n.x >= 0
-// (Sutherland-Hodgman against one plane: at most 4 vertices).
-int clip_to_horizon(vec3 a, vec3 b, vec3 c, vec3 n, out vec3 v[4]) {
-  vec3 tri[3] = vec3[3](a, b, c);
-  int count = 0;
-  for (int i = 0; i < 3; ++i) {
-    vec3 p0 = tri[i], p1 = tri[(i + 1) % 3];
-    float d0 = dot(n, p0), d1 = dot(n, p1);
-    if (d0 >= 0.0) v[count++] = p0;
-    if ((d0 >= 0.0) != (d1 >= 0.0)) v[count++] = p0 + (p1 - p0) * (d0 / (d0 - d1));
-  }
-  return count;
-}
-
-// Irradiance at the origin (normal n) from a polygon of unit radiance:
-// E = 1/2 sum_i theta_i n.unit(v_i x v_i+1) (Lambert's formula; Arvo 1995).
-float polygon_irradiance(vec3 a, vec3 b, vec3 c, vec3 n) {
-  vec3 v[4];
-  int count = clip_to_horizon(a, b, c, n, v);
-  if (count < 3) return 0.0;
-  // A shading point on a vertex of the light sees it edge-on: no irradiance, and no NaN.
-  for (int i = 0; i < count; ++i)
-    if (dot(v[i], v[i]) <= 1e-30) return 0.0;
-  float sum = 0.0;
-  for (int i = 0; i < count; ++i) {
-    vec3 v0 = normalize(v[i]), v1 = normalize(v[(i + 1) % count]);
-    vec3 cr = cross(v0, v1);
-    float len = length(cr);
-    // atan(|v0 x v1|, v0.v1) keeps the angle accurate for small, distant triangles.
-    if (len > 0.0) sum += atan(len, dot(v0, v1)) * dot(n, cr / len);
-  }
-  return 0.5 * abs(sum);
-}
 
 vec3 area_light(GpuAreaLight l, Surface s, vec3 p, vec3 wo) {
   vec3 sum = vec3(0.0);

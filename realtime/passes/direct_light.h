@@ -40,6 +40,11 @@ class DirectLightPass {
   // Shadow-map layer of punctual light i (scene order), and the area lights.
   const std::vector<uint32_t>& light_layers() const { return light_layer_; }
   const std::vector<gpu::GpuAreaLight>& area_lights() const { return area_lights_; }
+  // The area lights as the GPU reads them (GpuAreaLight, GpuAreaTriangle), for passes that
+  // light other points than the G-buffer's; rebuilt when emitters move, so take them when
+  // recording, after record_shadows().
+  const Buffer& area_light_buffer() const { return area_light_buffer_; }
+  const Buffer& area_triangle_buffer() const { return area_triangle_buffer_; }
 
  private:
   void build_area_lights(const scenes::Scene& scene);

@@ -8,7 +8,8 @@
   X(pt)                   \
   X(rsm)                  \
   X(lpv)                  \
-  X(vct)
+  X(vct)                  \
+  X(ddgi)
 
 namespace giq::realtime {
 

@@ -29,11 +29,17 @@ TEST(ResultsPage, NumbersAndComparisonsFromResultsJson) {
   const fs::path dir = fs::temp_directory_path() / ("giq_results_page_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const json results = {
+  json results = {
       {"settings", {{"size", 64}, {"reference_spp", 16}, {"sequence_reference_spp", 4}, {"static_frames", 2}}},
       {"rows",
        {row("box", "direct", 0.5, 0.08, 7e-10), row("box", "better", 0.25, 0.02, 2e-9),
         row("box", "worse", 0.75, 0.1, 0.3)}}};
+  // The GPU machine's timings of one row: the column names its device and resolution, and
+  // its memory replaces the local one.
+  results["rows"][1]["gpu"] = {{"device", "GPU X"},
+                               {"resolution", {1920, 1080}},
+                               {"gpu_ms", 0.5},
+                               {"gpu_memory_mb", {{"scene", 2.0}, {"technique", 12.5}}}};
   std::ofstream(dir / "results.json") << results.dump(1);
   const auto r = giq::test::run_captured(
       giq::test::shell_quote(GIQ_BINARY) + " results --page-only --doc " + (dir / "results.md").string(), dir);
@@ -41,6 +47,10 @@ TEST(ResultsPage, NumbersAndComparisonsFromResultsJson) {
   const std::string page = giq::test::slurp(dir / "results.md");
   // Three significant digits, large values without decimals, memory from the row.
   EXPECT_NE(page.find("| `direct` | 0.500 | 0.0800 | 0.500 | 0.0800 | – | – | 7.00e-10 | – | 1234 | – | 96.1 |"),
+            std::string::npos)
+      << page;
+  EXPECT_NE(page.find("| GPU ms (local) | GPU ms (GPU X, 1920×1080) | memory MB |"), std::string::npos) << page;
+  EXPECT_NE(page.find("| `better` | 0.250 | 0.0200 | 0.250 | 0.0200 | – | – | 2.00e-09 | – | 1234 | 0.500 | 12.5 |"),
             std::string::npos)
       << page;
   EXPECT_NE(page.find("- FLIP of the beauty: `better` is better than `direct` (0.250 vs 0.500, 2.00× better); "

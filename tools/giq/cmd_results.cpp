@@ -8,9 +8,10 @@
 // Static scenes are scored as sequences against their single reference, which is what flicker
 // measures; animated ones frame by frame, which is what lag measures.
 //
-// --h100 DIR adds GPU time and memory at 1920x1080 measured on another device
+// --gpu DIR adds GPU time and memory at 1920x1080 measured on a GPU machine
 // (DIR/results/<scene>/<technique>/timings.json) and its speed-for-accuracy sweeps
-// (DIR/sweeps/<scene>/<technique>/sweep.json), as bench/realtime/device-run writes them.
+// (DIR/sweeps/<scene>/<technique>/sweep.json), as bench/realtime/device-run writes them; the
+// page names the device those timings.json name.
 //
 // Every number in the page comes from results.json, written next to the renders and beside the
 // page (docs/results.json), so the page can be regenerated without the renders (--page-only).
@@ -155,9 +156,26 @@ std::string join(const std::vector<std::string>& parts, const std::string& sep) 
   return s;
 }
 
+// The GPU machine's device and resolution, from the rows that have its timings: "NVIDIA H200,
+// 1920×1080" ("" when none has).
+std::string gpu_run_name(const ordered& rows) {
+  std::set<std::string> names;
+  for (const auto& r : rows) {
+    const ordered g = r.value("gpu", ordered::object());
+    if (!g.contains("device")) continue;
+    std::string name = g["device"].get<std::string>();
+    if (g.contains("resolution") && g["resolution"].is_array() && g["resolution"].size() == 2)
+      name += ", " + g["resolution"][0].dump() + "×" + g["resolution"][1].dump();
+    names.insert(name);
+  }
+  return join({names.begin(), names.end()}, "; ");
+}
+
 std::string page(const ordered& results) {
   const ordered& s = results["settings"];
   const ordered& rows = results["rows"];
+  const std::string gpu = gpu_run_name(rows);
+  const std::string gpu_column = gpu.empty() ? "GPU ms (GPU machine)" : "GPU ms (" + gpu + ")";
   std::vector<std::string> lines = {
       "# Results: each technique against the path-traced truth",
       "",
@@ -173,8 +191,8 @@ std::string page(const ordered& results) {
           "black there), leak (abs.) the same in radiance per pixel; flicker is the relative temporal noise of the "
           "error (below 1e-4 it is float rounding of a deterministic technique and counts as 0 in the comparisons); "
           "lag90 is in frames after the light's step change. GPU ms (local) is the median frame time on the device "
-          "that rendered the images; GPU ms (H100 1080p) and memory MB (the technique's resident GPU memory, shared "
-          "passes included) come from the H100 run at 1920×1080 with the same default parameters.",
+          "that rendered the images; " + gpu_column + " and memory MB (the technique's resident GPU memory, shared "
+          "passes included) come from the run on the GPU machine with the same default parameters.",
       ""};
   std::set<std::string> devices, scenes;
   for (const auto& r : rows) devices.insert(r["device"].get<std::string>()), scenes.insert(r["scene"].get<std::string>());
@@ -185,11 +203,11 @@ std::string page(const ordered& results) {
     lines.insert(lines.end(), {"## " + scene, ""});
     lines.push_back(
         "| technique | FLIP (beauty) | relMSE (beauty) | FLIP (indirect) | relMSE (indirect) | leak | leak (abs.) | "
-        "flicker | lag90 (frames) | GPU ms (local) | GPU ms (H100 1080p) | memory MB |");
+        "flicker | lag90 (frames) | GPU ms (local) | " + gpu_column + " | memory MB |");
     lines.push_back("|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (const auto& r : rows) {
       if (r["scene"] != scene) continue;
-      const ordered h = r.value("h100", ordered::object());
+      const ordered h = r.value("gpu", ordered::object());
       const ordered memory = h.value("gpu_memory_mb", ordered(nullptr)).is_object() ? h["gpu_memory_mb"]
                              : r.value("gpu_memory_mb", ordered(nullptr)).is_object() ? r["gpu_memory_mb"]
                                                                                        : ordered::object();
@@ -218,16 +236,15 @@ std::string page(const ordered& results) {
   if (!sweeps.empty()) {
     const ordered& r0 = sweeps[0];
     lines.insert(lines.end(),
-                 {"## Speed for accuracy (H100)", "",
+                 {"## Speed for accuracy (" + gpu + ")", "",
                   "Each technique's main quality knob, cheapest to best: GPU ms at " + r0["timing_resolution"][0].dump() +
                       "×" + r0["timing_resolution"][1].dump() +
-                      " on the H100 (median of 20 frames after 10 warm-up frames), error of the beauty at " +
+                      " on the GPU machine (median of 20 frames after 10 warm-up frames), error of the beauty at " +
                       r0["resolution"][0].dump() + "×" + r0["resolution"][1].dump() +
                       " against the reference (last of those frames). ★ marks the Pareto front within the technique (no "
                       "other setting of it both faster and more accurate by FLIP); (default) the technique's default. "
-                      "The plots are bench/results/h100/sweeps/<scene>/<technique>/sweep.svg. Where a default "
-                      "setting's time here differs from the table above, the technique was re-timed after a speed-up "
-                      "that left its images unchanged (bench/results/gi-techniques-h100.md says which).",
+                      "The plots are " + s.value("gpu_dir", std::string("<gpu>")) +
+                      "/sweeps/<scene>/<technique>/sweep.svg.",
                   ""});
     std::set<std::string> sweep_scenes;
     for (const auto& r : sweeps) sweep_scenes.insert(r["scene"].get<std::string>());
@@ -323,6 +340,7 @@ int run_results(const ResultsArgs& a) {
   ordered results;
   results["settings"] = {{"size", a.size}, {"reference_spp", a.spp}, {"sequence_reference_spp", a.sequence_spp},
                          {"static_frames", a.frames}};
+  if (!a.gpu.empty()) results["settings"]["gpu_dir"] = a.gpu;
   results["rows"] = ordered::array();
   for (const fs::path& scene : scene_files) {
     const scenes::Scene loaded = scenes::load(scene);
@@ -372,7 +390,7 @@ int run_results(const ResultsArgs& a) {
           const json ht = read_json_file(h);
           ordered passes = ordered::object();
           for (const auto& p : ht.at("passes")) passes[p.at("name").get<std::string>()] = p["gpu_ms"]["median"];
-          row["h100"] = {{"device", ht["device"]["name"]},
+          row["gpu"] = {{"device", ht["device"]["name"]},
                          {"resolution", ht["resolution"]},
                          {"gpu_ms", ht["frame_gpu_ms"]["median"]},
                          {"passes", passes},
@@ -407,7 +425,7 @@ void add_results_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--frames", a->frames, "Measured frames of a static scene")->capture_default_str();
   cmd->add_option("--technique", a->techniques, "Techniques (repeatable; default: every registered one but pt)");
   cmd->add_option("--scene", a->scenes, "Built-in scenes by name (repeatable; default: every scenes/*.gltf)");
-  cmd->add_option("--h100", a->gpu, "Folder of 1080p timings and sweeps measured on a GPU (bench/realtime/device-run)");
+  cmd->add_option("--gpu", a->gpu, "Folder of 1080p timings and sweeps measured on a GPU machine (bench/realtime/device-run)");
   cmd->add_option("--doc", a->doc, "The page written; its data goes beside it as .json")->capture_default_str();
   cmd->add_option("--giq", a->giq, "giq binary whose subcommands are run (default: this one)");
   cmd->add_flag("--references-only", a->references_only, "Render the references and stop");

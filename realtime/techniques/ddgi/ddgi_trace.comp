@@ -1,0 +1,117 @@
+#version 460
+// `ddgi`'s probe rays (Majercik et al. 2019): every active probe traces its rays
+// through the shared compute BVH; each hit is shaded with the light the shared direct pass
+// uses (punctual lights exactly, emissive meshes by the exact polygon irradiance of
+// shaders/polygon_irradiance.glsl), shadowed here by one BVH ray per light (towards an area
+// light's representative point) since the frame's shadow maps cover only what the camera sees,
+// plus the volume's own irradiance at the hit from the previous update (one more bounce per
+// frame; the albedo capped below 1 keeps the loop contracting). The hit's own emission is left
+// out: an emissive mesh's light reaches receivers through the shared direct pass (its area
+// light), and counting it here too would add it twice. Misses see the constant environment,
+// which the direct pass does not light surfaces with: that light lands in the indirect layer.
+// Output per ray: radiance, and the hit distance, negative for the back of a one-sided
+// surface (a probe that sees many is inside geometry).
+// Inactive probes (classification) trace only their fixed rays, which need no shading.
+#extension GL_GOOGLE_include_directive : require
+
+#include "shaders/scene.glsl"
+#include "shaders/bvh.glsl"
+#include "shaders/brdf.glsl"
+#include "shaders/surface.glsl"
+#include "shaders/sampling.glsl"
+#include "shaders/lights.glsl"
+#include "shaders/polygon_irradiance.glsl"
+#include "passes/direct_light_shared.h"
+#include "passes/rsm_albedo.glsl"
+#include "techniques/ddgi/ddgi_shared.h"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 0) readonly buffer Volume { GpuDdgiVolume ddgi; };
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 1) readonly buffer Probes { GpuDdgiProbe ddgi_probes[]; };
+layout(binding = GIQ_SCENE_BINDING_COUNT + 2) uniform sampler2D ddgi_irradiance;
+layout(binding = GIQ_SCENE_BINDING_COUNT + 3) uniform sampler2D ddgi_distance;
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 4) readonly buffer AreaLights { GpuAreaLight area_lights[]; };
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 5) readonly buffer AreaTriangles { GpuAreaTriangle area_triangles[]; };
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 6) writeonly buffer Rays { vec4 rays[]; };
+
+layout(push_constant) uniform Push { DdgiTracePush pc; };
+
+#include "techniques/ddgi/ddgi_volume.glsl"
+
+// Diffuse irradiance of area light l at p (normal n): each triangle exactly, unshadowed.
+vec3 area_irradiance(GpuAreaLight l, vec3 p, vec3 n) {
+  vec3 e = vec3(0.0);
+  for (uint k = 0u; k < l.range.y; ++k) {
+    GpuAreaTriangle t = area_triangles[l.range.x + k];
+    vec3 a = t.a.xyz - p, b = t.b.xyz - p, c = t.c.xyz - p;
+    // A one-sided emitter lights only the half-space in front of it.
+    if (t.a.w == 0.0 && dot(cross(b - a, c - a), -a) <= 0.0) continue;
+    e += t.radiance.rgb * polygon_irradiance(a, b, c, n);
+  }
+  return e;
+}
+
+// Irradiance from the light sources at p (geometric normal ng, shading normal ns), shadowed.
+vec3 direct_irradiance(vec3 p, vec3 ng, vec3 ns) {
+  vec3 origin = offset_ray(p, ng);
+  vec3 e = vec3(0.0);
+  for (uint i = 0u; i < pc.light_count; ++i) {
+    vec3 wi;
+    float dist;
+    vec3 li = punctual_incident(scene_lights[i], p, wi, dist);
+    float cos_i = dot(ns, wi);
+    if (cos_i <= 0.0 || dot(ng, wi) <= 0.0 || all(equal(li, vec3(0.0)))) continue;
+    if (occluded(origin, wi, dist < 1e30 ? dist * (1.0 - 1e-4) : 1e30)) continue;
+    e += li * cos_i;
+  }
+  for (uint i = 0u; i < pc.area_light_count; ++i) {
+    GpuAreaLight l = area_lights[i];
+    vec3 el = area_irradiance(l, p, ns);
+    if (all(equal(el, vec3(0.0)))) continue;
+    vec3 to = l.position.xyz - p;
+    float dist = length(to);
+    // Stop short of the emitter so that its own triangles do not shadow it.
+    if (dist > 0.0 && occluded(origin, to / dist, dist * 0.999)) continue;
+    e += el;
+  }
+  return e;
+}
+
+void main() {
+  uint ray = gl_GlobalInvocationID.x;
+  uint probe = gl_WorkGroupID.y + gl_WorkGroupID.z * gl_NumWorkGroups.y;
+  uint count = ddgi.tiles.w;
+  if (ray >= count || probe >= ddgi.counts.w) return;
+  uint slot = probe * count + ray;
+  bool fixed_ray = ray < GIQ_DDGI_FIXED_RAYS;
+  if (!fixed_ray && !ddgi_probe_active(probe)) return;  // its blend is skipped too
+  vec3 dir = ddgi_ray_direction(ray, pc.rotation);
+  vec3 org = ddgi_probe_position(probe);
+  RayHit hit = trace_ray(org, dir, 1e30, false);
+  if (hit.triangle == 0xffffffffu) {
+    rays[slot] = vec4(pc.environment.rgb, 3.0e38);
+    return;
+  }
+  HitNormals hn = hit_normals(hit.triangle, hit.u, hit.v, dir);
+  if (hn.black) {  // the back of a one-sided surface
+    rays[slot] = vec4(0.0, 0.0, 0.0, -hit.t);
+    return;
+  }
+  if (fixed_ray) {  // relocation and classification read only the distance
+    rays[slot] = vec4(0.0, 0.0, 0.0, hit.t);
+    return;
+  }
+  vec3 a, b, c;
+  triangle_vertices(hit.triangle, a, b, c);
+  vec3 p = a + hit.u * (b - a) + hit.v * (c - a);
+  Surface s = hit_material(hit.triangle, hit.u, hit.v, hn.ns);
+  vec3 albedo = diffuse_albedo(s);
+  vec3 radiance = albedo / PI * direct_irradiance(p, hn.ng, hn.ns);
+  if (pc.feedback != 0u)
+    radiance += min(albedo, vec3(pc.albedo_cap)) / PI * ddgi_irradiance_at(p, hn.ns, dir);
+  // A non-finite sample would poison the probe's history for good; it can only come from a
+  // degenerate configuration and is dropped.
+  if (!all(lessThan(abs(radiance), vec3(3.0e38)))) radiance = vec3(0.0);
+  rays[slot] = vec4(radiance, hit.t);
+}
