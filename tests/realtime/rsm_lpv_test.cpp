@@ -45,11 +45,7 @@ std::vector<std::string> small(const std::string& technique) {
   return p;
 }
 
-double mean(const image::Image& img, const std::string& channel) {
-  double s = 0.0;
-  for (size_t i = 0; i < img.pixel_count(); ++i) s += img.channel(channel)[i];
-  return s / double(img.pixel_count());
-}
+using test::mean;
 
 TEST_F(RsmLpvTest, EveryBuiltInSceneRendersFinite) {
   // The built-in scenes, and the textured room (textures, a normal map, an alpha mask: the RSM

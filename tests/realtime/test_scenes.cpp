@@ -2,8 +2,34 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 namespace giq::test {
+
+std::string layer(const std::string& name, int c) { return name.empty() ? kRgb[c] : name + "." + kRgb[c]; }
+
+double mean(const image::Image& img, const std::string& channel) {
+  double sum = 0.0;
+  const float* v = img.channel(channel);
+  for (size_t i = 0; i < img.pixel_count(); ++i) sum += v[i];
+  return sum / double(img.pixel_count());
+}
+
+scenes::Scene builtin(const std::string& name) {
+  return scenes::load(std::filesystem::path(GIQ_SCENES_DIR) / (name + ".gltf"));
+}
+
+scenes::Scene cornell_with_every_light_off() {
+  scenes::Scene scene = builtin("cornell");
+  for (auto& m : scene.materials) m.emissive = glm::vec3(0.0f);
+  scenes::Light l;
+  l.type = scenes::LightType::Point;
+  l.position = {0.0f, 0.0f, 0.0f};
+  l.intensity = 0.0f;
+  scene.lights.push_back(l);
+  scene.derive();
+  return scene;
+}
 
 void VulkanTest::SetUp() {
   realtime::ContextOptions o;

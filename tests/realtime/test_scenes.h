@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <string>
 
 #include "giq/image/image.h"
 #include "giq/realtime/context.h"
@@ -14,6 +15,17 @@
 #include "scene_builders.h"
 
 namespace giq::test {
+
+inline constexpr const char* kRgb[3] = {"R", "G", "B"};
+// The channel c of an output layer: layer("", 0) = "R", layer("indirect", 2) = "indirect.B".
+std::string layer(const std::string& name, int c);
+// The mean of a channel over the image.
+double mean(const image::Image& img, const std::string& channel);
+// A built-in scene, scenes/<name>.gltf.
+scenes::Scene builtin(const std::string& name);
+// The built-in Cornell box with every light off: its emitter black, and a point light of zero
+// intensity added so that the punctual-light code runs too.
+scenes::Scene cornell_with_every_light_off();
 
 class VulkanTest : public ::testing::Test {
  protected:

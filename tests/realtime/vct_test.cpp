@@ -33,22 +33,10 @@ class VctTest : public test::VulkanTest {
   }
 };
 
-scenes::Scene builtin(const std::string& name) {
-  return scenes::load(std::filesystem::path(GIQ_SCENES_DIR) / (name + ".gltf"));
-}
-
-const char* const kRgb[3] = {"R", "G", "B"};
-
-std::string layer(const std::string& name, int c) {
-  return name.empty() ? kRgb[c] : name + "." + kRgb[c];
-}
-
-double mean(const image::Image& img, const std::string& channel) {
-  double sum = 0.0;
-  const float* v = img.channel(channel);
-  for (size_t i = 0; i < img.pixel_count(); ++i) sum += v[i];
-  return sum / double(img.pixel_count());
-}
+using test::builtin;
+using test::kRgb;
+using test::layer;
+using test::mean;
 
 class VctSceneTest : public VctTest, public ::testing::WithParamInterface<std::string> {};
 
@@ -135,17 +123,7 @@ TEST_F(VctTest, CornellIndirectLightIsWithinMeasuredBoundsOfTheReference) {
 }
 
 TEST_F(VctTest, WithTheLightOffIndirectLightIsExactlyZero) {
-  // The Cornell box's only light is its emissive mesh; a point light of zero intensity is
-  // added so that the punctual path runs too.
-  scenes::Scene scene = builtin("cornell");
-  for (auto& m : scene.materials) m.emissive = glm::vec3(0.0f);
-  scenes::Light l;
-  l.type = scenes::LightType::Point;
-  l.position = {0.0f, 0.0f, 0.0f};
-  l.intensity = 0.0f;
-  scene.lights.push_back(l);
-  scene.derive();
-  const image::Image img = render(scene, 24, {"voxel_resolution=32"});
+  const image::Image img = render(test::cornell_with_every_light_off(), 24, {"voxel_resolution=32"});
   for (int c = 0; c < 3; ++c)
     for (size_t i = 0; i < img.pixel_count(); ++i)
       ASSERT_EQ(img.channel(layer("indirect", c))[i], 0.0f) << i;
