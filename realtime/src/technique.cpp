@@ -1,6 +1,7 @@
 #include "giq/realtime/technique.h"
 
 #include <cmath>
+#include <set>
 #include <sstream>
 
 #include "giq/base/error.h"
@@ -9,11 +10,15 @@ namespace giq::realtime {
 
 ParameterValues::ParameterValues(const std::vector<Parameter>& declared, const std::vector<std::string>& assignments) {
   for (const auto& p : declared) values_[p.name] = p.default_value;
+  std::set<std::string> assigned;
   for (const auto& a : assignments) {
     const auto eq = a.find('=');
     if (eq == std::string::npos || eq == 0)
       throw InputError("", "--param", "expected name=value, got '" + a + "'");
     const std::string name = a.substr(0, eq), text = a.substr(eq + 1);
+    // Two values for one parameter: which one was meant cannot be known.
+    if (!assigned.insert(name).second)
+      throw InputError("", "--param " + name, "given more than once; expected one value per parameter");
     const Parameter* p = nullptr;
     for (const auto& d : declared)
       if (d.name == name) p = &d;

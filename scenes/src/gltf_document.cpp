@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "giq/base/error.h"
+#include "giq/base/json.h"
 #include "giq/base/hash.h"
 
 namespace giq::scenes::gltf {
@@ -390,13 +391,8 @@ Document read_document(const fs::path& path) {
     d.json_size = d.bytes.size();
   }
   const char* text = reinterpret_cast<const char*>(d.bytes.data()) + d.json_offset;
-  try {
-    d.json = json::parse(text, text + d.json_size);
-  } catch (const json::exception& e) {
-    std::string what = e.what();
-    if (auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
-    throw InputError(d.file, "JSON", "not valid JSON: " + what);
-  }
+  // Depth-limited before tinygltf sees it: its conversion of `extras` recurses.
+  d.json = parse_json(std::string_view(text, d.json_size), d.file);
   if (!d.json.is_object()) throw InputError(d.file, "JSON", "top level must be an object");
   const json* asset = member(d.json, "asset");
   const json* version = asset ? member(*asset, "version") : nullptr;

@@ -67,9 +67,9 @@ TEST(GateConfig, ParsesCasesWithDefaults) {
 }
 
 struct Bad {
-  const char* json;
-  const char* field;
-  const char* words;
+  std::string json;
+  std::string field;
+  std::string words;
 };
 
 class GateConfigBad : public testing::TestWithParam<Bad> {};
@@ -93,7 +93,10 @@ TEST_P(GateConfigBad, NamesTheField) {
 INSTANTIATE_TEST_SUITE_P(
     Inputs, GateConfigBad,
     testing::Values(
-        Bad{"{", "", "not valid JSON"},
+        Bad{"{", "JSON", "not valid JSON"},
+        // The last of two equal keys would win silently: 10 instead of 0.01.
+        Bad{CASE_PREFIX R"("bounds": {"relmse": 0.01, "relmse": 10}}]})", "cases[].bounds.relmse",
+            "appears twice"},
         Bad{R"({"version": 2, "cases": []})", "version", "expected 1"},
         Bad{R"({"version": 1})", "cases", "missing or empty"},
         Bad{R"({"version": 1, "cases": [], "extra": 1})", "extra", "unknown key"},
@@ -129,8 +132,26 @@ INSTANTIATE_TEST_SUITE_P(
             "cases[1].name", "unique"},
         Bad{R"({"version": 1, "cases": [{"name": "a/b", "scene": "s", "technique": "t", "bounds": {"x": 1}}]})",
             "cases[0].name", "folders"},
+        // Once an internal error: a folder name longer than the file system allows.
+        Bad{R"({"version": 1, "cases": [{"name": ")" + std::string(300, 'a') +
+                R"(", "scene": "s", "technique": "t", "bounds": {"x": 1}}]})",
+            "cases[0].name", "expected at most 128"},
+        // Once an internal error: nlohmann's number overflow.
+        Bad{CASE_PREFIX R"("bounds": {"relmse": 1e999}}]})", "JSON", "number overflow"},
         Bad{R"({"version": 1, "cases": [{"name": "a", "technique": "t", "bounds": {"x": 1}}]})",
             "cases[0].scene", "missing"}));
+
+TEST(GateConfig, DeeplyNestedInputIsAnErrorNotACrash) {
+  // 100 000 nested arrays where the cases go: once a crash (the stack of a recursive walk).
+  const std::string text = R"({"version": 1, "cases": )" + std::string(100000, '[') + std::string(100000, ']') + "}";
+  try {
+    parse_config(text, "g.json");
+    FAIL() << "accepted";
+  } catch (const giq::InputError& e) {
+    EXPECT_EQ(e.field(), "JSON");
+    EXPECT_NE(std::string(e.what()).find("nest deeper than 256 levels at cases[]"), std::string::npos) << e.what();
+  }
+}
 
 TEST(GateConfig, Glob) {
   using giq::gate::glob_match;

@@ -132,6 +132,38 @@ TEST_F(Report, EscapesTextFromFilesAndEmbedsImages) {
   EXPECT_EQ(giq("report " + (dir_ / "absent").string()), 2);
 }
 
+TEST_F(Report, ReadsNoFileOutsideItsFolderAndEmbedsOnlyImages) {
+  // A metrics.json beside real images whose error map names a text file outside the report's
+  // folder, absolutely or by "..", or a text file inside it: once embedded as base64.
+  const fs::path secret = dir_ / "secret.txt", shared = dir_ / "shared";
+  std::ofstream(secret) << "SECRET-CONTENT";
+  const fs::path a = dir_ / "cases" / "cornell-direct" / "score";
+  std::ofstream(a / "notes.png") << "SECRET-CONTENT";
+  json m = json::parse(slurp(a / "metrics.json"));
+  for (const std::string& png : {secret.string(), std::string("../../../secret.txt"), std::string("notes.png")}) {
+    SCOPED_TRACE(png);
+    fs::remove_all(shared);
+    fs::create_directories(shared / "x" / "y");
+    for (const char* f : {"ref.exr", "tech.exr"}) fs::copy_file(a / f, shared / "x" / "y" / f);
+    m["maps"]["abs_error"]["png"] = png;
+    if (png == "notes.png") fs::copy_file(a / "notes.png", shared / "x" / "y" / "notes.png");
+    std::ofstream(shared / "x" / "y" / "metrics.json") << m.dump();
+    EXPECT_EQ(giq("report " + shared.string()), 2) << slurp(dir_ / "out.txt");
+    const std::string said = slurp(dir_ / "out.txt");
+    EXPECT_TRUE(said.find("outside") != std::string::npos || said.find("not a PNG") != std::string::npos) << said;
+    EXPECT_FALSE(fs::exists(shared / "report.html"));
+  }
+}
+
+TEST_F(Report, AGateJsonThatIsNotTheGatesIsAnInputError) {
+  // Once an internal error (exit 3): the page read it as the gate's object.
+  const fs::path only = dir_ / "only";
+  fs::create_directories(only);
+  std::ofstream(only / "gate.json") << "[]";
+  EXPECT_EQ(giq("report " + only.string()), 2) << slurp(dir_ / "out.txt");
+  EXPECT_NE(slurp(dir_ / "out.txt").find("gate.json: outcomes: missing"), std::string::npos) << slurp(dir_ / "out.txt");
+}
+
 TEST_F(Report, ChromiumShowsTheImages) {
   const char* candidates[] = {"/usr/bin/chromium", "/usr/bin/chromium-browser"};
   std::string chromium;

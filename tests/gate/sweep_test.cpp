@@ -74,6 +74,27 @@ TEST(SweepPlan, GridAutoAndDefaults) {
   EXPECT_THROW(giq::cli::plan_settings(t[0], {}, 9, 20), giq::InputError);
 }
 
+TEST(SweepPlan, EveryGridAxisMustReachASweptTechnique) {
+  const auto t = giq::cli::parse_technique_list(kListing);
+  const std::vector<const giq::cli::TechniqueParameters*> direct = {&t[0]}, both = {&t[0], &t[1]};
+  // Bare axes reach the techniques that declare them; qualified ones their technique.
+  EXPECT_NO_THROW(giq::cli::check_grid(both, {"shadow_map_size=512", "samples_per_frame=4", "pt.samples_per_frame=2"}));
+  auto field_and_words = [&](const std::vector<const giq::cli::TechniqueParameters*>& swept, const std::string& axis,
+                             const std::string& words) {
+    try {
+      giq::cli::check_grid(swept, {axis});
+      ADD_FAILURE() << "accepted " << axis;
+    } catch (const giq::InputError& e) {
+      EXPECT_EQ(e.field(), "--grid");
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  field_and_words(direct, "bogus=1,2", "declares the parameter 'bogus'");
+  field_and_words(direct, "samples_per_frame=4", "declares the parameter 'samples_per_frame'");
+  field_and_words(direct, "pt.samples_per_frame=4", "technique pt, which is not swept");
+  field_and_words(both, "direct.samples_per_frame=4", "declares the parameter 'samples_per_frame'");
+}
+
 class SweepCli : public testing::Test {
  protected:
   void SetUp() override {

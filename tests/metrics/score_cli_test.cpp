@@ -190,6 +190,7 @@ TEST(ScoreCli, BadInputExitsTwoWithOneLine) {
       {base + (d / "beauty_only.exr").string() + " --layer indirect", "indirect"},   // missing layer
       {base + (d / "missing.exr").string(), "missing.exr"},                          // no such file
       {base + (d / "ref.exr").string() + " --frames 3", "--frames"},                  // bad frames
+      {base + (d / "ref.exr").string() + " --step-frame -7", "--step-frame"},         // was ignored
   };
   for (const auto& c : cases) {
     const CliRun r = giq_run(c.args, d);

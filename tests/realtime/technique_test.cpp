@@ -69,6 +69,14 @@ TEST(Techniques, ParametersAreValidated) {
   EXPECT_EQ(set.get("alpha"), 0.25);
   for (const char* bad : {"size", "=3", "colour=1", "size=abc", "size=1.5", "size=65", "alpha=-0.1", "alpha=nan", "size=8x"})
     EXPECT_THROW(ParameterValues(declared, {bad}), InputError) << bad;
+  // A repeated parameter is refused, not resolved by keeping the last value.
+  try {
+    ParameterValues(declared, {"size=16", "alpha=0.25", "size=32"});
+    FAIL() << "accepted a repeated parameter";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "--param size");
+    EXPECT_NE(std::string(e.what()).find("more than once"), std::string::npos) << e.what();
+  }
 }
 
 class RendererTest : public test::VulkanTest {};

@@ -223,6 +223,10 @@ TEST(ReferenceCli, BadInputExitsWithTwo) {
             2);
   EXPECT_EQ(giq({"reference", "--scene", scene.string(), "--spp", "4", "--width", "0", "--out", out.string()}), 2);
   EXPECT_EQ(giq({"reference", "--scene", (work_dir() / "missing.gltf").string(), "--spp", "4", "--out", out.string()}), 2);
+  // Seeds outside uint64 were once wrapped (-1) or clamped (2^64) to 2^64 - 1 without a word.
+  for (const char* seed : {"-1", "18446744073709551616", "1e23", "7x"})
+    EXPECT_EQ(giq({"reference", "--scene", scene.string(), "--spp", "4", "--seed", seed, "--out", out.string()}), 2)
+        << seed;
   EXPECT_FALSE(fs::exists(out));
 }
 

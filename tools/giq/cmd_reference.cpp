@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "command.h"
+#include "integer_check.h"
 #include "giq/base/error.h"
 #include "giq/base/frames.h"
 #include "giq/image/io.h"
@@ -273,7 +274,9 @@ void add_reference_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--rel-error", o.rel_error, "Stop when the mean relative standard error of the beauty is below this");
   cmd->add_option("--width", o.settings.width, "Image width in pixels")->capture_default_str();
   cmd->add_option("--height", o.settings.height, "Image height in pixels")->capture_default_str();
-  cmd->add_option("--seed", o.settings.seed, "Random seed")->capture_default_str();
+  cmd->add_option("--seed", o.settings.seed, "Random seed")
+      ->check(integer_in(0.0L, 18446744073709551615.0L))
+      ->capture_default_str();
   cmd->add_option("--threads", o.settings.threads, "Worker threads (0 = all cores; never changes the image)")->capture_default_str();
   cmd->add_option("--max-bounces", o.settings.max_bounces, "Scattering events per path")->capture_default_str();
   cmd->add_option("--estimator", o.estimator, "mis, light (light sampling only) or bsdf (BSDF sampling only)")->capture_default_str();

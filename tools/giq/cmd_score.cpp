@@ -8,6 +8,7 @@
 #include <string>
 
 #include "command.h"
+#include "integer_check.h"
 #include "giq/base/error.h"
 #include "giq/base/frames.h"
 #include "giq/gate/metric_lookup.h"
@@ -67,7 +68,8 @@ void add_score_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", args->out, "Output folder for metrics.json and the maps")->required();
   cmd->add_option("--frames", args->frames, "First and last frame A:B for patterns");
   cmd->add_option("--timings", args->timings, "timings.json of the technique (frame time for lag in ms)");
-  cmd->add_option("--step-frame", args->step_frame, "Frame of the step change for lag (default: detected)");
+  cmd->add_option("--step-frame", args->step_frame, "Frame of the step change for lag (default: detected)")
+      ->check(integer_in(0.0L, 2147483647.0L));
   cmd->add_flag("--json", args->json_output, "Print metrics.json on stdout instead of a table");
   cmd->callback([args, &exit_code] { exit_code = run_score(*args); });
 }

@@ -116,16 +116,20 @@ int run_techniques(const SweepArgs& a, const fs::path& giq, const fs::path& out)
     const TechniqueParameters* technique;
     Setting setting;
   };
-  std::vector<Job> jobs;
+  std::vector<const TechniqueParameters*> swept;
   for (const std::string& name : a.techniques) {
     const auto it = std::find_if(declared.begin(), declared.end(),
                                  [&](const auto& t) { return t.name == name; });
     if (it == declared.end())
       throw InputError("", "--technique", "'" + name + "' is not listed by giq realtime --list");
+    swept.push_back(&*it);
+  }
+  check_grid(swept, a.grid);
+  std::vector<Job> jobs;
+  for (const TechniqueParameters* t : swept) {
     std::vector<std::string> grid = a.grid;
-    if (a.quality) grid.push_back(quality_axis(*it));
-    for (const Setting& s : plan_settings(*it, grid, a.auto_steps, a.max_settings))
-      jobs.push_back({&*it, s});
+    if (a.quality) grid.push_back(quality_axis(*t));
+    for (const Setting& s : plan_settings(*t, grid, a.auto_steps, a.max_settings)) jobs.push_back({t, s});
   }
   const fs::path ref =
       a.ref.empty() ? reference(a, giq, out, a.ref_spp, 1, "reference.exr") : fs::path(a.ref);
@@ -269,6 +273,11 @@ int run_sweep(const SweepArgs& a) {
   if (a.scene.empty()) throw InputError("", "--scene", "a scene is required");
   if (a.jobs < 1 || a.frames < 1 || a.warmup < 0)
     throw InputError("", "--jobs/--frames/--warmup", "must be positive");
+  // An axis of more values than --max-settings cannot be run; refused before its values are
+  // even listed (building a million of them takes minutes).
+  if (a.auto_steps < 0 || a.auto_steps > a.max_settings)
+    throw InputError("", "--auto", std::to_string(a.auto_steps) + " values per parameter; expected 0 to --max-settings (" +
+                                       std::to_string(a.max_settings) + ")");
   if ((a.timing_width > 0) != (a.timing_height > 0) || a.timing_width < 0 || a.timing_height < 0)
     throw InputError("", "--timing-width/--timing-height",
                      std::to_string(a.timing_width) + "x" + std::to_string(a.timing_height) +

@@ -1,31 +1,28 @@
 #include "json_file.h"
 
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "giq/base/error.h"
+#include "giq/base/json.h"
 
 namespace giq::cli {
 
 namespace {
 
-template <class Json>
-Json read(const std::filesystem::path& file) {
-  std::ifstream in(file);
+std::string slurp(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string(), "", "cannot open the file");
-  try {
-    return Json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(file.string(), "", std::string("not valid JSON: ") + e.what());
-  }
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 }  // namespace
 
-nlohmann::json read_json_file(const std::filesystem::path& file) { return read<nlohmann::json>(file); }
+nlohmann::json read_json_file(const std::filesystem::path& file) { return read_json(file.string()); }
 
 nlohmann::ordered_json read_ordered_json_file(const std::filesystem::path& file) {
-  return read<nlohmann::ordered_json>(file);
+  return parse_ordered_json(slurp(file), file.string());
 }
 
 }  // namespace giq::cli

@@ -36,7 +36,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    // One line, like every other input error (CLI11's own report adds a second).
+    std::cerr << "giq: error: " << e.what() << '\n';
     return 2;
   } catch (const giq::InputError& e) {
     std::cerr << "giq: error: " << e.what() << '\n';

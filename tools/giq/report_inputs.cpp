@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "giq/base/error.h"
+#include "giq/base/json.h"
 #include "giq/gate/escape.h"
 #include "giq/image/io.h"
 #include "giq/metrics/catalogue.h"
@@ -95,14 +96,30 @@ void add_metric_rows(Comparison& c, const json& m, const std::string& prefix) {
   }
 }
 
-void add_maps(Comparison& c, const json& maps, const fs::path& dir) {
+// Whether `p` lies under `root` once both are resolved (links and ".." followed).
+bool under(const fs::path& p, const fs::path& root) {
+  std::error_code ec;
+  const fs::path a = fs::weakly_canonical(p, ec), b = fs::weakly_canonical(root, ec);
+  return std::mismatch(b.begin(), b.end(), a.begin(), a.end()).first == b.end();
+}
+
+// The error maps are embedded byte for byte, so only PNG files under the report's folder are:
+// a metrics.json could otherwise name any file on the machine (an absolute path, "../") and
+// carry it into a page that is shared.
+void add_maps(Comparison& c, const json& maps, const fs::path& dir, const fs::path& root, const fs::path& file) {
   if (!maps.is_object()) return;
   for (const auto& [name, m] : maps.items()) {
     const fs::path png = dir / m.value("png", "");
     if (!m.contains("png") || !fs::exists(png)) continue;
+    if (!under(png, root))
+      throw InputError(file.string(), "maps." + name + ".png",
+                       "'" + png.string() + "' is outside " + root.string() + "; the report reads only files under its folder");
+    const std::string bytes = slurp(png);
+    if (bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0)
+      throw InputError(file.string(), "maps." + name + ".png", "'" + png.string() + "' is not a PNG image");
     Picture p;
     p.title = name + " (" + m.value("definition", "") + ")";
-    p.data_uri = data_uri("image/png", slurp(png));
+    p.data_uri = data_uri("image/png", bytes);
     ColourScale s;
     s.colormap = m.value("colormap", "magma");
     if (m.contains("range") && m["range"].is_array() && m["range"].size() == 2 &&
@@ -116,7 +133,7 @@ void add_maps(Comparison& c, const json& maps, const fs::path& dir) {
 }
 
 Comparison comparison(const fs::path& file, const fs::path& root, int max_frames) {
-  const json j = json::parse(slurp(file));
+  const json j = parse_json(slurp(file), file.string());
   const fs::path dir = file.parent_path();
   const json& in = j.at("inputs");
   Comparison c;
@@ -171,12 +188,12 @@ Comparison comparison(const fs::path& file, const fs::path& root, int max_frames
     if (j.contains("last_frame")) {
       if (j["last_frame"].contains("metrics"))
         add_metric_rows(c, j["last_frame"]["metrics"], "last frame: ");
-      if (j["last_frame"].contains("maps")) add_maps(c, j["last_frame"]["maps"], dir);
+      if (j["last_frame"].contains("maps")) add_maps(c, j["last_frame"]["maps"], dir, root, file);
     }
   } else if (j.contains("metrics")) {
     add_metric_rows(c, j["metrics"], "");
   }
-  if (j.contains("maps")) add_maps(c, j["maps"], dir);
+  if (j.contains("maps")) add_maps(c, j["maps"], dir, root, file);
   return c;
 }
 
@@ -212,9 +229,12 @@ ReportInputs scan_report_inputs(const fs::path& dir, int max_frames) {
       } else if (name == "metrics.json") {
         r.comparisons.push_back(comparison(f, dir, max_frames));
       } else if (name == "gate.json") {
-        r.gate = json::parse(slurp(f));
+        json gate = parse_json(slurp(f), f.string());
+        if (!gate.is_object() || !gate.contains("outcomes") || !gate["outcomes"].is_array())
+          throw InputError(f.string(), "outcomes", "missing; expected the object giq gate writes");
+        r.gate = std::move(gate);
       } else if (name == "sweep.json") {
-        r.sweeps.push_back({fs::relative(f, dir).generic_string(), json::parse(slurp(f))});
+        r.sweeps.push_back({fs::relative(f, dir).generic_string(), parse_json(slurp(f), f.string())});
       } else if (f.extension() == ".svg") {
         r.plots.push_back(
             {fs::relative(f, dir).generic_string(), data_uri("image/svg+xml", slurp(f)), {}});

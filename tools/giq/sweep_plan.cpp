@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "giq/base/error.h"
+#include "giq/base/json.h"
 
 namespace giq::cli {
 namespace {
@@ -25,12 +26,7 @@ double parse_number(const std::string& s, const std::string& field) {
 
 std::vector<TechniqueParameters> parse_technique_list(const std::string& listing) {
   const std::string source = "giq realtime --list --json";
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(listing);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(source, "", std::string("not JSON: ") + e.what());
-  }
+  const nlohmann::json j = parse_json(listing, source);
   std::vector<TechniqueParameters> out;
   try {
     for (const auto& t : j.at("techniques")) {
@@ -134,6 +130,29 @@ std::vector<Setting> plan_settings(const TechniqueParameters& t,
   for (const auto& [name, values] : axes) defaults.emplace_back(name, find(name)->default_value);
   if (std::find(out.begin(), out.end(), defaults) == out.end()) out.push_back(defaults);
   return out;
+}
+
+void check_grid(const std::vector<const TechniqueParameters*>& swept, const std::vector<std::string>& grid) {
+  std::string names;
+  for (const TechniqueParameters* t : swept) names += (names.empty() ? "" : ", ") + t->name;
+  for (const std::string& g : grid) {
+    const std::string name = g.substr(0, g.find('='));
+    const size_t dot = name.find('.');
+    const std::string technique = dot == std::string::npos ? "" : name.substr(0, dot);
+    const std::string parameter = dot == std::string::npos ? name : name.substr(dot + 1);
+    bool reached = false;
+    for (const TechniqueParameters* t : swept) {
+      if (!technique.empty() && t->name != technique) continue;
+      for (const ParameterInfo& p : t->parameters) reached |= p.name == parameter;
+    }
+    if (reached) continue;
+    const bool technique_swept = std::any_of(swept.begin(), swept.end(), [&](auto* t) { return t->name == technique; });
+    if (!technique.empty() && !technique_swept)
+      throw InputError("", "--grid", "'" + g + "' varies technique " + technique + ", which is not swept (--technique: " +
+                                         names + ")");
+    throw InputError("", "--grid", "'" + g + "': no swept technique (" + names + ") declares the parameter '" +
+                                       parameter + "' (giq realtime --list)");
+  }
 }
 
 bool is_default(const TechniqueParameters& t, const Setting& s) {

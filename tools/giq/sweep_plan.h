@@ -40,6 +40,11 @@ std::vector<Setting> plan_settings(const TechniqueParameters& technique,
                                    const std::vector<std::string>& grid, int auto_steps,
                                    int max_settings);
 
+// Every --grid axis must reach one of the swept techniques: a bare "param=..." one that
+// declares it, a "technique.param=..." a technique that is swept. Throws InputError naming the
+// axis otherwise (an axis that reaches nothing would leave the sweep silently without it).
+void check_grid(const std::vector<const TechniqueParameters*>& swept, const std::vector<std::string>& grid);
+
 bool is_default(const TechniqueParameters& technique, const Setting& s);
 
 }  // namespace giq::cli

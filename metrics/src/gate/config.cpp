@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "giq/base/error.h"
+#include "giq/base/json.h"
 #include "giq/base/frames.h"
 
 namespace giq::gate {
@@ -224,12 +225,7 @@ Better default_direction(const std::string& metric) { return metrics::better_dir
 
 Config parse_config(const std::string& text, const fs::path& file) {
   Parser p(file);
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    p.fail("", std::string("not valid JSON: ") + e.what());
-  }
+  const json root = parse_ordered_json(text, file.string());
   p.object(root, "(top level)");
   p.only_keys(root, {"version", "golden_dir", "defaults", "cases"}, "");
   if (!root.contains("version") || root["version"] != 1)
@@ -260,6 +256,9 @@ Config parse_config(const std::string& text, const fs::path& file) {
     p.finish(c, at);
     if (!names.insert(c.name).second)
       p.fail(at + ".name", "'" + c.name + "' is used by an earlier case; names must be unique");
+    // A folder name of at most 255 bytes, with room for the suffixes the gate adds.
+    if (c.name.size() > 128)
+      p.fail(at + ".name", std::to_string(c.name.size()) + " characters; expected at most 128 (it names folders)");
     for (char ch : c.name)
       if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' || ch == '.'))
         p.fail(

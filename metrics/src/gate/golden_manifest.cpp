@@ -7,6 +7,7 @@
 
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
+#include "giq/base/json.h"
 #include "giq/base/frames.h"
 #include "giq/base/hash.h"
 
@@ -46,11 +47,9 @@ json golden_settings(const Case& c) {
 
 Manifest read_manifest(const fs::path& file) {
   Manifest m;
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return m;
-  json j;
+  if (!fs::exists(file)) return m;
   try {
-    in >> j;
+    const json j = read_json(file.string());
     if (j.at("version") != 1)
       throw InputError(file.string(), "version", j["version"].dump() + "; expected 1");
     for (const auto& [key, e] : j.at("goldens").items()) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "giq/base/error.h"
+#include "giq/base/json.h"
 #include "giq/metrics/catalogue.h"
 
 namespace giq::gate {
@@ -103,15 +104,7 @@ FrameTime frame_time(const json& timings) {
 }
 
 FrameTime read_timings(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string(), "", "cannot open the timings file");
-  json j;
-  try {
-    in >> j;
-  } catch (const json::exception& e) {
-    throw InputError(file.string(), "", std::string("not valid JSON: ") + e.what());
-  }
-  const FrameTime t = frame_time(j);
+  const FrameTime t = frame_time(read_json(file.string()));
   if (!t.gpu_ms)
     throw InputError(file.string(), "frame_gpu_ms.median",
                      "missing; expected {\"frame_gpu_ms\": {\"median\": <ms>}} or {\"frame_ms\": {\"median\": <ms>}}");

@@ -390,6 +390,9 @@ def hostile():
     tri_mesh_prim = ("meshes", 0, "primitives", 0)
     case("bad_json.gltf", "JSON", b'{"asset": {"version": "2.0"}, "nodes": [ {"name": "a",, } ]}\n')
     case("not_gltf2.gltf", "asset.version", {"asset": {"version": "1.0"}})
+    # 30 000 nested arrays in extras: tinygltf's conversion of extras recurses once a level.
+    case("deep_extras.gltf", "JSON", b'{"asset": {"version": "2.0"}, "extras": ' + b"[" * 30000 + b"]" * 30000 + b"}\n")
+    case("duplicate_key.gltf", "asset.version", b'{"asset": {"version": "2.0", "version": "2.0"}}\n')
     case("missing_buffer.gltf", "buffers[0].uri", minimal(a=setp(("buffers", 0, "uri"), "missing.bin")))
     case("absolute_uri.gltf", "buffers[0].uri", minimal(a=setp(("buffers", 0, "uri"), "/etc/passwd")))
     case("escaping_uri.gltf", "buffers[0].uri", minimal(a=setp(("buffers", 0, "uri"), "../hostile/../../scenes/external%20data.bin")))
