@@ -106,6 +106,15 @@ TEST_F(GateCli, BadConfigExitsTwoWithOneLine) {
   const Result r = gate("--only 'zzz*'");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("matches no case"), std::string::npos) << r.err;
+  // --out under a regular file, or the folder holding the config: refused before any case runs
+  // (the first was an internal error).
+  std::ofstream(dir_ / "a_file") << "x";
+  for (const std::string& out : {std::string("a_file/out"), std::string(".")}) {
+    const Result o = giq(std::string("gate --config gate.json --out ") + out + " --giq " + FAKE_GIQ);
+    EXPECT_EQ(o.code, 2) << out << ": " << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+  }
+  EXPECT_EQ(calls("realtime"), 0);
 }
 
 TEST_F(GateCli, ProvesTheGateCanFail) {

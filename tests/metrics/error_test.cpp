@@ -147,3 +147,24 @@ TEST(Error, NoiseFloorAndUnresolvedFlags) {
   const auto zv = rgb_layer(z, "variance", "z");
   EXPECT_FALSE(error_stats(rgb_layer(z, "", "z"), rgb_layer(z, "", "z"), &zv).unresolved_mse);
 }
+
+TEST(Error, AVarianceLayerThatCannotBeOneIsNotTrusted) {
+  // One pixel of negative variance (impossible): that pixel is left out and counted with the
+  // non-finite reference pixels, not read as 0. The other 99 pixels: mse 0.25 exactly.
+  auto r = test::rgb_image(10, 10, [](int, int, int) { return 0.5f; });
+  test::add_layer(r, "variance", [](int x, int y, int) { return x == 3 && y == 4 ? -1.0f : 0.0f; });
+  const auto var = rgb_layer(r, "variance", "r");
+  auto t = test::rgb_image(10, 10, [](int x, int y, int) { return x == 3 && y == 4 ? 100.0f : 1.0f; });
+  const auto e = error_stats(rgb_layer(r, "", "r"), rgb_layer(t, "", "t"), &var);
+  EXPECT_EQ(e.reference_nonfinite_pixels, 1u);
+  EXPECT_EQ(e.valid_pixels, 99u);
+  EXPECT_DOUBLE_EQ(e.mse, 0.25);
+  // A variance of 1e38 (finite, but larger than any error): the debiased mse goes negative and
+  // the error is flagged as below the reference's noise, not reported as resolved.
+  auto huge = test::rgb_image(10, 10, [](int, int, int) { return 0.5f; });
+  test::add_layer(huge, "variance", [](int, int, int) { return 1e38f; });
+  const auto hv = rgb_layer(huge, "variance", "h");
+  const auto h = error_stats(rgb_layer(huge, "", "h"), rgb_layer(t, "", "t"), &hv);
+  EXPECT_LT(h.mse_debiased, 0.0);
+  EXPECT_TRUE(h.unresolved_mse);
+}

@@ -18,6 +18,7 @@
 #include "giq/image/srgb.h"
 #include "giq/metrics/catalogue.h"
 #include "giq/scenes/scene.h"
+#include "support/subprocess.h"
 #include "synthetic.h"
 
 using namespace giq;
@@ -180,6 +181,9 @@ TEST(ScoreCli, BadInputExitsTwoWithOneLine) {
   rgba.add_channel("A", 1.0f);
   image::write_exr(rgba, d / "rgba.exr");
   image::write_exr(test::rgb_image(W, H, [](int, int, int) { return 0.5f; }), d / "beauty_only.exr");
+  fs::create_directories(d / "o");
+  image::write_exr(test::rgb_image(W, H, [](int, int, int) { return 0.25f; }), d / "o" / "abs_error.exr");
+  const std::string clobber_before = test::slurp(d / "o" / "abs_error.exr");
   struct Case {
     std::string args, must_name;
   };
@@ -191,6 +195,10 @@ TEST(ScoreCli, BadInputExitsTwoWithOneLine) {
       {base + (d / "missing.exr").string(), "missing.exr"},                          // no such file
       {base + (d / "ref.exr").string() + " --frames 3", "--frames"},                  // bad frames
       {base + (d / "ref.exr").string() + " --step-frame -7", "--step-frame"},         // was ignored
+      // An input inside the output folder, where the maps would replace it.
+      {"score --ref " + (d / "ref.exr").string() + " --test " + (d / "o" / "abs_error.exr").string() + " --out " +
+           (d / "o").string(),
+       "abs_error.exr"},
   };
   for (const auto& c : cases) {
     const CliRun r = giq_run(c.args, d);
@@ -198,6 +206,7 @@ TEST(ScoreCli, BadInputExitsTwoWithOneLine) {
     EXPECT_NE(r.err.find(c.must_name), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
+  EXPECT_EQ(test::slurp(d / "o" / "abs_error.exr"), clobber_before);
 }
 
 TEST(ScoreCli, SequenceBiasFlickerAndLag) {

@@ -230,4 +230,40 @@ TEST(ReferenceCli, BadInputExitsWithTwo) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+TEST(ReferenceCli, OutputsAreCheckedBeforeAnyWork) {
+  const fs::path scene = write_scene(), dir = work_dir();
+  const std::string before = slurp(scene);
+  // The scene as the output: refused, the scene untouched.
+  EXPECT_EQ(giq(render_args(scene, scene, 4, 1)), 2);
+  EXPECT_EQ(slurp(scene), before);
+  // A folder as the output, or an output under a regular file: refused before rendering; 10^6
+  // samples per pixel would take minutes, so a quick exit shows that nothing was rendered.
+  fs::create_directories(dir / "a_folder.exr");
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_EQ(giq(render_args(scene, dir / "a_folder.exr", 1000000, 1)), 2);
+  EXPECT_EQ(giq(render_args(scene, scene / "under_a_file.exr", 1000000, 1)), 2);
+  // Where the checkpoint would go, a folder: once an internal error (exit 3).
+  fs::create_directories(dir / "cp_folder.exr.checkpoint" / "x");
+  EXPECT_EQ(giq(render_args(scene, dir / "cp_folder.exr", 1000000, 1)), 2);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 30.0);
+}
+
+TEST(ReferenceCli, AnExistingCheckpointIsNeverDiscardedSilently) {
+  const fs::path scene = write_scene(), out = work_dir() / "cp.exr", checkpoint = work_dir() / "cp.exr.checkpoint";
+  std::ofstream(checkpoint) << "hours of samples";
+  // Without --resume or --overwrite: exit 2, the checkpoint kept, nothing written.
+  EXPECT_EQ(giq(render_args(scene, out, 4, 1)), 2);
+  EXPECT_EQ(slurp(checkpoint), "hours of samples");
+  EXPECT_FALSE(fs::exists(out));
+  std::vector<std::string> both = render_args(scene, out, 4, 1);
+  both.insert(both.end(), {"--resume", "--overwrite"});
+  EXPECT_EQ(giq(both), 2);
+  // --overwrite starts again and leaves the image, no checkpoint.
+  std::vector<std::string> overwrite = render_args(scene, out, 4, 1);
+  overwrite.push_back("--overwrite");
+  EXPECT_EQ(giq(overwrite), 0);
+  EXPECT_TRUE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(checkpoint));
+}
+
 }  // namespace

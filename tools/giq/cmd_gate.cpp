@@ -14,6 +14,7 @@
 
 #include "command.h"
 #include "gate_runner.h"
+#include "output_guard.h"
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
 #include "giq/base/version.h"
@@ -49,6 +50,7 @@ int run_gate(const GateArgs& a) {
   const Toolchain tools = toolchain(a.cases);
   const gate::Manifest manifest = gate::read_manifest(config.golden_dir / "manifest.json");
   const fs::path out = a.out;
+  check_output_folder(out, {config.file}, "--out");
   fs::create_directories(out);
   const bool tty = ::isatty(STDERR_FILENO) != 0;
 

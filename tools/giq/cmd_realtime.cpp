@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "command.h"
+#include "output_guard.h"
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
 #include "giq/base/frames.h"
@@ -106,6 +107,7 @@ int run(const RealtimeArgs& a) {
   o.warmup = a.warmup;
   o.read_back = !a.no_images;
   const fs::path out(a.out);
+  check_output_folder(out, {resolve_scene(a.scene)}, "--out");
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) throw InputError(out.string(), "--out", "cannot create the folder: " + ec.message());

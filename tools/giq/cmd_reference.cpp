@@ -16,6 +16,7 @@
 
 #include "command.h"
 #include "integer_check.h"
+#include "output_guard.h"
 #include "giq/base/error.h"
 #include "giq/base/frames.h"
 #include "giq/image/io.h"
@@ -68,6 +69,7 @@ struct Options {
   std::string out;
   double checkpoint_interval = 60.0;
   bool resume = false;
+  bool overwrite = false;
   bool record_time = false;
   bool half = false;
 };
@@ -206,8 +208,22 @@ int run(const Options& o) {
   if (o.rel_error < 0.0 || !std::isfinite(o.rel_error)) throw InputError("", "--rel-error", "must be a positive fraction, e.g. 0.01");
   if (!(o.checkpoint_interval > 0.0)) throw InputError("", "--checkpoint-interval", "must be a positive number of seconds");
 
+  if (o.resume && o.overwrite) throw InputError("", "--resume/--overwrite", "give one of them, not both");
   const sc::Scene scene = sc::load(o.scene);
   const auto [first, last] = frame_range(o, scene);
+  // Every output and checkpoint is checked before the first sample: a render of hours must not
+  // fail at its end, overwrite its scene, or discard another render's saved progress.
+  for (int f = first; f <= last; ++f) {
+    const fs::path out = frame_path(o.out, f, first != last);
+    check_output_file(out, {o.scene}, "--out");
+    const fs::path checkpoint = out.string() + ".checkpoint";
+    if (fs::exists(checkpoint) && !fs::is_regular_file(checkpoint))
+      throw InputError(checkpoint.string(), "--out", "is where this render's checkpoint goes, but is not a file");
+    if (fs::exists(checkpoint) && !o.resume && !o.overwrite)
+      throw InputError(checkpoint.string(), "--out",
+                       "a checkpoint for this render exists: add --resume to continue it, or --overwrite to start again");
+    if (fs::exists(checkpoint) && o.overwrite) fs::remove(checkpoint);
+  }
   const bool tty = ::isatty(STDERR_FILENO) != 0;
   for (int f = first; f <= last; ++f) {
     const sc::Scene posed = scene.features.animation ? scene.at_frame(f) : scene;
@@ -288,6 +304,7 @@ void add_reference_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", o.out, "Output EXR path")->required();
   cmd->add_option("--checkpoint-interval", o.checkpoint_interval, "Seconds between checkpoints (OUT.checkpoint)")->capture_default_str();
   cmd->add_flag("--resume", o.resume, "Continue from OUT.checkpoint when it exists");
+  cmd->add_flag("--overwrite", o.overwrite, "Discard an existing OUT.checkpoint and start again");
   cmd->add_flag("--half", o.half, "Store the colour layers as float16 (variance, depth, ids stay float32)");
   cmd->add_flag("--record-time", o.record_time, "Write the render time into the header (the file then differs run to run)");
   cmd->callback([&exit_code] { exit_code = run(o); });

@@ -353,7 +353,8 @@ int run_results(const ResultsArgs& a) {
     std::vector<std::string> ref = {giq.string(), "reference", "--scene", scene.string(), "--view", "0"};
     if (animated) ref.insert(ref.end(), {"--frames", frame_range(0, n - 1)});
     else ref.insert(ref.end(), {"--frame", "0"});
-    ref.insert(ref.end(), {"--spp", std::to_string(animated ? a.sequence_spp : a.spp), "--seed", "1", "--width", size,
+    // --resume: an interrupted reference continues where it stopped.
+    ref.insert(ref.end(), {"--resume", "--spp", std::to_string(animated ? a.sequence_spp : a.spp), "--seed", "1", "--width", size,
                            "--height", size, "--sampler", "independent", "--out",
                            (ref_dir / (animated ? "frame_#.exr" : frame_file(0))).string()});
     run_step(ref, ref_dir, giq_hash, a.rerender);

@@ -9,6 +9,7 @@
 
 #include "command.h"
 #include "integer_check.h"
+#include "output_guard.h"
 #include "giq/base/error.h"
 #include "giq/base/frames.h"
 #include "giq/gate/metric_lookup.h"
@@ -32,6 +33,7 @@ std::pair<int, int> parse_frames(const std::string& s) {
 }
 
 int run_score(const ScoreArgs& a) {
+  check_output_folder(a.out, {a.reference, a.test, a.scene, a.timings}, "--out");
   metrics::ScoreRequest req;
   req.reference = a.reference;
   req.test = a.test;

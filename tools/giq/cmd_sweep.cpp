@@ -69,7 +69,9 @@ fs::path reference(const SweepArgs& a, const fs::path& giq, const fs::path& out,
   const ProcessResult r = run_process(
       {giq.string(), "reference", "--scene", a.scene, "--view", a.view, "--spp",
        std::to_string(spp), "--seed", std::to_string(seed), "--width", std::to_string(a.width),
-       "--height", std::to_string(a.height), "--sampler", a.sampler, "--record-time", "--out", file.string()},
+       "--height", std::to_string(a.height), "--sampler", a.sampler, "--record-time",
+       // Its time is measured: an earlier, interrupted render's samples must not count.
+       "--overwrite", "--out", file.string()},
       log);
   must(r, "giq reference", log);
   if (seconds) {

@@ -190,6 +190,9 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
     else
       a.insert(a.end(), {"--rel-error", std::to_string(*c.golden.rel_error)});
     if (c.golden.half) a.push_back("--half");
+    // An interrupted golden render continues where it stopped (the checkpoint names its scene,
+    // camera and settings, so a stale one is refused, not mixed in).
+    a.push_back("--resume");
     a.insert(a.end(), {"--out", (fs::absolute(dir) / "frame_####.exr").string()});
     const fs::path log = config.golden_dir / (g.key + ".log");
     std::ofstream(log, std::ios::trunc) << "giq golden update: " << g.key << '\n';

@@ -29,7 +29,10 @@ ErrorStats error_stats(const RgbLayer& ref, const RgbLayer& test, const RgbLayer
   const int w = ref.width;
   const Sums s = detail::reduce_rows<Sums>(ref.height, [&](int y0, int y1, Sums& acc) {
     for (size_t i = size_t(y0) * size_t(w), end = size_t(y1) * size_t(w); i < end; ++i) {
-      const bool ref_ok = ref.finite(i) && (!variance || variance->finite(i));
+      // A variance is finite and not negative, or the pixel's reference cannot be trusted: it
+      // is left out like a non-finite one (and counted with them).
+      const bool ref_ok = ref.finite(i) && (!variance || (variance->finite(i) && variance->c[0][i] >= 0.0f &&
+                                                          variance->c[1][i] >= 0.0f && variance->c[2][i] >= 0.0f));
       if (!test.finite(i)) {
         ++acc.test_bad;
         if (!ref_ok) ++acc.ref_bad;
@@ -49,7 +52,7 @@ ErrorStats error_stats(const RgbLayer& ref, const RgbLayer& test, const RgbLayer
         const double dc = clamp01(t) - clamp01(r);
         acc.se_clamped += dc * dc;
         if (variance) {
-          const double v = std::max(0.0, double(variance->c[k][i]));
+          const double v = variance->c[k][i];
           // E|X| = sqrt(2/pi) sigma for X ~ N(0, sigma^2).
           const double sd = std::sqrt(v) * std::sqrt(2.0 / std::numbers::pi);
           acc.var += v;

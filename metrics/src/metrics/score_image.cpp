@@ -85,7 +85,10 @@ json score_image(const image::Image& ref, const std::string& ref_file, const ima
   m["psnr"] = with_floor(metric(e.psnr, "psnr", io, unit_of("psnr")), e.unresolved_mse, nf_mse);
   if (e.noise) {
     m["noise_floor"] = metric(e.noise->mean_variance, "noise_floor", json{"reference:" + var_layer}, unit_of("noise_floor"));
-    m["mse_debiased"] = metric(e.mse_debiased, "mse_debiased", io_noise, unit_of("mse_debiased"));
+    // Below the noise floor (a negative estimate included) the debiased error is noise: flagged
+    // like the plain error.
+    m["mse_debiased"] = with_floor(metric(e.mse_debiased, "mse_debiased", io_noise, unit_of("mse_debiased")),
+                                   e.unresolved_mse, nf_mse);
   }
 
   // --- SSIM

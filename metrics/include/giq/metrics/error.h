@@ -26,7 +26,7 @@ struct ErrorStats {
   size_t pixels = 0;                       // width x height
   size_t valid_pixels = 0;                 // pixels entering every mean
   size_t nonfinite_pixels = 0;             // test pixels with a NaN/Inf channel
-  size_t reference_nonfinite_pixels = 0;   // reference (or its variance) pixels with NaN/Inf
+  size_t reference_nonfinite_pixels = 0;   // reference pixels with NaN/Inf, or its variance NaN/Inf/negative
   // NaN when there is no valid pixel.
   double mse = 0.0, rmse = 0.0, mae = 0.0, relmse = 0.0, smape = 0.0;
   double mse_clamped = 0.0;  // mse of the images clamped to [0, 1], for psnr
