@@ -40,7 +40,7 @@
 #include "command.h"
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
-#include "json_file.h"
+#include "giq/base/json.h"
 #include "subprocess.h"
 #include "technique_listing.h"
 
@@ -198,7 +198,7 @@ GateRun measure(const CalibrateArgs& a, const fs::path& giq, const fs::path& con
     else unsetenv(k.c_str());
   if (r.exit_code != 0 && r.exit_code != 1)
     throw InputError((out / "gate.log").string(), "giq gate", "failed (exit " + std::to_string(r.exit_code) + "): " + r.log_tail);
-  const json result = read_json_file(out / "gate.json");
+  const json result = read_json(out / "gate.json");
   std::string problems;
   for (const auto& c : result.at("cases"))
     if (!c.at("problem").get<std::string>().empty())
@@ -207,7 +207,7 @@ GateRun measure(const CalibrateArgs& a, const fs::path& giq, const fs::path& con
   GateRun run;
   for (const auto& c : result["cases"])
     run.metrics[c.at("name").get<std::string>()] =
-        read_json_file(out / c.at("dir").get<std::string>() / "score" / "metrics.json");
+        read_json(out / c.at("dir").get<std::string>() / "score" / "metrics.json");
   for (const auto& o : result.at("outcomes")) {
     Measured m;
     if (o["value"].is_number()) m.value = o["value"].get<double>();
@@ -265,12 +265,12 @@ int run_calibrate(const CalibrateArgs& a) {
   const fs::path giq = a.giq.empty() ? self_executable() : fs::absolute(a.giq);
   const fs::path plan_path = a.plan, config_path = a.config;
   // Read in the file's key order, which the written config and record keep.
-  const ordered plan = read_ordered_json_file(plan_path);
+  const ordered plan = read_ordered_json(plan_path);
   const auto declared = registered(giq, a.out);
   std::vector<std::string> names;
   for (const auto& [n, p] : declared) names.push_back(n);
   const auto cases = planned_cases(plan, names);
-  const json existing = fs::exists(config_path) ? read_json_file(config_path) : json{{"cases", json::array()}};
+  const json existing = fs::exists(config_path) ? read_json(config_path) : json{{"cases", json::array()}};
 
   // Every built-in scene has its cases.
   std::set<fs::path> in_plan;
@@ -400,14 +400,14 @@ int run_calibrate(const CalibrateArgs& a) {
   const fs::path rec_path = config_path.parent_path() / "calibration.json";
   std::map<std::string, ordered> cal;
   if (fs::exists(rec_path)) {
-    const ordered prev = read_ordered_json_file(rec_path);
+    const ordered prev = read_ordered_json(rec_path);
     for (const PlannedCase* c : keep)
       if (prev.contains("cases") && prev["cases"].contains(c->name())) cal[c->name()] = prev["cases"][c->name()];
   }
   for (const auto& [k, v] : record.items()) cal[k] = v;
   std::string device;
   const fs::path tj = fs::path(a.out) / runs.front().first / "cases" / to_measure.front()->name() / "technique" / "timings.json";
-  if (fs::exists(tj)) device = read_json_file(tj).value("/device/name"_json_pointer, std::string());
+  if (fs::exists(tj)) device = read_json(tj).value("/device/name"_json_pointer, std::string());
   ordered cases_json = ordered::object();
   for (const auto& [k, v] : cal) cases_json[k] = v;
   ordered out;

@@ -34,10 +34,10 @@
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
 #include "giq/base/frames.h"
+#include "giq/base/json.h"
 #include "giq/gate/golden_manifest.h"
 #include "giq/gate/metric_lookup.h"
 #include "giq/scenes/scene.h"
-#include "json_file.h"
 #include "subprocess.h"
 #include "technique_listing.h"
 
@@ -282,7 +282,7 @@ ordered sweep_rows(const fs::path& folder) {
   std::sort(files.begin(), files.end());
   ordered found = ordered::array();
   for (const fs::path& p : files) {
-    const ordered d = read_ordered_json_file(p);
+    const ordered d = read_ordered_json(p);
     for (const auto& r : d["rows"]) {
       const ordered metrics = r.value("metrics", ordered::object());
       ordered row;
@@ -313,7 +313,7 @@ void run_step(const std::vector<std::string>& argv, const fs::path& dir, const s
 int run_results(const ResultsArgs& a) {
   const fs::path out = fs::absolute(a.out), doc = a.doc;
   if (a.page_only) {
-    const ordered results = read_ordered_json_file(doc.parent_path() / (doc.stem().string() + ".json"));
+    const ordered results = read_ordered_json(doc.parent_path() / (doc.stem().string() + ".json"));
     write_file_atomically(doc, page(results));
     std::cout << "giq results: " << doc.string() << " from " << (doc.parent_path() / (doc.stem().string() + ".json")).string() << '\n';
     return 0;
@@ -369,7 +369,7 @@ int run_results(const ResultsArgs& a) {
       run_step(rt, tdir / "frames", giq_hash, a.rerender);
       const int first = animated ? 0 : 2, last = animated ? n - 1 : a.frames + 1;
       const gate::FrameTime t = gate::read_timings(tdir / "frames" / "timings.json");
-      const json timings = read_json_file(tdir / "frames" / "timings.json");
+      const json timings = read_json(tdir / "frames" / "timings.json");
       ordered row;
       row["scene"] = stem;
       row["technique"] = tech;
@@ -383,12 +383,12 @@ int run_results(const ResultsArgs& a) {
                   layer, "--scene", scene.string(), "--timings", (tdir / "frames" / "timings.json").string(), "--out",
                   sdir.string()},
                  sdir, giq_hash, a.rerender);
-        row[layer] = score_row(read_json_file(sdir / "metrics.json"));
+        row[layer] = score_row(read_json(sdir / "metrics.json"));
       }
       if (!a.gpu.empty()) {
         const fs::path h = fs::path(a.gpu) / "results" / stem / tech / "timings.json";
         if (fs::exists(h)) {
-          const json ht = read_json_file(h);
+          const json ht = read_json(h);
           ordered passes = ordered::object();
           for (const auto& p : ht.at("passes")) passes[p.at("name").get<std::string>()] = p["gpu_ms"]["median"];
           row["gpu"] = {{"device", ht["device"]["name"]},

@@ -19,6 +19,7 @@
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
 #include "giq/base/frames.h"
+#include "giq/base/json.h"
 #include "giq/gate/config.h"
 #include "giq/gate/fit.h"
 #include "giq/gate/metric_lookup.h"
@@ -26,7 +27,6 @@
 #include "giq/gate/sweep_table.h"
 #include "giq/image/io.h"
 #include "giq/metrics/catalogue.h"
-#include "json_file.h"
 #include "subprocess.h"
 #include "sweep_plan.h"
 #include "technique_listing.h"
@@ -93,7 +93,7 @@ std::map<std::string, std::optional<double>> score(const SweepArgs& a, const fs:
                                  "--scene",    a.scene,       "--out",   dir.string()};
   if (!timings.empty()) sc.insert(sc.end(), {"--timings", timings.string()});
   must(run_process(sc, log), "giq score", log);
-  const json m = read_json_file(dir / "metrics.json");
+  const json m = read_json(dir / "metrics.json");
   std::map<std::string, std::optional<double>> out;
   for (const metrics::MetricInfo& info : metrics::kMetricCatalogue)
     if (info.scope == metrics::Scope::Image)

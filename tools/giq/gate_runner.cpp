@@ -10,10 +10,10 @@
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
 #include "giq/base/frames.h"
+#include "giq/base/json.h"
 #include "giq/base/version.h"
 #include "giq/image/io.h"
 #include "giq/scenes/scene.h"
-#include "json_file.h"
 #include "subprocess.h"
 
 namespace giq::cli {
@@ -26,7 +26,7 @@ using nlohmann::json;
 // same golden files), so the gate renders only what is missing.
 bool up_to_date(const fs::path& dir, const json& stamp) {
   try {
-    return fs::exists(dir / "stamp.json") && read_json_file(dir / "stamp.json") == stamp;
+    return fs::exists(dir / "stamp.json") && read_json(dir / "stamp.json") == stamp;
   } catch (const InputError&) {
     return false;
   }
@@ -142,11 +142,11 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
                    {{"argv", sc},
                     {"giq", binary_hash},
                     {"golden", golden_files},
-                    {"technique", read_json_file(tech / "stamp.json")}},
+                    {"technique", read_json(tech / "stamp.json")}},
                    t.rerender);
     if (!problem.empty()) throw InputError("", "score", problem);
-    run.evidence.metrics = read_json_file(score / "metrics.json");
-    run.evidence.timings = read_json_file(timings);
+    run.evidence.metrics = read_json(score / "metrics.json");
+    run.evidence.timings = read_json(timings);
   } catch (const std::exception& e) {
     run.evidence.problem = e.what();
   }

@@ -133,7 +133,7 @@ void add_maps(Comparison& c, const json& maps, const fs::path& dir, const fs::pa
 }
 
 Comparison comparison(const fs::path& file, const fs::path& root, int max_frames) {
-  const json j = parse_json(slurp(file), file.string());
+  const json j = read_json(file);
   const fs::path dir = file.parent_path();
   const json& in = j.at("inputs");
   Comparison c;
@@ -229,12 +229,12 @@ ReportInputs scan_report_inputs(const fs::path& dir, int max_frames) {
       } else if (name == "metrics.json") {
         r.comparisons.push_back(comparison(f, dir, max_frames));
       } else if (name == "gate.json") {
-        json gate = parse_json(slurp(f), f.string());
+        json gate = read_json(f);
         if (!gate.is_object() || !gate.contains("outcomes") || !gate["outcomes"].is_array())
           throw InputError(f.string(), "outcomes", "missing; expected the object giq gate writes");
         r.gate = std::move(gate);
       } else if (name == "sweep.json") {
-        r.sweeps.push_back({fs::relative(f, dir).generic_string(), parse_json(slurp(f), f.string())});
+        r.sweeps.push_back({fs::relative(f, dir).generic_string(), read_json(f)});
       } else if (f.extension() == ".svg") {
         r.plots.push_back(
             {fs::relative(f, dir).generic_string(), data_uri("image/svg+xml", slurp(f)), {}});

@@ -49,7 +49,7 @@ Manifest read_manifest(const fs::path& file) {
   Manifest m;
   if (!fs::exists(file)) return m;
   try {
-    const json j = read_json(file.string());
+    const json j = read_json(file);
     if (j.at("version") != 1)
       throw InputError(file.string(), "version", j["version"].dump() + "; expected 1");
     for (const auto& [key, e] : j.at("goldens").items()) {

@@ -104,7 +104,7 @@ FrameTime frame_time(const json& timings) {
 }
 
 FrameTime read_timings(const std::filesystem::path& file) {
-  const FrameTime t = frame_time(read_json(file.string()));
+  const FrameTime t = frame_time(read_json(file));
   if (!t.gpu_ms)
     throw InputError(file.string(), "frame_gpu_ms.median",
                      "missing; expected {\"frame_gpu_ms\": {\"median\": <ms>}} or {\"frame_ms\": {\"median\": <ms>}}");

@@ -32,7 +32,6 @@ void main() {
   uint probe = gl_GlobalInvocationID.x;
   if (probe >= ddgi.counts.w) return;
   if (ddgi_probe_active(probe)) history[probe] += 1u;
-  vec4 unused[3];
   uint base = probe * ddgi.tiles.w;
   uint backfaces = 0u;
   float closest_back = 3.0e38, closest_front = 3.0e38, farthest_front = 0.0;
@@ -41,7 +40,7 @@ void main() {
   float spacing = ddgi.origin.w;
   for (uint r = 0u; r < GIQ_DDGI_FIXED_RAYS; ++r) {
     float t = rays[base + r].w;
-    vec3 dir = ddgi_ray_direction(r, unused);
+    vec3 dir = ddgi_fixed_ray_direction(r);
     if (t < 0.0) {
       ++backfaces;
       if (-t < closest_back) { closest_back = -t; closest_back_dir = dir; }

@@ -40,11 +40,14 @@ vec3 spherical_fibonacci(float i, float n) {
   return vec3(cos(phi) * sin_theta, sin(phi) * sin_theta, cos_theta);
 }
 
-// Direction of ray r of every probe: the fixed rays on their own unrotated spiral, the blended
-// ones on a spiral turned by this frame's rotation (rows r0, r1, r2).
+// Direction of fixed ray r (< GIQ_DDGI_FIXED_RAYS): its own unrotated spiral, the same every frame.
+vec3 ddgi_fixed_ray_direction(uint r) { return spherical_fibonacci(float(r), float(GIQ_DDGI_FIXED_RAYS)); }
+
+// Direction of ray r of every probe: the fixed rays as above, the blended ones on a spiral
+// turned by this frame's rotation (rows r0, r1, r2).
 vec3 ddgi_ray_direction(uint r, vec4 rotation[3]) {
   uint rays = ddgi.tiles.w;
-  if (r < GIQ_DDGI_FIXED_RAYS) return spherical_fibonacci(float(r), float(GIQ_DDGI_FIXED_RAYS));
+  if (r < GIQ_DDGI_FIXED_RAYS) return ddgi_fixed_ray_direction(r);
   vec3 d = spherical_fibonacci(float(r - GIQ_DDGI_FIXED_RAYS), float(rays - GIQ_DDGI_FIXED_RAYS));
   return vec3(dot(rotation[0].xyz, d), dot(rotation[1].xyz, d), dot(rotation[2].xyz, d));
 }

@@ -82,12 +82,22 @@ nlohmann::ordered_json parse_ordered_json(std::string_view text, const std::stri
   return parse<nlohmann::ordered_json>(text, file);
 }
 
-nlohmann::json read_json(const std::string& file) {
+namespace {
+
+std::string read_text(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file, "", "cannot open the file");
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw InputError(file, "", "cannot read the file");
-  return parse_json(text, file);
+  if (!in) throw InputError(file.string(), "", "cannot open the file");
+  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) throw InputError(file.string(), "", "cannot read the file");
+  return text;
+}
+
+}  // namespace
+
+nlohmann::json read_json(const std::filesystem::path& file) { return parse_json(read_text(file), file.string()); }
+
+nlohmann::ordered_json read_ordered_json(const std::filesystem::path& file) {
+  return parse_ordered_json(read_text(file), file.string());
 }
 
 }  // namespace giq

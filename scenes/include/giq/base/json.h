@@ -9,6 +9,7 @@
 //     written as "relmse": 0.01, "relmse": 10 would be checked against 10.
 // Both, like text that is not JSON, throw InputError(file, field, message).
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
@@ -21,7 +22,8 @@ inline constexpr int kMaxJsonDepth = 256;
 nlohmann::json parse_json(std::string_view text, const std::string& file);
 // The same, keeping each object's key order.
 nlohmann::ordered_json parse_ordered_json(std::string_view text, const std::string& file);
-// The file's text parsed by parse_json; InputError when it cannot be read.
-nlohmann::json read_json(const std::string& file);
+// The file's text parsed by parse_json / parse_ordered_json; InputError when it cannot be read.
+nlohmann::json read_json(const std::filesystem::path& file);
+nlohmann::ordered_json read_ordered_json(const std::filesystem::path& file);
 
 }  // namespace giq
