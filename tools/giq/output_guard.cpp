@@ -16,11 +16,6 @@ fs::path resolved(const fs::path& p) {
   return ec ? fs::absolute(p).lexically_normal() : r;
 }
 
-bool inside(const fs::path& p, const fs::path& folder) {
-  const fs::path a = resolved(p), b = resolved(folder);
-  return std::mismatch(b.begin(), b.end(), a.begin(), a.end()).first == b.end();
-}
-
 // The first existing ancestor of `p` (its folders, nearest first) that is not a folder.
 void check_parents(const fs::path& p, const std::string& option) {
   for (fs::path a = fs::absolute(p).parent_path(); !a.empty(); a = a.parent_path()) {
@@ -33,6 +28,11 @@ void check_parents(const fs::path& p, const std::string& option) {
 }
 
 }  // namespace
+
+bool path_inside(const fs::path& p, const fs::path& folder) {
+  const fs::path a = resolved(p), b = resolved(folder);
+  return std::mismatch(b.begin(), b.end(), a.begin(), a.end()).first == b.end();
+}
 
 void check_output_file(const fs::path& out, const std::vector<fs::path>& inputs, const std::string& option) {
   if (fs::is_directory(out)) throw InputError(out.string(), option, "is a folder; expected a file path to write");
@@ -49,7 +49,7 @@ void check_output_folder(const fs::path& out, const std::vector<fs::path>& input
     throw InputError(out.string(), option, "is a file; expected a folder to write into");
   check_parents(out, option);
   for (const fs::path& in : inputs)
-    if (!in.empty() && inside(in, out))
+    if (!in.empty() && path_inside(in, out))
       throw InputError(out.string(), option,
                        "holds the input " + in.string() + ", which this command's files could replace; write elsewhere");
 }

@@ -21,4 +21,8 @@ void check_output_file(const std::filesystem::path& out, const std::vector<std::
 void check_output_folder(const std::filesystem::path& out, const std::vector<std::filesystem::path>& inputs,
                          const std::string& option);
 
+// Whether `p` lies in `folder` (at any depth, or is it) once both are resolved: links and ".."
+// followed as far as the paths exist.
+bool path_inside(const std::filesystem::path& p, const std::filesystem::path& folder);
+
 }  // namespace giq::cli

@@ -13,6 +13,7 @@
 #include "giq/gate/escape.h"
 #include "giq/image/io.h"
 #include "giq/metrics/catalogue.h"
+#include "output_guard.h"
 
 namespace giq::cli {
 namespace {
@@ -96,13 +97,6 @@ void add_metric_rows(Comparison& c, const json& m, const std::string& prefix) {
   }
 }
 
-// Whether `p` lies under `root` once both are resolved (links and ".." followed).
-bool under(const fs::path& p, const fs::path& root) {
-  std::error_code ec;
-  const fs::path a = fs::weakly_canonical(p, ec), b = fs::weakly_canonical(root, ec);
-  return std::mismatch(b.begin(), b.end(), a.begin(), a.end()).first == b.end();
-}
-
 // The error maps are embedded byte for byte, so only PNG files under the report's folder are:
 // a metrics.json could otherwise name any file on the machine (an absolute path, "../") and
 // carry it into a page that is shared.
@@ -111,7 +105,7 @@ void add_maps(Comparison& c, const json& maps, const fs::path& dir, const fs::pa
   for (const auto& [name, m] : maps.items()) {
     const fs::path png = dir / m.value("png", "");
     if (!m.contains("png") || !fs::exists(png)) continue;
-    if (!under(png, root))
+    if (!path_inside(png, root))
       throw InputError(file.string(), "maps." + name + ".png",
                        "'" + png.string() + "' is outside " + root.string() + "; the report reads only files under its folder");
     const std::string bytes = slurp(png);
