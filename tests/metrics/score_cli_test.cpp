@@ -1,6 +1,8 @@
 // `giq score` end to end on small synthetic EXRs written here.
 
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -326,4 +328,42 @@ TEST(ScoreCli, PngPairIsScoredAsLdr) {
   EXPECT_NEAR(j["metrics"]["mse"]["value"].get<double>(), diff * diff, 1e-6);
   EXPECT_EQ(j["strip"]["exposure"], 0.0);
   EXPECT_GT(j["metrics"]["flip"]["mean"]["value"].get<double>(), 0.0);
+}
+
+TEST(ScoreCli, AScoreReplacesThePreviousOneAsAWholeAndAConcurrentOneIsRefused) {
+  const fs::path d = fresh_dir("replace");
+  image::write_exr(test::rgb_image(W, H, [](int, int, int) { return 0.5f; }), d / "still.exr");
+  for (int t = 0; t < 3; ++t)
+    image::write_exr(test::rgb_image(W, H, [&](int, int, int) { return t % 2 ? 0.45f : 0.55f; }),
+                     d / ("flick_0" + std::to_string(t) + ".exr"));
+  const fs::path out = d / "out";
+  const std::string ref = " --ref " + (d / "still.exr").string() + " --out " + out.string();
+  const CliRun seq = giq_run("score" + ref + " --test '" + (d / "flick_%02d.exr").string() + "' --frames 0:2", d);
+  ASSERT_EQ(seq.code, 0) << seq.err;
+  ASSERT_TRUE(fs::exists(out / "temporal_stddev.exr"));
+  std::ofstream(out / "notes.txt") << "the user's";
+
+  // A single-image score over it: the sequence's own map goes, the user's file stays, and the
+  // folder holds exactly what the new metrics.json names.
+  const CliRun single = giq_run("score" + ref + " --test " + (d / "flick_01.exr").string(), d);
+  ASSERT_EQ(single.code, 0) << single.err;
+  const json j = json::parse(test::slurp(out / "metrics.json"));
+  EXPECT_FALSE(j.contains("sequence"));
+  std::set<std::string> named{"metrics.json", "notes.txt", j["strip"]["png"].get<std::string>()};
+  for (const auto& [name, m] : j["maps"].items()) named.insert({m["exr"].get<std::string>(), m["png"].get<std::string>()});
+  std::set<std::string> present;
+  for (const auto& e : fs::directory_iterator(out)) present.insert(e.path().filename().string());
+  EXPECT_EQ(present, named);
+
+  // While another writer holds the folder, a score is refused and changes nothing.
+  const std::string before = test::slurp(out / "metrics.json");
+  const int fd = ::open(out.c_str(), O_RDONLY | O_DIRECTORY);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX), 0);
+  const CliRun refused = giq_run("score" + ref + " --test " + (d / "flick_00.exr").string(), d);
+  ::close(fd);
+  EXPECT_EQ(refused.code, 2);
+  EXPECT_NE(refused.err.find("another giq process is writing to this folder"), std::string::npos) << refused.err;
+  EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+  EXPECT_EQ(test::slurp(out / "metrics.json"), before);
 }

@@ -7,6 +7,8 @@
 
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
+#include "giq/base/json.h"
+#include "giq/base/staged_folder.h"
 #include "giq/base/version.h"
 #include "giq/image/io.h"
 #include "giq/metrics/catalogue.h"
@@ -107,7 +109,39 @@ std::string frame_path(const std::string& pattern, int frame) {
   return unescape(pattern.substr(0, c.begin)) + num + unescape(pattern.substr(c.end));
 }
 
-json score(const ScoreRequest& req) {
+namespace {
+
+// The files a metrics.json names (every "exr" and "png" entry, at any depth: the sequence's
+// last frame carries its own maps and strip). An unreadable manifest names none.
+void collect_outputs(const json& j, std::vector<std::string>& names) {
+  if (j.is_object()) {
+    for (const auto& [key, value] : j.items()) {
+      if ((key == "exr" || key == "png") && value.is_string()) names.push_back(value.get<std::string>());
+      else collect_outputs(value, names);
+    }
+  } else if (j.is_array()) {
+    for (const json& v : j) collect_outputs(v, names);
+  }
+}
+
+std::vector<std::string> previous_outputs(const std::filesystem::path& manifest) {
+  std::vector<std::string> names;
+  if (!std::filesystem::is_regular_file(manifest)) return names;
+  try {
+    collect_outputs(read_json(manifest), names);
+  } catch (const InputError&) {
+  }
+  return names;
+}
+
+}  // namespace
+
+json score(const ScoreRequest& request) {
+  // Every file lands in a locked staging folder first and is published as one set
+  // (giq/base/staged_folder.h), so --out never mixes two runs.
+  StagedFolder folder(request.out_dir, "metrics.json");
+  ScoreRequest req = request;
+  req.out_dir = folder.staging();
   json result;
   const bool sequence = req.frames.has_value() || is_pattern(req.test);
   if (sequence) {
@@ -132,6 +166,7 @@ json score(const ScoreRequest& req) {
   if (!req.scene.empty()) result["inputs"]["scene"] = req.scene;
   if (req.frame_ms) result["inputs"]["frame_ms"] = *req.frame_ms, result["inputs"]["timings"] = req.timings;
   write_file_atomically(req.out_dir / "metrics.json", result.dump(2) + "\n");
+  folder.publish(previous_outputs(request.out_dir / "metrics.json"));
   return result;
 }
 
