@@ -1,5 +1,6 @@
 #include "giq/realtime/renderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 
@@ -31,9 +32,11 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
                                const RenderOptions& options, const std::function<void(RenderedFrame&)>& on_frame) {
   const TechniqueInfo& info = find_technique(options.technique);
   const ParameterValues params(info.parameters, options.parameters);
-  if (options.width < 1 || options.height < 1 || options.width > 16384 || options.height > 16384)
+  const uint32_t max_side = std::min<uint32_t>(16384, ctx.properties().limits.maxImageDimension2D);
+  if (options.width < 1 || options.height < 1 || options.width > max_side || options.height > max_side)
     throw InputError("", "--width/--height", "resolution " + std::to_string(options.width) + "x" +
-                                                 std::to_string(options.height) + " is outside 1..16384");
+                                                 std::to_string(options.height) + " is outside 1.." +
+                                                 std::to_string(max_side) + " (this device's largest image side)");
   if (options.frames < 1) throw InputError("", "--frames", std::to_string(options.frames) + " frames; expected at least 1");
   if (options.warmup < 0) throw InputError("", "--warmup", std::to_string(options.warmup) + "; expected 0 or more");
   const scenes::View& view0 = scene.view(options.view);  // throws InputError naming the views

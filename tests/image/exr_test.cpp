@@ -222,3 +222,51 @@ TEST(Exr, UintAndHalfChannelsWrittenByOtherToolsReadAsFloat) {
   }
   EXPECT_EQ(img.metadata.at("giq:view"), "front");
 }
+
+namespace {
+
+// An EXR whose header declares w x h RGB floats but whose pixels were never written: the file
+// holds the header and an offset table, as a truncated or hand-edited file would.
+fs::path declared_only(const fs::path& d, int w, int h, Imf::Compression compression) {
+  const fs::path p = d / ("declared_" + std::to_string(w) + "x" + std::to_string(h) + ".exr");
+  Imf::Header header(w, h);
+  header.compression() = compression;
+  for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+  { Imf::OutputFile out(p.c_str(), header); }
+  return p;
+}
+
+std::string read_error(const fs::path& p) {
+  try {
+    giq::image::read_image(p);
+  } catch (const giq::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Exr, DeclaredSizesAreCheckedBeforeAllocating) {
+  fs::path d = fresh_dir("declared");
+  // 20000^2 RGB floats decode to 4.47 GiB, over the 4 GiB every reader allows.
+  const fs::path huge = declared_only(d, 20000, 20000, Imf::ZIP_COMPRESSION);
+  const std::string e = read_error(huge);
+  EXPECT_NE(e.find("20000x20000 pixels of 3 channels decode to 4.47 GiB; expected at most 4 GiB"), std::string::npos)
+      << e;
+  // 8000^2 fits in memory, but 768 MB of float pixels cannot be deflated into a file of a few
+  // kilobytes: deflate reaches at most 1032:1, so the file would need 744 KB at least.
+  for (Imf::Compression c : {Imf::NO_COMPRESSION, Imf::ZIP_COMPRESSION, Imf::PIZ_COMPRESSION}) {
+    const fs::path p = declared_only(d, 8000, 8000, c);
+    ASSERT_LT(fs::file_size(p), 744'186u);
+    const std::string m = read_error(p);
+    EXPECT_NE(m.find("cannot be stored in " + std::to_string(fs::file_size(p)) + " bytes"), std::string::npos) << m;
+    EXPECT_NE(m.find("8000x8000"), std::string::npos) << m;
+  }
+  // A small image whose pixels compress to almost nothing is still read: the bound is the
+  // codec's, not a guess.
+  Image flat(512, 512);
+  for (const char* c : {"R", "G", "B"}) flat.add_channel(c, 0.25f);
+  giq::image::write_exr(flat, d / "flat.exr");
+  EXPECT_EQ(giq::image::read_image(d / "flat.exr").channel("G")[511 * 512 + 7], 0.25f);
+}

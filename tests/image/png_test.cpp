@@ -126,3 +126,49 @@ TEST(Png, CorruptPngIsInputError) {
     EXPECT_EQ(e.file(), (d / "c.png").string());
   }
 }
+
+namespace {
+
+// CRC-32 as PNG chunks use it (ISO 3309, polynomial 0xedb88320), bit by bit.
+uint32_t crc32(const std::string& bytes) {
+  uint32_t c = 0xffffffffu;
+  for (unsigned char b : bytes) {
+    c ^= b;
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+  }
+  return c ^ 0xffffffffu;
+}
+
+std::string be32(uint32_t v) {
+  return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+}
+
+}  // namespace
+
+TEST(Png, DeclaredSizeIsCheckedBeforeAllocating) {
+  fs::path d = fresh_dir("declared");
+  const unsigned char px[4 * 4 * 3] = {};
+  giq::image::write_png_rgb8(d / "small.png", 4, 4, 3, px);
+  std::ifstream in(d / "small.png", std::ios::binary);
+  std::string s((std::istreambuf_iterator<char>(in)), {});
+  // IHDR's width and height (bytes 16..23) rewritten with a valid CRC: only the declared size
+  // is wrong, so only the size check can catch it.
+  auto declare = [&](uint32_t w, uint32_t h, const std::string& name) {
+    std::string t = s;
+    t.replace(16, 8, be32(w) + be32(h));
+    t.replace(29, 4, be32(crc32(t.substr(12, 17))));
+    std::ofstream(d / name, std::ios::binary) << t;
+    try {
+      giq::image::read_image(d / name);
+    } catch (const giq::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  // 40000^2 RGB: 2 x 17.9 GiB of floats while decoding.
+  const std::string huge = declare(40000, 40000, "huge.png");
+  EXPECT_NE(huge.find("40000x40000 pixels of 6 channels decode to 35.8 GiB"), std::string::npos) << huge;
+  // 4000^2 RGB8 rows are 48 MB: deflate (at most 1032:1) needs 46.5 KB for them, not ~80 bytes.
+  const std::string deflated = declare(4000, 4000, "deflated.png");
+  EXPECT_NE(deflated.find("the 4000x4000 pixels it declares cannot be stored in"), std::string::npos) << deflated;
+}

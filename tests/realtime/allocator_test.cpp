@@ -3,6 +3,7 @@
 #include <cstring>
 #include <random>
 
+#include "giq/base/error.h"
 #include "giq/realtime/allocator.h"
 #include "giq/realtime/resources.h"
 #include "test_scenes.h"
@@ -106,6 +107,25 @@ TEST_F(MemoryAllocatorTest, LargeRequestGetsItsOwnBlock) {
   Buffer big(*ctx, MemoryAllocator::kBlockSize + 4096, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   Buffer small(*ctx, 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   EXPECT_GE(ctx->allocator().bytes_in_use(), MemoryAllocator::kBlockSize + 4096 + 256);
+}
+
+TEST_F(MemoryAllocatorTest, MoreThanTheDeviceHasIsAnInputError) {
+  // What a resolution or a technique parameter too large for the device asks for: the user's
+  // input, so exit 2 with what was asked, not an internal error.
+  VkMemoryRequirements req{};
+  req.size = uint64_t(1) << 62;
+  req.alignment = 256;
+  req.memoryTypeBits = ~0u;
+  const size_t blocks = ctx->allocator().block_count();
+  try {
+    ctx->allocator().allocate(req, MemoryUsage::Device, true);
+    FAIL() << "an allocation of 4 EiB succeeded";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "GPU memory");
+    EXPECT_NE(std::string(e.what()).find("a resource of 4398046511104 MiB"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("lower --width/--height"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(ctx->allocator().block_count(), blocks);
 }
 
 }  // namespace

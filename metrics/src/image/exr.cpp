@@ -21,6 +21,7 @@
 #include <vector>
 #include <set>
 
+#include "declared_size.h"
 #include "exr.h"
 #include "giq/image/io.h"
 #include "giq/base/atomic_file.h"
@@ -55,6 +56,51 @@ Imf::Compression to_imf(ExrOptions::Compression c) {
 void enable_threads() {
   static std::once_flag once;
   std::call_once(once, [] { Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency()))); });
+}
+
+// The largest ratio of pixel data (as stored: 2 bytes a half, 4 a float or uint) to
+// compressed bytes each codec can reach; 0 for a codec this bound does not know.
+double max_compression_ratio(Imf::Compression c) {
+  switch (c) {
+    case Imf::NO_COMPRESSION: return 1.0;
+    case Imf::RLE_COMPRESSION: return 64.0;  // a run of 128 equal bytes in 2
+    case Imf::ZIPS_COMPRESSION:
+    case Imf::ZIP_COMPRESSION: return 1032.0;  // deflate's limit: 258 bytes in 2 bits
+    case Imf::PXR24_COMPRESSION: return 1032.0 * 4.0 / 3.0;  // floats cut to 24 bits, then deflate
+    // Huffman codes with run-length symbols (at most 255 repeats in at least 9 bits, about
+    // 455:1); deflate's limit is the rounder bound.
+    case Imf::PIZ_COMPRESSION: return 1032.0;
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION: return 32.0 / 3.0;  // a flat 4x4 block of halves in 3 bytes
+    // An 8x8 DCT block down to its DC value and an end code (4 bytes for 128), then deflate;
+    // twice that, as the lossless channels take other paths.
+    case Imf::DWAA_COMPRESSION:
+    case Imf::DWAB_COMPRESSION: return 64.0 * 1032.0;
+    default: return 0.0;
+  }
+}
+
+// Every size the file declares, checked before a pixel is allocated (giq/image/io.h).
+void check_declared_sizes(const fs::path& path, const Imf::MultiPartInputFile& file) {
+  int64_t channels = 0;
+  double least_file_bytes = 0.0;
+  std::string declared;
+  for (int part = 0; part < file.parts(); ++part) {
+    const Imf::Header& h = file.header(part);
+    const Imath::Box2i dw = h.dataWindow();
+    const int64_t w = int64_t(dw.max.x) - dw.min.x + 1, hgt = int64_t(dw.max.y) - dw.min.y + 1;
+    const std::string field = "part " + std::to_string(part) + ".dataWindow";
+    if (w <= 0 || hgt <= 0 || w > (1 << 20) || hgt > (1 << 20))
+      throw InputError(path.string(), field,
+                       "size " + std::to_string(w) + "x" + std::to_string(hgt) + " out of range (1..1048576)");
+    double stored = 0.0;
+    for (auto c = h.channels().begin(); c != h.channels().end(); ++c, ++channels)
+      stored += double(w) * double(hgt) * (c.channel().type == Imf::HALF ? 2.0 : 4.0);
+    check_decoded_size(path, field, w, hgt, std::max<int64_t>(channels, 1));
+    declared = std::to_string(w) + "x" + std::to_string(hgt) + " pixels of " + std::to_string(channels) + " channels";
+    if (const double ratio = max_compression_ratio(h.compression()); ratio > 0.0) least_file_bytes += stored / ratio;
+  }
+  check_file_can_hold(path, "dataWindow", least_file_bytes, "the " + declared + " it declares");
 }
 
 }  // namespace
@@ -111,6 +157,7 @@ Image read_exr(const fs::path& path) {
   enable_threads();
   try {
     Imf::MultiPartInputFile file(path.c_str());
+    check_declared_sizes(path, file);
     Image image;
     Imath::Box2i window;
     // A multi-part file (one part per layer, as some tools write) is merged into one image;
@@ -121,9 +168,6 @@ Image read_exr(const fs::path& path) {
         throw InputError(path.string(), "part " + std::to_string(part), "deep EXR data is not supported");
       const Imath::Box2i dw = h.dataWindow();
       const long long w = (long long)dw.max.x - dw.min.x + 1, hgt = (long long)dw.max.y - dw.min.y + 1;
-      if (w <= 0 || hgt <= 0 || w > (1 << 20) || hgt > (1 << 20))
-        throw InputError(path.string(), "dataWindow",
-                         "size " + std::to_string(w) + "x" + std::to_string(hgt) + " out of range (1..1048576)");
       if (part == 0) {
         window = dw;
         image = Image(int(w), int(hgt));

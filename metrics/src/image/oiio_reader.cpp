@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "declared_size.h"
 #include "giq/base/error.h"
 #include "giq/image/srgb.h"
 #include "oiio_reader.h"
@@ -21,6 +22,13 @@ Image read_with_oiio(const std::filesystem::path& path) {
   if (w <= 0 || h <= 0 || nc <= 0 || w > (1 << 20) || h > (1 << 20))
     throw InputError(path.string(), "", "image size " + std::to_string(w) + "x" + std::to_string(h) + "x" +
                                             std::to_string(nc) + " out of range");
+  // Read as interleaved floats, then copied to planes: twice the decoded size at the peak.
+  check_decoded_size(path, "size", w, h, 2 * int64_t(nc));
+  // PNG's pixel rows are deflated: at most 1032:1 (giq/image/io.h).
+  if (std::string(in->format_name()) == "png")
+    check_file_can_hold(path, "IHDR",
+                        double(h) * (1.0 + double(w) * nc * double(spec.format.size())) / 1032.0,
+                        "the " + std::to_string(w) + "x" + std::to_string(h) + " pixels it declares");
   std::vector<float> pixels(size_t(w) * size_t(h) * size_t(nc));
   if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, pixels.data()))
     throw InputError(path.string(), "", "cannot decode image: " + in->geterror());

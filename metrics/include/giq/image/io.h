@@ -4,6 +4,7 @@
 // are read through OpenImageIO when the build has it (GIQ_WITH_OIIO). Every write is atomic:
 // an interrupted run never leaves a half-written file under the final name.
 
+#include <cstdint>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -11,6 +12,15 @@
 #include "giq/image/image.h"
 
 namespace giq::image {
+
+// Before a reader allocates a pixel it checks what the file declares, so no small file can make
+// giq allocate gigabytes (or read for a minute) before failing:
+//   - the decoded image, every channel as float, takes at most kMaxImageBytes (4 GiB: 16384^2
+//     pixels of 4 channels);
+//   - the file can hold the pixel data it declares: the data as stored, divided by the largest
+//     ratio its codec can reach (deflate's 1032:1 for ZIP and PNG, 1 for uncompressed...),
+//     fits in the file's size.
+inline constexpr uint64_t kMaxImageBytes = uint64_t(4) << 30;
 
 struct ExrOptions {
   // Channels stored as float16 instead of float32 (values beyond 65504 become inf: only for
