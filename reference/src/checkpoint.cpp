@@ -86,10 +86,13 @@ std::optional<Checkpoint> read_checkpoint(const std::filesystem::path& path, con
   const int32_t w = r.get<int32_t>(), h = r.get<int32_t>();
   if (w < 1 || h < 1 || w > 65536 || h > 65536)
     throw InputError(file, "checkpoint", "image size " + std::to_string(w) + "x" + std::to_string(h) + " is invalid");
-  c.film = Film(w, h);
-  const size_t pixel_bytes = c.film.pixels.size() * sizeof(PixelAccumulator), aux_bytes = c.film.aux.size() * sizeof(PixelAux);
+  // The declared size against the file before the film is allocated: 65536^2 pixels would
+  // otherwise ask for hundreds of gigabytes.
+  const size_t pixels = size_t(w) * size_t(h);
+  const size_t pixel_bytes = pixels * sizeof(PixelAccumulator), aux_bytes = pixels * sizeof(PixelAux);
   if (data.size() != r.pos() + pixel_bytes + aux_bytes + sizeof(uint64_t))
     throw InputError(file, "checkpoint", "size does not match a " + std::to_string(w) + "x" + std::to_string(h) + " film");
+  c.film = Film(w, h);
   r.bytes(c.film.pixels.data(), pixel_bytes);
   r.bytes(c.film.aux.data(), aux_bytes);
   return c;

@@ -18,7 +18,8 @@ struct Reader {
 
   void only_keys(const json& o, const std::string& field, std::initializer_list<const char*> keys) const {
     if (!o.is_object()) fail(field, "must be a JSON object");
-    for (const auto& [k, v] : o.items()) {
+    for (const auto& item : o.items()) {
+      const std::string& k = item.key();
       if (std::none_of(keys.begin(), keys.end(), [&](const char* s) { return k == s; })) {
         std::string allowed;
         for (const char* s : keys) allowed += std::string(allowed.empty() ? "" : ", ") + s;

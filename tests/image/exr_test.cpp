@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <bit>
+#include <cstring>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -269,4 +270,58 @@ TEST(Exr, DeclaredSizesAreCheckedBeforeAllocating) {
   for (const char* c : {"R", "G", "B"}) flat.add_channel(c, 0.25f);
   giq::image::write_exr(flat, d / "flat.exr");
   EXPECT_EQ(giq::image::read_image(d / "flat.exr").channel("G")[511 * 512 + 7], 0.25f);
+}
+
+TEST(Exr, HeaderAttributesMustFitTheFileAndFillTheirSize) {
+  fs::path d = fresh_dir("header");
+  Image im(4, 2);
+  for (const char* c : {"R", "G", "B"}) im.add_channel(c, 0.5f);
+  im.metadata["giq:view"] = "front";
+  giq::image::write_exr(im, d / "ok.exr");
+  std::string bytes;
+  {
+    std::ifstream in(d / "ok.exr", std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  auto set_int32 = [](std::string& b, size_t at, int32_t v) { b.replace(at, 4, reinterpret_cast<const char*>(&v), 4); };
+  auto error_of = [&](const std::string& b, const std::string& name) {
+    std::ofstream(d / name, std::ios::binary) << b;
+    try {
+      giq::image::read_image(d / name);
+    } catch (const giq::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  // A string declaring 2 GB: OpenEXR would size it first and fail at the end of the file.
+  const std::string view = std::string("giq:view\0string\0", 16);
+  const size_t v = bytes.find(view);
+  ASSERT_NE(v, std::string::npos);
+  std::string big = bytes;
+  set_int32(big, v + view.size(), 2'000'000'000);
+  const std::string e1 = error_of(big, "big_string.exr");
+  EXPECT_NE(e1.find("attribute 'giq:view': declares 2000000000 bytes; the file has"), std::string::npos) << e1;
+  // A channel list whose size says 4 bytes more than its entries take: OpenEXR reads the list
+  // by its entries, so every later attribute would be read 4 bytes early.
+  const std::string chlist = std::string("channels\0chlist\0", 16);
+  const size_t c = bytes.find(chlist);
+  ASSERT_NE(c, std::string::npos);
+  std::string shifted = bytes;
+  int32_t size = 0;
+  std::memcpy(&size, bytes.data() + c + chlist.size(), 4);
+  set_int32(shifted, c + chlist.size(), size + 4);
+  shifted.insert(c + chlist.size() + 4 + size_t(size), 4, 'x');
+  const std::string e2 = error_of(shifted, "shifted.exr");
+  EXPECT_NE(e2.find("attribute 'channels': its channel list does not fill its " + std::to_string(size + 4) + " bytes"),
+            std::string::npos)
+      << e2;
+  // A one-byte enum that claims 2 bytes.
+  std::string wide_int = bytes;
+  const size_t i = bytes.find(std::string("lineOrder\0lineOrder\0", 20));
+  ASSERT_NE(i, std::string::npos);
+  set_int32(wide_int, i + 20, 2);
+  const std::string e3 = error_of(wide_int, "wide.exr");
+  EXPECT_NE(e3.find("attribute 'lineOrder': is a lineOrder of 2 bytes; expected 1"), std::string::npos) << e3;
+  // The untouched file still reads.
+  EXPECT_EQ(giq::image::read_image(d / "ok.exr").metadata.at("giq:view"), "front");
 }

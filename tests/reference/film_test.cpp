@@ -1,10 +1,18 @@
-// The film: Welford's accumulator matches the two-pass mean and variance, and the image's
-// direct and indirect layers add up to the beauty exactly in float arithmetic.
+// The film: Welford's accumulator matches the two-pass mean and variance, the image's direct
+// and indirect layers add up to the beauty exactly in float arithmetic, and a checkpoint's
+// declared size is checked before anything is allocated.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 
+#include "giq/base/error.h"
+#include "giq/base/hash.h"
+#include "giq/reference/checkpoint.h"
 #include "giq/reference/film.h"
 #include "giq/reference/sampling.h"
 
@@ -60,6 +68,35 @@ TEST(Film, DirectPlusIndirectIsBeautyExactly) {
                   4e-7f * b[k] + 1e-30f);
     }
   }
+}
+
+TEST(Checkpoint, DeclaredFilmSizeIsCheckedAgainstTheFileBeforeAllocating) {
+  const std::filesystem::path p =
+      std::filesystem::temp_directory_path() / ("giq_checkpoint_" + std::to_string(::getpid()) + ".ckpt");
+  Film film(2, 2);
+  write_checkpoint(p, film, "identity", 1.5);
+  ASSERT_TRUE(read_checkpoint(p, "identity").has_value());
+  std::string bytes;
+  {
+    std::ifstream in(p, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  // Width and height follow the magic, the identity's length and text and the elapsed time;
+  // the checksum is recomputed, so only the size check can refuse the file.
+  const size_t at = std::strlen("giq-checkpoint 2\n") + 8 + std::strlen("identity") + 8;
+  const int32_t huge = 65536;
+  bytes.replace(at, 4, reinterpret_cast<const char*>(&huge), 4);
+  bytes.replace(at + 4, 4, reinterpret_cast<const char*>(&huge), 4);
+  const uint64_t hash = giq::Hasher().add(bytes.data(), bytes.size() - 8).value();
+  bytes.replace(bytes.size() - 8, 8, reinterpret_cast<const char*>(&hash), 8);
+  std::ofstream(p, std::ios::binary | std::ios::trunc) << bytes;
+  try {
+    read_checkpoint(p, "identity");
+    FAIL() << "a 65536x65536 checkpoint of " << bytes.size() << " bytes was read";
+  } catch (const giq::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("size does not match a 65536x65536 film"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(p);
 }
 
 }  // namespace

@@ -122,7 +122,7 @@ class Parser {
         for (const auto& [metric, b] : object(v, f).items()) {
           Bound bound = this->bound(metric, b, f + "." + metric);
           auto it = std::find_if(c.bounds.begin(), c.bounds.end(),
-                                 [&](const Bound& x) { return x.metric == metric; });
+                                 [&](const Bound& x) { return x.metric == bound.metric; });
           if (it != c.bounds.end())
             *it = bound;
           else

@@ -16,6 +16,8 @@
 
 #include <algorithm>
 #include <exception>
+#include <fstream>
+#include <map>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -103,6 +105,76 @@ void check_declared_sizes(const fs::path& path, const Imf::MultiPartInputFile& f
   check_file_can_hold(path, "dataWindow", least_file_bytes, "the " + declared + " it declares");
 }
 
+// The header against the file, before OpenEXR reads it. The library sizes a string or an
+// opaque attribute by what the file declares and fills it afterwards (an 800-byte file
+// declaring a 2 GB attribute costs seconds and gigabytes before it fails), a preview attribute
+// declares its own width and height, and typed attributes (a channel list, an int) are read by
+// their own layout, not by the size the file gives them, so a size that disagrees shifts
+// everything after it. Each attribute's value must therefore fit in the file and fill exactly
+// its declared size. Layout (OpenEXR file layout, "Header"): magic, version with flags, then per
+// part attributes (name\0 type\0 int32 size, value), each header ended by an empty name, a
+// multi-part file's list of headers by an empty header.
+void check_header(const fs::path& path) {
+  std::error_code ec;
+  const uint64_t file_size = fs::file_size(path, ec);
+  std::ifstream in(path, std::ios::binary);
+  if (!in || ec) return;  // the library reports what it cannot open
+  std::string field = "header";
+  auto fail = [&](const std::string& message) { throw InputError(path.string(), field, message); };
+  auto int32 = [&] {
+    unsigned char b[4];
+    if (!in.read(reinterpret_cast<char*>(b), 4)) fail("ends early; the file is truncated");
+    return int32_t(uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24);
+  };
+  auto text = [&](const char* what) {
+    std::string t;
+    for (char c; in.get(c) && c != '\0';)
+      if ((t += c).size() > 255) fail(std::string("an attribute ") + what + " is longer than 255 bytes");
+    if (!in) fail("ends early; the file is truncated");
+    return t;
+  };
+  // Types whose value has one fixed size (OpenEXR's standard attribute types).
+  static const std::map<std::string, int32_t> fixed = {
+      {"int", 4},          {"float", 4},     {"double", 8},     {"box2i", 16},       {"box2f", 16},
+      {"v2i", 8},          {"v2f", 8},       {"v2d", 16},       {"v3i", 12},         {"v3f", 12},
+      {"v3d", 24},         {"m33f", 36},     {"m33d", 72},      {"m44f", 64},        {"m44d", 128},
+      {"compression", 1},  {"lineOrder", 1}, {"envmap", 1},     {"deepImageState", 1}, {"chromaticities", 32},
+      {"keycode", 28},     {"timecode", 8},  {"rational", 8},   {"tiledesc", 9}};
+  (void)int32();  // magic: read_image checked it
+  const bool multipart = (uint32_t(int32()) & 0x1000u) != 0;
+  for (int part = 0;; ++part) {
+    if (multipart && part > 0 && in.peek() == 0) return;  // the empty header ending the list
+    for (std::string name = text("name"); !name.empty(); name = text("name")) {
+      field = (multipart ? "part " + std::to_string(part) + " " : "") + "attribute '" + name + "'";
+      const std::string type = text("type");
+      const int32_t size = int32();
+      const uint64_t start = uint64_t(in.tellg()), left = file_size - start;
+      if (size < 0 || uint64_t(size) > left)
+        fail("declares " + std::to_string(size) + " bytes; the file has " + std::to_string(left) + " left");
+      const uint64_t end = start + uint64_t(size);
+      if (auto f = fixed.find(type); f != fixed.end() && f->second != size) {
+        fail("is a " + type + " of " + std::to_string(size) + " bytes; expected " + std::to_string(f->second));
+      } else if (type == "chlist") {  // entries (name\0, 16 bytes) up to an empty name
+        for (std::string channel = text("channel name"); !channel.empty(); channel = text("channel name"))
+          in.seekg(16, std::ios::cur);
+        if (uint64_t(in.tellg()) != end) fail("its channel list does not fill its " + std::to_string(size) + " bytes");
+      } else if (type == "preview" && (size < 8 || 8 + 4 * int64_t(uint32_t(int32())) * int64_t(uint32_t(int32())) != size)) {
+        fail("its preview image does not fill its " + std::to_string(size) + " bytes");
+      } else if (type == "stringvector") {  // int32 length, then the bytes, to the end
+        while (uint64_t(in.tellg()) < end) {
+          const int32_t n = int32();
+          if (n < 0 || uint64_t(in.tellg()) + uint64_t(n) > end)
+            fail("holds a string of " + std::to_string(n) + " bytes beyond its " + std::to_string(size));
+          in.seekg(n, std::ios::cur);
+        }
+      }
+      in.seekg(std::streamoff(end));
+      if (!in) fail("ends early; the file is truncated");
+    }
+    if (!multipart) return;
+  }
+}
+
 }  // namespace
 
 void write_exr(const Image& image, const fs::path& path, const ExrOptions& options) {
@@ -156,6 +228,7 @@ void write_exr(const Image& image, const fs::path& path, const ExrOptions& optio
 Image read_exr(const fs::path& path) {
   enable_threads();
   try {
+    check_header(path);
     Imf::MultiPartInputFile file(path.c_str());
     check_declared_sizes(path, file);
     Image image;

@@ -4,7 +4,7 @@
 // same bits as an uninterrupted one.
 //
 // Format (native byte order; a checkpoint is resumed on the machine that wrote it): the magic
-// "giq-checkpoint 1\n", the identity string (scene hash, view, frame and every setting that
+// "giq-checkpoint 2\n", the identity string (scene hash, view, frame and every setting that
 // changes the image), elapsed seconds, width, height, the pixel accumulators and first-hit
 // layers as stored in memory, and a 64-bit FNV-1a hash of everything before it, so a torn
 // or corrupt file is detected rather than resumed.
