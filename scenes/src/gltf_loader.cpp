@@ -186,6 +186,16 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
     for (size_t i = 0; i < n; ++i) idx.push_back(uint32_t(i));
   }
   out.triangles = triangulate(ctx, p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode, idx, w, p.indices >= 0 ? ".indices" : ".attributes.POSITION");
+  // A triangle with two equal corners (the same index, or bit-identical positions) has no
+  // area under any transform, since equal inputs transform to equal outputs: dropped here
+  // once, not per instance and per frame (a few sparse bytes can declare a million of them).
+  std::erase_if(out.triangles, [&](const glm::uvec3& t) {
+    const glm::vec3 &a = out.positions[t.x], &b = out.positions[t.y], &c = out.positions[t.z];
+    const bool collapsed = t.x == t.y || t.y == t.z || t.x == t.z || a == b || b == c || a == c;
+    out.collapsed_triangles += collapsed;
+    return collapsed;
+  });
+  if (out.triangles.empty()) out.positions.clear(), out.normals.clear(), out.tangents.clear(), out.uvs.clear();
   if (p.material >= 0) {
     if (size_t(p.material) >= ctx.model.materials.size())
       ctx.fail(w + ".material", "is " + std::to_string(p.material) + "; the file has " + std::to_string(ctx.model.materials.size()) + " materials");

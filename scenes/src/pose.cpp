@@ -38,6 +38,11 @@ std::string node_label(const SceneSource& src, int i) {
 }
 
 void emit_mesh(const PrimitiveSource& p, const glm::dmat4& M, glm::dvec3 origin, Mesh& m, size_t& dropped) {
+  dropped += p.collapsed_triangles;
+  if (p.triangles.empty()) {
+    m.positions.clear(), m.normals.clear(), m.tangents.clear(), m.uvs.clear(), m.triangles.clear();
+    return;
+  }
   const glm::dmat3 L(M);
   const double det = glm::determinant(L);
   // Normals transform by the inverse transpose; the cofactor matrix equals det * L^-T and
@@ -125,13 +130,15 @@ void emit_mesh(const PrimitiveSource& p, const glm::dmat4& M, glm::dvec3 origin,
 }  // namespace
 
 void check_instanced_size(const SceneSource& src) {
-  // Instancing multiplies geometry: a small file can name a mesh from many nodes. 2^27
-  // triangles (several GiB posed) is far beyond what giq renders, so it is refused up front.
-  constexpr size_t kMaxTriangles = size_t(1) << 27;
+  // Instancing multiplies geometry: a small file can name a mesh from many nodes. 2^25
+  // triangles (about 5 GiB posed, and seconds of posing even when every one is degenerate) is
+  // beyond what giq renders, so it is refused up front.
+  constexpr size_t kMaxTriangles = size_t(1) << 25;
   size_t instanced = 0;
   for (int i : preorder(src)) {
     if (src.nodes[size_t(i)].mesh < 0) continue;
-    for (const auto& p : src.meshes[size_t(src.nodes[size_t(i)].mesh)]) instanced += p.triangles.size();
+    for (const auto& p : src.meshes[size_t(src.nodes[size_t(i)].mesh)])
+      instanced += p.triangles.size() + p.collapsed_triangles;
     if (instanced > kMaxTriangles)
       throw InputError(src.file, "nodes[" + std::to_string(i) + "].mesh", "the scene instances more than " + std::to_string(kMaxTriangles) + " triangles; too large");
   }

@@ -23,7 +23,8 @@ glm::vec3 mean_emission(const Mesh& m, const glm::uvec3& t, const Texture& tex, 
   const glm::vec2 a = m.uvs[t.x], b = m.uvs[t.y], c = m.uvs[t.z];
   const glm::vec2 size(float(tex.width), float(tex.height));
   const float edge = std::max({glm::length((b - a) * size), glm::length((c - b) * size), glm::length((a - c) * size)});
-  const int k = 2 * std::clamp(int(std::ceil(0.5f * (std::isfinite(edge) ? edge : 1.0f))), 1, max_half_k);
+  // Clamped as a float: a huge UV edge would overflow the conversion to int.
+  const int k = 2 * int(std::clamp(std::ceil(0.5f * (std::isfinite(edge) ? edge : 1.0f)), 1.0f, float(max_half_k)));
   glm::dvec3 sum(0.0);
   int count = 0;
   // Sub-triangles of a k-subdivision: "upward" (i, j) and "downward" ones, in barycentric

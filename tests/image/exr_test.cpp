@@ -2,6 +2,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
+#include <ImfPreviewImage.h>
 #include <ImfStringAttribute.h>
 #include <gtest/gtest.h>
 #include <half.h>
@@ -324,4 +325,28 @@ TEST(Exr, HeaderAttributesMustFitTheFileAndFillTheirSize) {
   EXPECT_NE(e3.find("attribute 'lineOrder': is a lineOrder of 2 bytes; expected 1"), std::string::npos) << e3;
   // The untouched file still reads.
   EXPECT_EQ(giq::image::read_image(d / "ok.exr").metadata.at("giq:view"), "front");
+
+  // A preview declaring 2^32-1 x 2^32-1 pixels in its 24 bytes (found by the exr fuzzer: the
+  // check itself overflowed 64-bit integers).
+  {
+    Imf::Header header(2, 2);
+    header.channels().insert("R", Imf::Channel(Imf::FLOAT));
+    header.setPreviewImage(Imf::PreviewImage(2, 2));
+    std::vector<float> r(4, 1.0f);
+    Imf::FrameBuffer fb;
+    fb.insert("R", Imf::Slice(Imf::FLOAT, (char*)r.data(), sizeof(float), 2 * sizeof(float)));
+    Imf::OutputFile out((d / "preview.exr").c_str(), header);
+    out.setFrameBuffer(fb);
+    out.writePixels(2);
+  }
+  std::ifstream pin(d / "preview.exr", std::ios::binary);
+  std::string preview((std::istreambuf_iterator<char>(pin)), {});
+  const std::string tag = std::string("preview\0preview\0", 16);
+  const size_t pv = preview.find(tag);
+  ASSERT_NE(pv, std::string::npos);
+  EXPECT_EQ(giq::image::read_image(d / "preview.exr").width(), 2);
+  set_int32(preview, pv + tag.size() + 4, -1);
+  set_int32(preview, pv + tag.size() + 8, -1);
+  const std::string e4 = error_of(preview, "preview_huge.exr");
+  EXPECT_NE(e4.find("attribute 'preview': its preview image does not fill its 24 bytes"), std::string::npos) << e4;
 }

@@ -158,7 +158,7 @@ void check_header(const fs::path& path) {
         for (std::string channel = text("channel name"); !channel.empty(); channel = text("channel name"))
           in.seekg(16, std::ios::cur);
         if (uint64_t(in.tellg()) != end) fail("its channel list does not fill its " + std::to_string(size) + " bytes");
-      } else if (type == "preview" && (size < 8 || 8 + 4 * int64_t(uint32_t(int32())) * int64_t(uint32_t(int32())) != size)) {
+      } else if (type == "preview" && (size < 8 || 8.0 + 4.0 * double(uint32_t(int32())) * double(uint32_t(int32())) != size)) {
         fail("its preview image does not fill its " + std::to_string(size) + " bytes");
       } else if (type == "stringvector") {  // int32 length, then the bytes, to the end
         while (uint64_t(in.tellg()) < end) {

@@ -421,7 +421,7 @@ def hostile():
         d["nodes"] = [{"mesh": 0} for _ in range(400)]
         d["scenes"] = [{"nodes": list(range(400))}]
     per_node = ((1 << 20) - 1) // 3
-    case("instancing_bomb.gltf", "nodes[%d].mesh" % ((1 << 27) // per_node), minimal(a=instancing_bomb))
+    case("instancing_bomb.gltf", "nodes[%d].mesh" % ((1 << 25) // per_node), minimal(a=instancing_bomb))
     case("wrong_component_type.gltf", "accessors[0].componentType", minimal(a=setp(("accessors", 0, "componentType"), USHORT)))
     case("wrong_type.gltf", "accessors[0].type", minimal(a=setp(("accessors", 0, "type"), "VEC2")))
     case("index_wrong_type.gltf", "accessors[1].componentType", minimal(a=setp(("accessors", 1, "componentType"), FLOAT)))
