@@ -5,37 +5,20 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include "support/scratch.h"
 
 namespace fs = std::filesystem;
 
-namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("giq_atomic_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-}  // namespace
-
 TEST(AtomicFile, WritesContent) {
-  fs::path d = fresh_dir("writes");
+  fs::path d = giq::test::fresh_dir("atomic_writes");
   giq::write_file_atomically(d / "a.txt", "hello");
-  EXPECT_EQ(slurp(d / "a.txt"), "hello");
+  EXPECT_EQ(giq::test::slurp(d / "a.txt"), "hello");
   // Exactly one file: no temporary left behind.
   EXPECT_EQ(std::distance(fs::directory_iterator(d), fs::directory_iterator{}), 1);
 }
 
 TEST(AtomicFile, ThrowingWriterLeavesOldFileAndNoTemporary) {
-  fs::path d = fresh_dir("throws");
+  fs::path d = giq::test::fresh_dir("atomic_throws");
   giq::write_file_atomically(d / "a.txt", "old");
   EXPECT_THROW(giq::write_atomically(d / "a.txt",
                                      [](const fs::path& tmp) {
@@ -43,12 +26,12 @@ TEST(AtomicFile, ThrowingWriterLeavesOldFileAndNoTemporary) {
                                        throw std::runtime_error("writer died");
                                      }),
                std::runtime_error);
-  EXPECT_EQ(slurp(d / "a.txt"), "old");
+  EXPECT_EQ(giq::test::slurp(d / "a.txt"), "old");
   EXPECT_EQ(std::distance(fs::directory_iterator(d), fs::directory_iterator{}), 1);
 }
 
 TEST(AtomicFile, ThrowingWriterCreatesNothing) {
-  fs::path d = fresh_dir("nothing");
+  fs::path d = giq::test::fresh_dir("atomic_nothing");
   EXPECT_THROW(giq::write_atomically(d / "new.exr",
                                      [](const fs::path& tmp) {
                                        std::ofstream(tmp) << "partial";
@@ -60,7 +43,7 @@ TEST(AtomicFile, ThrowingWriterCreatesNothing) {
 }
 
 TEST(AtomicFile, CreatesParentDirectories) {
-  fs::path d = fresh_dir("parents");
+  fs::path d = giq::test::fresh_dir("atomic_parents");
   giq::write_file_atomically(d / "x" / "y" / "z.txt", "deep");
-  EXPECT_EQ(slurp(d / "x" / "y" / "z.txt"), "deep");
+  EXPECT_EQ(giq::test::slurp(d / "x" / "y" / "z.txt"), "deep");
 }

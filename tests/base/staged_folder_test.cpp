@@ -1,32 +1,17 @@
 #include "giq/base/staged_folder.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <fstream>
 #include <set>
-#include <sstream>
 
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
+#include "support/scratch.h"
 
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("giq_staged_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::set<std::string> listing(const fs::path& d) {
   std::set<std::string> names;
@@ -45,9 +30,10 @@ void previous_run(const fs::path& d) {
 }  // namespace
 
 TEST(StagedFolder, PublishReplacesThePreviousRunAsAWhole) {
-  const fs::path d = fresh_dir("publish");
+  const fs::path d = giq::test::fresh_dir("staged_publish");
   previous_run(d);
-  giq::write_file_atomically(d.parent_path() / "outside.txt", "not giq's to remove");
+  const fs::path outside = d.parent_path() / (d.filename().string() + "_outside.txt");
+  giq::write_file_atomically(outside, "not giq's to remove");
   {
     giq::StagedFolder folder(d, "manifest.json");
     EXPECT_EQ(folder.staging().parent_path(), d);
@@ -55,21 +41,21 @@ TEST(StagedFolder, PublishReplacesThePreviousRunAsAWhole) {
     giq::write_file_atomically(folder.staging() / "b.png", "new b");
     giq::write_file_atomically(folder.staging() / "manifest.json", "new manifest");
     // Nothing of the new run is visible before publishing.
-    EXPECT_EQ(slurp(d / "manifest.json"), "old manifest");
-    EXPECT_EQ(slurp(d / "a.exr"), "old a");
+    EXPECT_EQ(giq::test::slurp(d / "manifest.json"), "old manifest");
+    EXPECT_EQ(giq::test::slurp(d / "a.exr"), "old a");
     // A hostile previous manifest cannot make publish remove anything outside the folder.
-    folder.publish({"a.exr", "old_only.png", "../outside.txt", "/etc/hostname", ".."});
+    folder.publish({"a.exr", "old_only.png", "../" + outside.filename().string(), "/etc/hostname", ".."});
   }
   EXPECT_EQ(listing(d), (std::set<std::string>{"manifest.json", "a.exr", "b.png", "notes.txt"}));
-  EXPECT_EQ(slurp(d / "manifest.json"), "new manifest");
-  EXPECT_EQ(slurp(d / "a.exr"), "new a");
-  EXPECT_EQ(slurp(d / "notes.txt"), "the user's");
-  EXPECT_TRUE(fs::exists(d.parent_path() / "outside.txt"));
-  fs::remove(d.parent_path() / "outside.txt");
+  EXPECT_EQ(giq::test::slurp(d / "manifest.json"), "new manifest");
+  EXPECT_EQ(giq::test::slurp(d / "a.exr"), "new a");
+  EXPECT_EQ(giq::test::slurp(d / "notes.txt"), "the user's");
+  EXPECT_TRUE(fs::exists(outside));
+  fs::remove(outside);
 }
 
 TEST(StagedFolder, ARunThatFailsLeavesThePreviousRunUntouched) {
-  const fs::path d = fresh_dir("fails");
+  const fs::path d = giq::test::fresh_dir("staged_fails");
   previous_run(d);
   const std::set<std::string> before = listing(d);
   try {
@@ -79,12 +65,12 @@ TEST(StagedFolder, ARunThatFailsLeavesThePreviousRunUntouched) {
   } catch (const giq::InputError&) {
   }
   EXPECT_EQ(listing(d), before);
-  EXPECT_EQ(slurp(d / "a.exr"), "old a");
-  EXPECT_EQ(slurp(d / "manifest.json"), "old manifest");
+  EXPECT_EQ(giq::test::slurp(d / "a.exr"), "old a");
+  EXPECT_EQ(giq::test::slurp(d / "manifest.json"), "old manifest");
 }
 
 TEST(StagedFolder, ASecondWriterIsRefusedUntilTheFirstEnds) {
-  const fs::path d = fresh_dir("lock");
+  const fs::path d = giq::test::fresh_dir("staged_lock");
   {
     giq::StagedFolder first(d, "manifest.json");
     try {
@@ -101,7 +87,7 @@ TEST(StagedFolder, ASecondWriterIsRefusedUntilTheFirstEnds) {
 }
 
 TEST(StagedFolder, StagingLeftByAKilledRunIsRemoved) {
-  const fs::path d = fresh_dir("killed");
+  const fs::path d = giq::test::fresh_dir("staged_killed");
   fs::create_directories(d / ".giq-staging-999999");
   giq::write_file_atomically(d / ".giq-staging-999999" / "a.exr", "half");
   {
@@ -113,8 +99,8 @@ TEST(StagedFolder, StagingLeftByAKilledRunIsRemoved) {
 }
 
 TEST(StagedFolder, AFileWhereTheFolderShouldBeIsAnInputError) {
-  const fs::path d = fresh_dir("file");
+  const fs::path d = giq::test::fresh_dir("staged_file");
   giq::write_file_atomically(d / "out", "a file");
   EXPECT_THROW(giq::StagedFolder(d / "out", "manifest.json"), giq::InputError);
-  EXPECT_EQ(slurp(d / "out"), "a file");
+  EXPECT_EQ(giq::test::slurp(d / "out"), "a file");
 }
