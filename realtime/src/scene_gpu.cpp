@@ -210,12 +210,13 @@ bool SceneGpu::upload_lights(const scenes::Scene& scene) {
   light_count_ = uint32_t(lights.size());
   static_assert(sizeof(GpuLight) % sizeof(glm::vec4) == 0);
   const size_t bytes = lights.size() * sizeof(GpuLight);
+  // (memcmp and memcpy only with bytes: a scene without punctual lights has null data pointers.)
   if (lights_ && bytes == lights_host_.size() * sizeof(glm::vec4) &&
-      std::memcmp(lights.data(), lights_host_.data(), bytes) == 0)
+      (bytes == 0 || std::memcmp(lights.data(), lights_host_.data(), bytes) == 0))
     return false;
   lights_ = Buffer::storage(*ctx_, lights);
   lights_host_.resize(bytes / sizeof(glm::vec4));
-  std::memcpy(lights_host_.data(), lights.data(), bytes);
+  if (bytes) std::memcpy(lights_host_.data(), lights.data(), bytes);
   return true;
 }
 
