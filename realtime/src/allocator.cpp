@@ -122,14 +122,16 @@ Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsag
   ai.memoryTypeIndex = type;
   // Running out of GPU memory is the size of the request (resolution, technique parameters,
   // scene), not a fault of giq: an input error that says what was asked for.
-  auto mib = [](uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; };
   const uint64_t heap = props_.memoryHeaps[props_.memoryTypes[type].heapIndex].size;
-  const std::string asked = "a resource of " + mib(req.size) + " with " + mib(bytes_in_use()) + " in use, on a memory heap of " +
-                            mib(heap) + "; lower --width/--height or the technique's resolution parameters";
-  if (req.size > heap) throw InputError("", "GPU memory", "the render needs " + asked);
+  auto asked = [&] {
+    auto mib = [](uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; };
+    return "a resource of " + mib(req.size) + " with " + mib(bytes_in_use()) + " in use, on a memory heap of " +
+           mib(heap) + "; lower --width/--height or the technique's resolution parameters";
+  };
+  if (req.size > heap) throw InputError("", "GPU memory", "the render needs " + asked());
   const VkResult r = vkAllocateMemory(device_, &ai, nullptr, &b.memory);
   if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
-    throw InputError("", "GPU memory", std::string(vk_result_name(r)) + " allocating " + asked);
+    throw InputError("", "GPU memory", std::string(vk_result_name(r)) + " allocating " + asked());
   vk_check(r, "vkAllocateMemory");
   // Every host-visible block is mapped once: pools are keyed by memory type, so on a device
   // whose only type is both device-local and host-visible (lavapipe) staging and device

@@ -38,11 +38,9 @@ std::string node_label(const SceneSource& src, int i) {
 }
 
 void emit_mesh(const PrimitiveSource& p, const glm::dmat4& M, glm::dvec3 origin, Mesh& m, size_t& dropped) {
+  m.positions.clear(), m.normals.clear(), m.tangents.clear(), m.uvs.clear(), m.triangles.clear();
   dropped += p.collapsed_triangles;
-  if (p.triangles.empty()) {
-    m.positions.clear(), m.normals.clear(), m.tangents.clear(), m.uvs.clear(), m.triangles.clear();
-    return;
-  }
+  if (p.triangles.empty()) return;
   const glm::dmat3 L(M);
   const double det = glm::determinant(L);
   // Normals transform by the inverse transpose; the cofactor matrix equals det * L^-T and
@@ -82,7 +80,6 @@ void emit_mesh(const PrimitiveSource& p, const glm::dmat4& M, glm::dvec3 origin,
     return glm::vec4(xyz, t.w < 0.0f ? -float(sign) : float(sign));
   };
 
-  m.positions.clear(), m.normals.clear(), m.tangents.clear(), m.uvs.clear(), m.triangles.clear();
   if (p.normals.empty()) {
     // No normals in the file: flat shading (glTF 2.0 spec, 3.7.2.1: "client implementations
     // MUST calculate flat normals"), which needs each triangle's own vertices.
