@@ -4,6 +4,7 @@
 #include <ImfOutputFile.h>
 #include <ImfPreviewImage.h>
 #include <ImfStringAttribute.h>
+#include <ImfTiledOutputFile.h>
 #include <gtest/gtest.h>
 #include <half.h>
 #include <unistd.h>
@@ -17,6 +18,7 @@
 #include <limits>
 
 #include "giq/base/error.h"
+#include "support/subprocess.h"
 #include "giq/image/io.h"
 
 namespace fs = std::filesystem;
@@ -271,6 +273,46 @@ TEST(Exr, DeclaredSizesAreCheckedBeforeAllocating) {
   for (const char* c : {"R", "G", "B"}) flat.add_channel(c, 0.25f);
   giq::image::write_exr(flat, d / "flat.exr");
   EXPECT_EQ(giq::image::read_image(d / "flat.exr").channel("G")[511 * 512 + 7], 0.25f);
+}
+
+TEST(Exr, DeclaredChunksAreBoundedLikeTheImage) {
+  // OpenEXR reserves two buffers per thread of one chunk each when it opens a file, sized by
+  // the header whatever the image. A 400000-pixel line of three floats in ZIP's 16-line blocks
+  // is 76.8 MB a block, over the 64 MiB allowed, though the image itself is 4.8 MB.
+  fs::path d = fresh_dir("chunks");
+  const std::string wide = read_error(declared_only(d, 400000, 1, Imf::ZIP_COMPRESSION));
+  EXPECT_NE(wide.find("400000 pixels per line in blocks of 16 lines hold more than 64 MiB a block"), std::string::npos) << wide;
+
+  // A tiled 8x4 image, written whole with 64x64 tiles (larger than the image: legal, and read).
+  auto tiled = [&](int tile_x, int tile_y) {
+    const fs::path p = d / ("tiled_" + std::to_string(tile_x) + "x" + std::to_string(tile_y) + ".exr");
+    Imf::Header header(8, 4);
+    header.setTileDescription(Imf::TileDescription(tile_x, tile_y, Imf::ONE_LEVEL));
+    header.channels().insert("G", Imf::Channel(Imf::FLOAT));
+    std::vector<float> g(32, 0.5f);
+    Imf::FrameBuffer fb;
+    fb.insert("G", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(g.data()), sizeof(float), 8 * sizeof(float)));
+    Imf::TiledOutputFile out(p.c_str(), header);
+    out.setFrameBuffer(fb);
+    out.writeTiles(0, out.numXTiles() - 1, 0, out.numYTiles() - 1);
+    return p;
+  };
+  const fs::path ok = tiled(64, 64);
+  EXPECT_EQ(giq::image::read_image(ok).channel("G")[31], 0.5f);
+  // The same file with its tile width patched to 10 million (still one tile across, so the
+  // file stays consistent): a few hundred bytes that made OpenEXR reserve 320 MB a buffer.
+  std::string bytes = giq::test::slurp(ok);
+  const std::string key("tiles\0tiledesc\0", 15);
+  const size_t at = bytes.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const uint32_t huge = 10'000'000;
+  for (int k = 0; k < 4; ++k) bytes[at + key.size() + 4 + size_t(k)] = char(huge >> (8 * k) & 0xFFu);  // xSize, little-endian, after the size
+  const fs::path patched = d / "tiled_huge.exr";
+  std::ofstream(patched, std::ios::binary) << bytes;
+  const std::string e = read_error(patched);
+  EXPECT_NE(e.find("tiles of 10000000x64 pixels on a 8x4 image; expected tiles no larger than the image (or 64 pixels)"),
+            std::string::npos)
+      << e;
 }
 
 TEST(Exr, HeaderAttributesMustFitTheFileAndFillTheirSize) {

@@ -54,10 +54,14 @@ Imf::Compression to_imf(ExrOptions::Compression c) {
 }
 
 // OpenEXR compresses and decompresses chunks on its own thread pool, which is off (0 threads)
-// unless asked for.
+// unless asked for. It reserves two chunk buffers per thread for every part it opens
+// (check_declared_sizes), so the pool is capped: four threads decode giq's images as fast as
+// the disk delivers them, and what a file can make giq reserve does not grow with the core count.
+constexpr int kExrThreads = 4;
+
 void enable_threads() {
   static std::once_flag once;
-  std::call_once(once, [] { Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency()))); });
+  std::call_once(once, [] { Imf::setGlobalThreadCount(int(std::clamp(std::thread::hardware_concurrency(), 1u, unsigned(kExrThreads)))); });
 }
 
 // The largest ratio of pixel data (as stored: 2 bytes a half, 4 a float or uint) to
@@ -82,6 +86,30 @@ double max_compression_ratio(Imf::Compression c) {
   }
 }
 
+// Scan lines per chunk of each codec (OpenEXR file layout, "Compression"); 256, the most, for
+// one this table does not know.
+int lines_per_chunk(Imf::Compression c) {
+  switch (c) {
+    case Imf::NO_COMPRESSION:
+    case Imf::RLE_COMPRESSION:
+    case Imf::ZIPS_COMPRESSION: return 1;
+    case Imf::ZIP_COMPRESSION:
+    case Imf::PXR24_COMPRESSION: return 16;
+    case Imf::PIZ_COMPRESSION:
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION:
+    case Imf::DWAA_COMPRESSION: return 32;
+    default: return 256;
+  }
+}
+
+// OpenEXR reserves, when it opens a part, two buffers per thread of one chunk each, sized by
+// what the header declares (a block of scan lines, or one tile) however small the image is: a
+// 523-byte file declaring tiles of 10 million by 4 pixels on an 8x4 image made it reserve a
+// gigabyte, and on a many-core machine tens of gigabytes. A chunk may hold at most this many
+// bytes as stored (a 16384-pixel-wide DWAB block of four float channels is exactly this).
+constexpr double kMaxChunkBytes = double(64 << 20);
+
 // Every size the file declares, checked before a pixel is allocated (giq/image/io.h).
 void check_declared_sizes(const fs::path& path, const Imf::MultiPartInputFile& file) {
   int64_t channels = 0;
@@ -95,10 +123,29 @@ void check_declared_sizes(const fs::path& path, const Imf::MultiPartInputFile& f
     if (w <= 0 || hgt <= 0 || w > (1 << 20) || hgt > (1 << 20))
       throw InputError(path.string(), field,
                        "size " + std::to_string(w) + "x" + std::to_string(hgt) + " out of range (1..1048576)");
-    double stored = 0.0;
-    for (auto c = h.channels().begin(); c != h.channels().end(); ++c, ++channels)
-      stored += double(w) * double(hgt) * (c.channel().type == Imf::HALF ? 2.0 : 4.0);
+    double pixel_bytes = 0.0;
+    for (auto c = h.channels().begin(); c != h.channels().end(); ++c, ++channels) pixel_bytes += c.channel().type == Imf::HALF ? 2.0 : 4.0;
+    const double stored = double(w) * double(hgt) * pixel_bytes;
     check_decoded_size(path, field, w, hgt, std::max<int64_t>(channels, 1));
+    if (h.hasTileDescription()) {
+      // A tile larger than the image in a direction is legal but only wastes memory: at most
+      // the data window, or 64 pixels (the smallest common tile side) for a small image.
+      const Imf::TileDescription& t = h.tileDescription();
+      const std::string tw = "part " + std::to_string(part) + ".tiles";
+      if (int64_t(t.xSize) > std::max<int64_t>(w, 64) || int64_t(t.ySize) > std::max<int64_t>(hgt, 64))
+        throw InputError(path.string(), tw,
+                         "tiles of " + std::to_string(t.xSize) + "x" + std::to_string(t.ySize) + " pixels on a " + std::to_string(w) + "x" +
+                             std::to_string(hgt) + " image; expected tiles no larger than the image (or 64 pixels)");
+      if (double(t.xSize) * double(t.ySize) * pixel_bytes > kMaxChunkBytes)
+        throw InputError(path.string(), tw,
+                         "a tile of " + std::to_string(t.xSize) + "x" + std::to_string(t.ySize) + " pixels holds more than " +
+                             std::to_string(int64_t(kMaxChunkBytes) >> 20) + " MiB; expected smaller tiles");
+    } else if (double(w) * lines_per_chunk(h.compression()) * pixel_bytes > kMaxChunkBytes) {
+      throw InputError(path.string(), field,
+                       std::to_string(w) + " pixels per line in blocks of " + std::to_string(lines_per_chunk(h.compression())) +
+                           " lines hold more than " + std::to_string(int64_t(kMaxChunkBytes) >> 20) +
+                           " MiB a block; expected a narrower image or a codec with fewer lines per block");
+    }
     declared = std::to_string(w) + "x" + std::to_string(hgt) + " pixels of " + std::to_string(channels) + " channels";
     if (const double ratio = max_compression_ratio(h.compression()); ratio > 0.0) least_file_bytes += stored / ratio;
   }

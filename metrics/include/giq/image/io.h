@@ -19,7 +19,9 @@ namespace giq::image {
 //     pixels of 4 channels);
 //   - the file can hold the pixel data it declares: the data as stored, divided by the largest
 //     ratio its codec can reach (deflate's 1032:1 for ZIP and PNG, 1 for uncompressed...),
-//     fits in the file's size.
+//     fits in the file's size;
+//   - EXR: one chunk (a codec's block of scan lines, or a tile) holds at most 64 MiB, and no
+//     tile is larger than the image (or 64 pixels): OpenEXR reserves chunk buffers per thread.
 inline constexpr uint64_t kMaxImageBytes = uint64_t(4) << 30;
 
 struct ExrOptions {
