@@ -12,6 +12,17 @@ void Context::fail(const std::string& field, const std::string& message) const {
   throw InputError(file, field, message);
 }
 
+void Context::warn(const std::string& kind, const std::string& message) const {
+  for (size_t i = 0; i < warning_kinds_.size(); ++i) {
+    Kind& k = warning_kinds_[i];
+    if (k.kind != kind) continue;
+    warnings[i] = k.message + " (" + std::to_string(++k.count) + " times in the file)";
+    return;
+  }
+  warning_kinds_.push_back({kind, message, 1});
+  warnings.push_back(message);
+}
+
 std::string index_path(const std::string& array, size_t i) { return array + "[" + std::to_string(i) + "]"; }
 
 namespace {
@@ -142,7 +153,8 @@ AccessorData read_accessor(const Context& ctx, int index, const std::string& fie
   const bool accepted = (is_float && rule.float_components && !a.normalized) ||
                         (small_uint && a.normalized && rule.normalized_unsigned) ||
                         (small_sint && a.normalized && rule.normalized_signed) ||
-                        (is_uint && !a.normalized && rule.unsigned_integers);
+                        (is_uint && !a.normalized && rule.unsigned_integers) ||
+                        ((small_uint || small_sint) && !a.normalized && rule.small_integers);
   if (!accepted) {
     std::string allowed;
     auto add = [&](const char* s) { allowed += std::string(allowed.empty() ? "" : ", ") + s; };
@@ -150,6 +162,7 @@ AccessorData read_accessor(const Context& ctx, int index, const std::string& fie
     if (rule.normalized_unsigned) add("normalized UNSIGNED_BYTE/UNSIGNED_SHORT");
     if (rule.normalized_signed) add("normalized BYTE/SHORT");
     if (rule.unsigned_integers) add("UNSIGNED_BYTE/UNSIGNED_SHORT/UNSIGNED_INT");
+    if (rule.small_integers) add("BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT");
     ctx.fail(where + ".componentType", "is " + std::string(a.normalized ? "normalized " : "") + component_name(ct) + "; " + field + " needs " + allowed);
   }
   const int comps = component_count(a.type);

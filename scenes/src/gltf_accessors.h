@@ -11,12 +11,26 @@
 namespace giq::scenes::gltf {
 
 struct Context {
+  Context(const std::string& file_, const tinygltf::Model& model_) : file(file_), model(model_) {}
   const std::string& file;
   const tinygltf::Model& model;
   // Values read so far over all accessors: primitives may share accessors, so a small file
   // can ask for the same large data many times; the total is bounded (read_accessor).
   mutable size_t values_read = 0;
+  // What was loaded but dropped or approximated: one line per kind, however often it occurs
+  // (Scene::warnings).
+  mutable std::vector<std::string> warnings;
   [[noreturn]] void fail(const std::string& field, const std::string& message) const;
+  // Adds a warning of kind `kind`: the first one keeps `message`; later ones of the same kind
+  // only count, and the line says how many there were.
+  void warn(const std::string& kind, const std::string& message) const;
+
+ private:
+  struct Kind {
+    std::string kind, message;
+    size_t count;
+  };
+  mutable std::vector<Kind> warning_kinds_;  // in the order of `warnings`
 };
 
 std::string index_path(const std::string& array, size_t i);  // "accessors[3]"
@@ -28,6 +42,7 @@ struct AccessorRule {
   bool normalized_unsigned = false;  // normalized UNSIGNED_BYTE/UNSIGNED_SHORT
   bool normalized_signed = false;    // normalized BYTE/SHORT
   bool unsigned_integers = false;    // UNSIGNED_BYTE/SHORT/INT, not normalized (indices)
+  bool small_integers = false;       // BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT, not normalized
 };
 
 struct AccessorData {

@@ -17,10 +17,40 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// Extensions giq implements; anything else in extensionsRequired changes the image in a way
-// giq would silently get wrong, so it is refused (glTF 2.0 spec, 3.12 "Specifying Extensions").
-constexpr const char* kSupportedRequired[] = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                              "KHR_materials_specular"};
+// Extensions giq implements. Anything else in extensionsRequired changes the image in a way
+// giq would get wrong, so it is refused (glTF 2.0 spec, 3.12 "Specifying Extensions"); anything
+// else in extensionsUsed alone is ignored, as the specification allows, with a warning that
+// says what is then approximated.
+constexpr const char* kImplemented[] = {"KHR_lights_punctual",     "KHR_materials_emissive_strength", "KHR_materials_specular",
+                                        "KHR_materials_ior",       "KHR_materials_unlit",             "KHR_texture_transform",
+                                        "KHR_mesh_quantization",   "EXT_mesh_gpu_instancing"};
+
+// What ignoring an optional extension means for the image ("" = nothing visible: metadata).
+struct Ignored {
+  const char* name;
+  const char* effect;
+};
+constexpr Ignored kIgnored[] = {
+    {"KHR_materials_transmission", "transmissive surfaces render opaque"},
+    {"KHR_materials_diffuse_transmission", "surfaces transmit no diffuse light"},
+    {"KHR_materials_volume", "volumes absorb and scatter nothing"},
+    {"KHR_materials_clearcoat", "materials have no clear-coat layer"},
+    {"KHR_materials_sheen", "materials have no sheen lobe"},
+    {"KHR_materials_iridescence", "materials have no thin-film iridescence"},
+    {"KHR_materials_anisotropy", "specular highlights are isotropic"},
+    {"KHR_materials_dispersion", "refraction has no dispersion"},
+    {"KHR_materials_pbrSpecularGlossiness", "materials render with their metallic-roughness parameters"},
+    {"KHR_materials_variants", "every primitive keeps its default material"},
+    {"KHR_animation_pointer", "only node transforms animate"},
+    {"KHR_texture_basisu", "textures use their core PNG or JPEG image"},
+    {"EXT_texture_webp", "textures use their core PNG or JPEG image"},
+    {"EXT_texture_avif", "textures use their core PNG or JPEG image"},
+    {"MSFT_texture_dds", "textures use their core PNG or JPEG image"},
+    {"KHR_draco_mesh_compression", "the uncompressed fallback geometry is read"},
+    {"EXT_meshopt_compression", "the uncompressed fallback geometry is read"},
+    {"KHR_xmp_json_ld", ""},
+    {"KHR_xmp", ""},
+};
 
 // The data-URI prefixes tinygltf 2.7 decodes (tiny_gltf.h, IsDataURI); anything else would be
 // taken for a file name.
@@ -213,17 +243,37 @@ std::string resolve_uri(Document& d, const std::string& uri, const std::string& 
   return target.string();
 }
 
-void check_extensions(const Document& d) {
-  const json* req = member(d.json, "extensionsRequired");
-  if (!req) return;
-  if (!req->is_array()) throw InputError(d.file, "extensionsRequired", "must be an array of strings");
-  for (size_t i = 0; i < req->size(); ++i) {
-    const std::string field = "extensionsRequired[" + std::to_string(i) + "]";
-    if (!(*req)[i].is_string()) throw InputError(d.file, field, "must be a string");
-    const std::string name = (*req)[i].get<std::string>();
-    if (std::none_of(std::begin(kSupportedRequired), std::end(kSupportedRequired), [&](const char* s) { return name == s; }))
-      throw InputError(d.file, field, "extension '" + name + "' is required by the file but not supported; supported: "
-                                      "KHR_lights_punctual, KHR_materials_emissive_strength, KHR_materials_specular");
+std::vector<std::string> string_array(const Document& d, const char* key) {
+  std::vector<std::string> out;
+  const json* a = member(d.json, key);
+  if (!a) return out;
+  if (!a->is_array()) throw InputError(d.file, key, "must be an array of strings");
+  for (size_t i = 0; i < a->size(); ++i) {
+    if (!(*a)[i].is_string()) throw InputError(d.file, std::string(key) + "[" + std::to_string(i) + "]", "must be a string");
+    out.push_back((*a)[i].get<std::string>());
+  }
+  return out;
+}
+
+void check_extensions(Document& d) {
+  auto implemented = [](const std::string& name) {
+    return std::any_of(std::begin(kImplemented), std::end(kImplemented), [&](const char* s) { return name == s; });
+  };
+  const std::vector<std::string> required = string_array(d, "extensionsRequired");
+  for (size_t i = 0; i < required.size(); ++i)
+    if (!implemented(required[i])) {
+      std::string list;
+      for (const char* s : kImplemented) list += (list.empty() ? "" : ", ") + std::string(s);
+      throw InputError(d.file, "extensionsRequired[" + std::to_string(i) + "]",
+                       "extension '" + required[i] + "' is required by the file but not supported; supported: " + list);
+    }
+  for (const std::string& name : string_array(d, "extensionsUsed")) {
+    if (implemented(name)) continue;
+    const auto known = std::find_if(std::begin(kIgnored), std::end(kIgnored), [&](const Ignored& k) { return name == k.name; });
+    if (known == std::end(kIgnored))
+      d.warnings.push_back("extensionsUsed: " + name + " is not implemented and was ignored; whatever it adds is not rendered");
+    else if (*known->effect)
+      d.warnings.push_back("extensionsUsed: " + name + " is not implemented and was ignored: " + known->effect);
   }
 }
 

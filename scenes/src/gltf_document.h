@@ -28,6 +28,8 @@ struct Document {
   // Encoded image bytes by images[] index, handed over by tinygltf's image callback and
   // decoded later, once per colour space (see gltf_materials.cpp).
   std::vector<std::vector<unsigned char>> encoded_images;
+  // Optional extensions the file uses that giq ignores, with what that approximates.
+  std::vector<std::string> warnings;
 };
 
 // Reads `path`, checks the container, the JSON and every buffer and image URI, and computes

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <cstdint>
+#include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 
 #include "giq/base/error.h"
@@ -21,6 +23,42 @@ namespace {
 
 bool finite_all(const std::vector<double>& v) {
   return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+}
+
+// EXT_mesh_gpu_instancing: the node's mesh drawn once per instance, each placed by its own
+// translation, rotation and scale in the node's frame (instance = node world x T x R x S).
+void load_instances(const Context& ctx, const tinygltf::Value& e, const std::string& w, NodeSource& n) {
+  const std::string ew = w + ".extensions.EXT_mesh_gpu_instancing";
+  if (!e.IsObject() || !e.Has("attributes") || !e.Get("attributes").IsObject()) ctx.fail(ew + ".attributes", "missing or not an object");
+  const auto& attrs = e.Get("attributes");
+  auto read = [&](const char* name, const AccessorRule& rule, size_t& count) -> AccessorData {
+    if (!attrs.Has(name)) return {};
+    const auto& a = attrs.Get(name);
+    if (!a.IsInt()) ctx.fail(ew + ".attributes." + name, "must be an accessor index");
+    AccessorData d = read_accessor(ctx, a.GetNumberAsInt(), ew + ".attributes." + name, rule);
+    if (count != SIZE_MAX && d.count != count)
+      ctx.fail(ew + ".attributes." + name, "has " + std::to_string(d.count) + " elements; the other instance attributes have " + std::to_string(count));
+    count = d.count;
+    return d;
+  };
+  size_t count = SIZE_MAX;
+  const AccessorData t = read("TRANSLATION", {{TINYGLTF_TYPE_VEC3}}, count);
+  const AccessorData r = read("ROTATION", {{TINYGLTF_TYPE_VEC4}, true, false, true}, count);
+  const AccessorData s = read("SCALE", {{TINYGLTF_TYPE_VEC3}}, count);
+  if (count == SIZE_MAX) ctx.fail(ew + ".attributes", "has none of TRANSLATION, ROTATION and SCALE");
+  n.instances.reserve(count);
+  for (size_t i = 0; i < count; ++i) {
+    glm::dmat4 m(1.0);
+    if (t.count) m = glm::translate(m, glm::dvec3(t.values[3 * i], t.values[3 * i + 1], t.values[3 * i + 2]));
+    if (r.count) {
+      const glm::dquat q(r.values[4 * i + 3], r.values[4 * i], r.values[4 * i + 1], r.values[4 * i + 2]);
+      const double len = glm::length(q);
+      if (!(len > 0.5 && len < 1.5)) ctx.fail(ew + ".attributes.ROTATION", "element " + std::to_string(i) + " has length " + std::to_string(len) + "; expected a unit quaternion");
+      m *= glm::mat4_cast(q / len);
+    }
+    if (s.count) m = glm::scale(m, glm::dvec3(s.values[3 * i], s.values[3 * i + 1], s.values[3 * i + 2]));
+    n.instances.push_back(m);
+  }
 }
 
 void load_nodes(const Context& ctx, SceneSource& src) {
@@ -65,6 +103,7 @@ void load_nodes(const Context& ctx, SceneSource& src) {
       n.scale = {g.scale[0], g.scale[1], g.scale[2]};
     }
     n.children = g.children;
+    if (auto it = g.extensions.find("EXT_mesh_gpu_instancing"); it != g.extensions.end()) load_instances(ctx, it->second, w, n);
   }
   // glTF 2.0 spec, 3.5.1: the node hierarchy is a set of disjoint trees.
   for (size_t i = 0; i < src.nodes.size(); ++i) {
@@ -133,38 +172,77 @@ std::vector<glm::uvec3> triangulate(const Context& ctx, int mode, const std::vec
       for (size_t i = 0; i + 2 < n; ++i) t.emplace_back(idx[i + 1], idx[i + 2], idx[0]);
       break;
     default:
-      ctx.fail(w + ".mode", "is " + std::to_string(mode) + " (points or lines); only TRIANGLES (4), TRIANGLE_STRIP (5) and TRIANGLE_FAN (6) are supported");
+      ctx.fail(w + ".mode", "is " + std::to_string(mode) + "; expected 0 to 6 (POINTS to TRIANGLE_FAN)");
   }
   return t;
 }
 
-PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p, const std::string& w, std::vector<Material>& materials, int& default_material) {
+bool uses_extension(const Context& ctx, const char* name) {
+  const auto& used = ctx.model.extensionsUsed;
+  return std::find(used.begin(), used.end(), name) != used.end();
+}
+
+PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p, const std::string& w, std::vector<Material>& materials,
+                               const std::vector<UvMapping>& uv_mappings, int& default_material) {
   PrimitiveSource out;
+  const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+  if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
+    ctx.warn("points and lines", w + ".mode: a primitive of points or lines (mode " + std::to_string(mode) +
+                                     ") was dropped; it has no surface to light or to shade");
+    out.dropped = true;
+    return out;
+  }
+  if (p.material >= 0) {
+    if (size_t(p.material) >= ctx.model.materials.size())
+      ctx.fail(w + ".material", "is " + std::to_string(p.material) + "; the file has " + std::to_string(ctx.model.materials.size()) + " materials");
+    out.material = p.material;
+  } else {
+    // glTF 2.0 spec, 3.9.6 "Default Material".
+    if (default_material < 0) {
+      Material d;
+      d.name = "default";
+      materials.push_back(d);
+      default_material = int(materials.size()) - 1;
+    }
+    out.material = default_material;
+  }
   if (!p.targets.empty()) ctx.fail(w + ".targets", "morph targets are not supported");
   for (const auto& [name, index] : p.attributes)
     if (name.rfind("JOINTS_", 0) == 0 || name.rfind("WEIGHTS_", 0) == 0) ctx.fail(w + ".attributes." + name, "skinning is not supported");
+  // KHR_mesh_quantization widens the component types of these attributes to 8- and 16-bit
+  // integers, normalized or not (its table "Extending Mesh Attributes").
+  const bool quantized = uses_extension(ctx, "KHR_mesh_quantization");
+  const AccessorRule position_rule{{TINYGLTF_TYPE_VEC3}, true, quantized, quantized, false, quantized};
+  const AccessorRule normal_rule{{TINYGLTF_TYPE_VEC3}, true, false, quantized};
+  const AccessorRule tangent_rule{{TINYGLTF_TYPE_VEC4}, true, false, quantized};
+  const AccessorRule uv_rule{{TINYGLTF_TYPE_VEC2}, true, true, quantized, false, quantized};
   auto it = p.attributes.find("POSITION");
   if (it == p.attributes.end()) ctx.fail(w + ".attributes.POSITION", "missing; every primitive needs positions");
-  const AccessorData pos = read_accessor(ctx, it->second, w + ".attributes.POSITION", {{TINYGLTF_TYPE_VEC3}});
+  const AccessorData pos = read_accessor(ctx, it->second, w + ".attributes.POSITION", position_rule);
   const size_t n = pos.count;
   for (size_t i = 0; i < n; ++i) out.positions.emplace_back(pos.values[3 * i], pos.values[3 * i + 1], pos.values[3 * i + 2]);
   auto same_count = [&](const AccessorData& a, const std::string& name) {
     if (a.count != n) ctx.fail(w + ".attributes." + name, "has " + std::to_string(a.count) + " elements; POSITION has " + std::to_string(n));
   };
   if (auto a = p.attributes.find("NORMAL"); a != p.attributes.end()) {
-    const AccessorData d = read_accessor(ctx, a->second, w + ".attributes.NORMAL", {{TINYGLTF_TYPE_VEC3}});
+    const AccessorData d = read_accessor(ctx, a->second, w + ".attributes.NORMAL", normal_rule);
     same_count(d, "NORMAL");
     for (size_t i = 0; i < n; ++i) out.normals.emplace_back(d.values[3 * i], d.values[3 * i + 1], d.values[3 * i + 2]);
   }
   if (auto a = p.attributes.find("TANGENT"); a != p.attributes.end()) {
-    const AccessorData d = read_accessor(ctx, a->second, w + ".attributes.TANGENT", {{TINYGLTF_TYPE_VEC4}});
+    const AccessorData d = read_accessor(ctx, a->second, w + ".attributes.TANGENT", tangent_rule);
     same_count(d, "TANGENT");
     for (size_t i = 0; i < n; ++i) out.tangents.emplace_back(d.values[4 * i], d.values[4 * i + 1], d.values[4 * i + 2], d.values[4 * i + 3]);
   }
-  if (auto a = p.attributes.find("TEXCOORD_0"); a != p.attributes.end()) {
-    const AccessorData d = read_accessor(ctx, a->second, w + ".attributes.TEXCOORD_0", {{TINYGLTF_TYPE_VEC2}, true, true});
-    same_count(d, "TEXCOORD_0");
-    for (size_t i = 0; i < n; ++i) out.uvs.emplace_back(d.values[2 * i], d.values[2 * i + 1]);
+  // The one UV set the material's textures read, transformed (UvMapping).
+  const UvMapping uv = size_t(out.material) < uv_mappings.size() ? uv_mappings[size_t(out.material)] : UvMapping{};
+  const std::string uv_name = "TEXCOORD_" + std::to_string(uv.set);
+  if (auto a = p.attributes.find(uv_name); a != p.attributes.end()) {
+    const AccessorData d = read_accessor(ctx, a->second, w + ".attributes." + uv_name, uv_rule);
+    same_count(d, uv_name);
+    for (size_t i = 0; i < n; ++i) out.uvs.push_back(uv.apply(glm::vec2(d.values[2 * i], d.values[2 * i + 1])));
+    if (std::any_of(out.uvs.begin(), out.uvs.end(), [](glm::vec2 t) { return !std::isfinite(t.x) || !std::isfinite(t.y); }))
+      ctx.fail(uv.field + ".extensions.KHR_texture_transform", "maps " + w + ".attributes." + uv_name + " beyond the float range");
   }
   if (auto a = p.attributes.find("COLOR_0"); a != p.attributes.end()) {
     // Vertex colours multiply the base colour; giq has no per-vertex colour, so only the
@@ -185,7 +263,7 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
   } else {
     for (size_t i = 0; i < n; ++i) idx.push_back(uint32_t(i));
   }
-  out.triangles = triangulate(ctx, p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode, idx, w, p.indices >= 0 ? ".indices" : ".attributes.POSITION");
+  out.triangles = triangulate(ctx, mode, idx, w, p.indices >= 0 ? ".indices" : ".attributes.POSITION");
   // A triangle with two equal corners (the same index, or bit-identical positions) has no
   // area under any transform, since equal inputs transform to equal outputs: dropped here
   // once, not per instance and per frame (a few sparse bytes can declare a million of them).
@@ -196,20 +274,6 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
     return collapsed;
   });
   if (out.triangles.empty()) out.positions.clear(), out.normals.clear(), out.tangents.clear(), out.uvs.clear();
-  if (p.material >= 0) {
-    if (size_t(p.material) >= ctx.model.materials.size())
-      ctx.fail(w + ".material", "is " + std::to_string(p.material) + "; the file has " + std::to_string(ctx.model.materials.size()) + " materials");
-    out.material = p.material;
-  } else {
-    // glTF 2.0 spec, 3.9.6 "Default Material".
-    if (default_material < 0) {
-      Material d;
-      d.name = "default";
-      materials.push_back(d);
-      default_material = int(materials.size()) - 1;
-    }
-    out.material = default_material;
-  }
   return out;
 }
 
@@ -324,19 +388,22 @@ Scene load(const std::filesystem::path& path) {
   Scene s;
   s.path = path;
   s.content_hash = doc.content_hash;
-  gltf::load_materials(ctx, doc, s.materials, s.textures);
+  std::vector<gltf::UvMapping> uv_mappings;
+  gltf::load_materials(ctx, doc, s.materials, s.textures, uv_mappings);
   gltf::load_nodes(ctx, *src);
   int default_material = -1;
   for (size_t m = 0; m < model.meshes.size(); ++m) {
     std::vector<PrimitiveSource> prims;
     for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p)
       prims.push_back(gltf::load_primitive(ctx, model.meshes[m].primitives[p], gltf::index_path("meshes", m) + ".primitives[" + std::to_string(p) + "]",
-                                           s.materials, default_material));
+                                           s.materials, uv_mappings, default_material));
     src->meshes.push_back(std::move(prims));
   }
   gltf::load_cameras(ctx, *src);
   gltf::load_lights(ctx, *src);
   gltf::load_animations(ctx, *src);
+  s.warnings = doc.warnings;
+  s.warnings.insert(s.warnings.end(), ctx.warnings.begin(), ctx.warnings.end());
 
   gltf::Extras extras = gltf::parse_extras(doc, *src);
   s.sequence = extras.sequence;

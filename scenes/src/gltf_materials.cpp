@@ -129,14 +129,6 @@ class TextureTable {
   int64_t total_texels_ = 0;
 };
 
-// Checks the parts of a textureInfo giq cannot honour (glTF 2.0 spec, 5.22 "Texture Info").
-void check_texture_info(const Context& ctx, int tex_coord, const tinygltf::ExtensionMap& ext, const std::string& field) {
-  if (tex_coord != 0)
-    ctx.fail(field + ".texCoord", "is " + std::to_string(tex_coord) + "; only TEXCOORD_0 is supported");
-  if (ext.count("KHR_texture_transform"))
-    ctx.fail(field + ".extensions.KHR_texture_transform", "texture transforms are not supported");
-}
-
 double number(const Context& ctx, const tinygltf::Value& v, const std::string& field, double lo, double hi) {
   if (!v.IsNumber()) ctx.fail(field, "must be a number");
   const double x = v.GetNumberAsDouble();
@@ -151,29 +143,88 @@ glm::vec3 color3(const Context& ctx, const std::vector<double>& v, const std::st
   return glm::vec3(float(v[0]), float(v[1]), float(v[2]));
 }
 
+// KHR_texture_transform on a textureInfo: (u, v) -> offset + R(rotation) * scale * (u, v), with
+// R = [cos sin; -sin cos] (the extension's GLSL, ratified version; its example maps the unit
+// square onto the lower-left quadrant rotated clockwise, which fixes the sign).
+glm::dmat3 texture_transform(const Context& ctx, const tinygltf::Value& e, const std::string& field, int& set) {
+  if (!e.IsObject()) ctx.fail(field, "must be a JSON object");
+  auto pair = [&](const char* key, glm::dvec2 fallback) {
+    if (!e.Has(key)) return fallback;
+    const auto& a = e.Get(key);
+    if (!a.IsArray() || a.ArrayLen() != 2) ctx.fail(field + "." + key, "expected an array of 2 numbers");
+    glm::dvec2 v;
+    for (int k = 0; k < 2; ++k) v[k] = number(ctx, a.Get(k), field + "." + key + "[" + std::to_string(k) + "]", -1e30, 1e30);
+    return v;
+  };
+  const glm::dvec2 offset = pair("offset", glm::dvec2(0.0)), scale = pair("scale", glm::dvec2(1.0));
+  const double r = e.Has("rotation") ? number(ctx, e.Get("rotation"), field + ".rotation", -1e30, 1e30) : 0.0;
+  if (e.Has("texCoord")) {
+    if (!e.Get("texCoord").IsInt() || e.Get("texCoord").GetNumberAsInt() < 0) ctx.fail(field + ".texCoord", "must be a non-negative integer");
+    set = e.Get("texCoord").GetNumberAsInt();  // overrides the textureInfo's own (the extension's texCoord)
+  }
+  const double c = std::cos(r), s = std::sin(r);
+  const glm::dmat3 T(1, 0, 0, 0, 1, 0, offset.x, offset.y, 1), R(c, -s, 0, s, c, 0, 0, 0, 1), S(scale.x, 0, 0, 0, scale.y, 0, 0, 0, 1);
+  return T * R * S;
+}
+
+// Reads a textureInfo's texture-coordinate set and transform and checks they agree with the
+// material's other textures: renderers keep one UV set per vertex (UvMapping).
+class UvTable {
+ public:
+  UvTable(const Context& ctx, UvMapping& out) : ctx_(ctx), out_(out) {}
+
+  void use(int tex_coord, const tinygltf::Value* transform, const std::string& field) {
+    if (tex_coord < 0) ctx_.fail(field + ".texCoord", "is " + std::to_string(tex_coord) + "; expected a non-negative integer");
+    UvMapping m;
+    m.set = tex_coord;
+    m.field = field;
+    if (transform) m.transform = texture_transform(ctx_, *transform, field + ".extensions.KHR_texture_transform", m.set);
+    if (out_.field.empty()) {
+      out_ = m;
+    } else if (m.set != out_.set || m.transform != out_.transform) {
+      ctx_.fail(field, "reads TEXCOORD_" + std::to_string(m.set) + (transform ? " with a texture transform" : "") + ", unlike " + out_.field +
+                           " (TEXCOORD_" + std::to_string(out_.set) + (out_.transform != glm::dmat3(1.0) ? " with a texture transform" : "") +
+                           "); giq applies one texture-coordinate set and transform per material");
+    }
+  }
+  // A core textureInfo (tinygltf's TextureInfo / NormalTextureInfo).
+  template <class Info>
+  void use(const Info& info, const std::string& field) {
+    auto it = info.extensions.find("KHR_texture_transform");
+    use(info.texCoord, it == info.extensions.end() ? nullptr : &it->second, field);
+  }
+
+ private:
+  const Context& ctx_;
+  UvMapping& out_;
+};
+
 // A textureInfo given as an extension's JSON value (KHR_materials_specular textures).
-int extension_texture(const Context& ctx, TextureTable& table, const tinygltf::Value& info, const std::string& field, bool srgb) {
+int extension_texture(const Context& ctx, TextureTable& table, UvTable& uv, const tinygltf::Value& info, const std::string& field, bool srgb) {
   if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsInt()) ctx.fail(field + ".index", "missing or not an integer");
   int tex_coord = 0;
   if (info.Has("texCoord")) {
     if (!info.Get("texCoord").IsInt()) ctx.fail(field + ".texCoord", "must be an integer");
     tex_coord = info.Get("texCoord").GetNumberAsInt();
   }
-  if (tex_coord != 0) ctx.fail(field + ".texCoord", "is " + std::to_string(tex_coord) + "; only TEXCOORD_0 is supported");
-  if (info.Has("extensions") && info.Get("extensions").Has("KHR_texture_transform"))
-    ctx.fail(field + ".extensions.KHR_texture_transform", "texture transforms are not supported");
+  const tinygltf::Value* transform = nullptr;
+  if (info.Has("extensions") && info.Get("extensions").Has("KHR_texture_transform")) transform = &info.Get("extensions").Get("KHR_texture_transform");
+  uv.use(tex_coord, transform, field);
   return table.use(info.Get("index").GetNumberAsInt(), field, srgb);
 }
 
 }  // namespace
 
-void load_materials(const Context& ctx, const Document& doc, std::vector<Material>& materials, std::vector<Texture>& textures) {
+void load_materials(const Context& ctx, const Document& doc, std::vector<Material>& materials, std::vector<Texture>& textures,
+                    std::vector<UvMapping>& uv_mappings) {
   TextureTable table(ctx, doc, textures);
   const auto& m = ctx.model;
   for (size_t i = 0; i < m.materials.size(); ++i) {
     const auto& g = m.materials[i];
     const std::string where = index_path("materials", i);
     Material mat;
+    UvMapping mapping;
+    UvTable uv(ctx, mapping);
     mat.name = g.name.empty() ? "material" + std::to_string(i) : g.name;
     const auto& pbr = g.pbrMetallicRoughness;
     const std::string pw = where + ".pbrMetallicRoughness";
@@ -186,21 +237,21 @@ void load_materials(const Context& ctx, const Document& doc, std::vector<Materia
     mat.metallic = float(number(ctx, tinygltf::Value(pbr.metallicFactor), pw + ".metallicFactor", 0.0, 1.0));
     mat.roughness = float(number(ctx, tinygltf::Value(pbr.roughnessFactor), pw + ".roughnessFactor", 0.0, 1.0));
     if (pbr.baseColorTexture.index >= 0) {
-      check_texture_info(ctx, pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions, pw + ".baseColorTexture");
+      uv.use(pbr.baseColorTexture, pw + ".baseColorTexture");
       mat.base_color_texture = table.use(pbr.baseColorTexture.index, pw + ".baseColorTexture", true);
     }
     if (pbr.metallicRoughnessTexture.index >= 0) {
-      check_texture_info(ctx, pbr.metallicRoughnessTexture.texCoord, pbr.metallicRoughnessTexture.extensions, pw + ".metallicRoughnessTexture");
+      uv.use(pbr.metallicRoughnessTexture, pw + ".metallicRoughnessTexture");
       mat.metallic_roughness_texture = table.use(pbr.metallicRoughnessTexture.index, pw + ".metallicRoughnessTexture", false);
     }
     if (g.normalTexture.index >= 0) {
-      check_texture_info(ctx, g.normalTexture.texCoord, g.normalTexture.extensions, where + ".normalTexture");
+      uv.use(g.normalTexture, where + ".normalTexture");
       mat.normal_texture = table.use(g.normalTexture.index, where + ".normalTexture", false);
       mat.normal_scale = float(number(ctx, tinygltf::Value(g.normalTexture.scale), where + ".normalTexture.scale", -1e6, 1e6));
     }
     mat.emissive = color3(ctx, g.emissiveFactor, where + ".emissiveFactor", 1.0);
     if (g.emissiveTexture.index >= 0) {
-      check_texture_info(ctx, g.emissiveTexture.texCoord, g.emissiveTexture.extensions, where + ".emissiveTexture");
+      uv.use(g.emissiveTexture, where + ".emissiveTexture");
       mat.emissive_texture = table.use(g.emissiveTexture.index, where + ".emissiveTexture", true);
     }
     if (g.alphaMode == "MASK") {
@@ -228,11 +279,34 @@ void load_materials(const Context& ctx, const Document& doc, std::vector<Materia
         for (int k = 0; k < 3; ++k)
           mat.specular_color[k] = float(number(ctx, c.Get(k), sw + ".specularColorFactor[" + std::to_string(k) + "]", 0.0, 1e6));
       }
-      if (e.Has("specularTexture")) mat.specular_texture = extension_texture(ctx, table, e.Get("specularTexture"), sw + ".specularTexture", false);
+      if (e.Has("specularTexture")) mat.specular_texture = extension_texture(ctx, table, uv, e.Get("specularTexture"), sw + ".specularTexture", false);
       if (e.Has("specularColorTexture"))
-        mat.specular_color_texture = extension_texture(ctx, table, e.Get("specularColorTexture"), sw + ".specularColorTexture", true);
+        mat.specular_color_texture = extension_texture(ctx, table, uv, e.Get("specularColorTexture"), sw + ".specularColorTexture", true);
+    }
+    if (auto it = g.extensions.find("KHR_materials_ior"); it != g.extensions.end() && it->second.Has("ior")) {
+      // F0 = min(((ior - 1) / (ior + 1))^2 x specularColor, 1) x specular (KHR_materials_ior,
+      // KHR_materials_specular); renderers evaluate min(0.04 x specular_color, 1) x specular,
+      // so the ratio to the default ior 1.5 (F0 0.04) folds into specular_color exactly.
+      const std::string field = where + ".extensions.KHR_materials_ior.ior";
+      const double ior = number(ctx, it->second.Get("ior"), field, 0.0, 1e6);
+      if (ior > 0.0 && ior < 1.0) ctx.fail(field, "is " + std::to_string(ior) + "; expected 0 or at least 1");
+      const double f0 = std::pow((ior - 1.0) / (ior + 1.0), 2.0);
+      mat.specular_color *= float(f0 / 0.04);
+    }
+    if (g.extensions.count("KHR_materials_unlit")) {
+      // Unlit: the surface shows its base colour whatever the light (KHR_materials_unlit). In a
+      // light transport simulation that is a surface that emits its base colour and reflects
+      // nothing: base colour (factor x texture) becomes the emission, and the reflectance goes
+      // to zero while alpha (for MASK) stays.
+      mat.emissive = glm::vec3(mat.base_color);
+      mat.emissive_texture = mat.base_color_texture >= 0 ? table.use(pbr.baseColorTexture.index, pw + ".baseColorTexture", true) : -1;
+      mat.base_color = glm::vec4(0.0f, 0.0f, 0.0f, mat.base_color.a);
+      mat.metallic = 0.0f, mat.metallic_roughness_texture = -1;
+      mat.specular = 0.0f, mat.specular_texture = -1, mat.specular_color_texture = -1;
+      mat.normal_texture = -1;
     }
     materials.push_back(std::move(mat));
+    uv_mappings.push_back(std::move(mapping));
   }
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 // glTF materials and the textures they sample, decoded once to linear float RGBA.
 
+#include <glm/glm.hpp>
+#include <string>
 #include <vector>
 
 #include "giq/scenes/material.h"
@@ -10,7 +12,20 @@
 
 namespace giq::scenes::gltf {
 
-// Fills `materials` (one per glTF material, same order) and the textures they use.
-void load_materials(const Context& ctx, const Document& doc, std::vector<Material>& materials, std::vector<Texture>& textures);
+// The texture coordinates every texture of one material reads: a TEXCOORD_<set> attribute and
+// a KHR_texture_transform. They are applied to a primitive's UVs when it is loaded, so every
+// renderer reads the transformed set; an affine map commutes with barycentric interpolation,
+// so this is exact.
+struct UvMapping {
+  int set = 0;                // TEXCOORD_<set>
+  glm::dmat3 transform{1.0};  // of (u, v, 1): offset * rotation * scale (KHR_texture_transform)
+  std::string field;          // the first textureInfo that set it, for messages ("" = none)
+  glm::vec2 apply(glm::vec2 uv) const { return glm::vec2(transform * glm::dvec3(glm::dvec2(uv), 1.0)); }
+};
+
+// Fills `materials` (one per glTF material, same order), the textures they use and each
+// material's UV mapping (`uv`, same order).
+void load_materials(const Context& ctx, const Document& doc, std::vector<Material>& materials, std::vector<Texture>& textures,
+                    std::vector<UvMapping>& uv);
 
 }  // namespace giq::scenes::gltf

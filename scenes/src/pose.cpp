@@ -135,7 +135,7 @@ void check_instanced_size(const SceneSource& src) {
   for (int i : preorder(src)) {
     if (src.nodes[size_t(i)].mesh < 0) continue;
     for (const auto& p : src.meshes[size_t(src.nodes[size_t(i)].mesh)])
-      instanced += p.triangles.size() + p.collapsed_triangles;
+      instanced += (p.triangles.size() + p.collapsed_triangles) * src.nodes[size_t(i)].instance_count();
     if (instanced > kMaxTriangles)
       throw InputError(src.file, "nodes[" + std::to_string(i) + "].mesh", "the scene instances more than " + std::to_string(kMaxTriangles) + " triangles; too large");
   }
@@ -146,11 +146,14 @@ void world_bounds(const SceneSource& src, const std::vector<glm::dmat4>& world, 
   for (int i : preorder(src)) {
     const NodeSource& n = src.nodes[size_t(i)];
     if (n.mesh < 0) continue;
-    for (const auto& p : src.meshes[size_t(n.mesh)])
-      for (const auto& v : p.positions) {
-        const glm::dvec3 w = glm::dvec3(world[size_t(i)] * glm::dvec4(glm::dvec3(v), 1.0));
-        lo = glm::min(lo, w), hi = glm::max(hi, w);
-      }
+    for (size_t k = 0; k < n.instance_count(); ++k) {
+      const glm::dmat4 M = n.instances.empty() ? world[size_t(i)] : world[size_t(i)] * n.instances[k];
+      for (const auto& p : src.meshes[size_t(n.mesh)])
+        for (const auto& v : p.positions) {
+          const glm::dvec3 w = glm::dvec3(M * glm::dvec4(glm::dvec3(v), 1.0));
+          lo = glm::min(lo, w), hi = glm::max(hi, w);
+        }
+    }
   }
 }
 
@@ -170,17 +173,19 @@ void pose(const SceneSource& src, const std::vector<glm::dmat4>& world, Scene& o
     const glm::dvec3 at = glm::dvec3(M[3]) - out.origin;
     if (n.mesh >= 0) {
       const auto& prims = src.meshes[size_t(n.mesh)];
-      for (size_t k = 0; k < prims.size(); ++k) {
-        Mesh m;
-        m.name = node_label(src, i);
-        m.node = i;
-        m.mesh = n.mesh;
-        m.primitive = int(k);
-        m.object_id = uint32_t(i) + 1;
-        m.material = prims[k].material;
-        emit_mesh(prims[k], M, out.origin, m, out.stats.degenerate_triangles_dropped);
-        out.meshes.push_back(std::move(m));
-      }
+      for (size_t instance = 0; instance < n.instance_count(); ++instance)
+        for (size_t k = 0; k < prims.size(); ++k) {
+          if (prims[k].dropped) continue;
+          Mesh m;
+          m.name = node_label(src, i);
+          m.node = i;
+          m.mesh = n.mesh;
+          m.primitive = int(k);
+          m.object_id = uint32_t(i) + 1;
+          m.material = prims[k].material;
+          emit_mesh(prims[k], n.instances.empty() ? M : M * n.instances[instance], out.origin, m, out.stats.degenerate_triangles_dropped);
+          out.meshes.push_back(std::move(m));
+        }
     }
     if (n.light >= 0) {
       Light l = src.lights[size_t(n.light)];

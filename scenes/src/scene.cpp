@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "giq/base/error.h"
+#include "giq/base/hash.h"
 #include "scene_source.h"
 
 namespace giq::scenes {
@@ -155,8 +156,30 @@ Scene Scene::at(double t) const {
   s.time = t;
   if (!source_ || sequence.animation < 0) return s;
   pose(*source_, world_transforms(*source_, sequence.animation, t), s);
+  s.lights.insert(s.lights.end(), added_lights_.begin(), added_lights_.end());
+  s.views.insert(s.views.end(), added_views_.begin(), added_views_.end());
   s.derive();
   return s;
+}
+
+void Scene::add_light(const Light& light, const std::string& description) {
+  added_lights_.push_back(light);
+  lights.push_back(light);
+  content_hash = Hasher().add(content_hash).add(" + ").add(description).hex();
+  derive();
+}
+
+void Scene::set_environment(glm::vec3 radiance, const std::string& description) {
+  environment = radiance;
+  content_hash = Hasher().add(content_hash).add(" + ").add(description).hex();
+  derive();
+}
+
+void Scene::add_view(const View& view) {
+  for (const View& v : views)
+    if (v.name == view.name) throw InputError(path.string(), "views", "the scene has a view named \"" + view.name + "\" already");
+  added_views_.push_back(view);
+  views.push_back(view);
 }
 
 const View& Scene::view(std::string_view name_or_index) const {

@@ -21,6 +21,7 @@ struct PrimitiveSource {
   std::vector<glm::uvec3> triangles;  // degenerate ones are dropped when posed
   size_t collapsed_triangles = 0;     // dropped when loaded: two equal corners, no area in any pose
   int material = 0;                   // index into Scene::materials
+  bool dropped = false;               // points or lines: no Mesh is made from it
 };
 
 struct NodeSource {
@@ -35,6 +36,10 @@ struct NodeSource {
   int mesh = -1;
   int camera = -1;
   int light = -1;
+  // EXT_mesh_gpu_instancing: the mesh is drawn once per matrix, in the node's frame; empty =
+  // once, untransformed.
+  std::vector<glm::dmat4> instances;
+  size_t instance_count() const { return instances.empty() ? 1 : instances.size(); }
 };
 
 enum class Interpolation { Step, Linear, CubicSpline };

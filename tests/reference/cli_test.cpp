@@ -230,6 +230,43 @@ TEST(ReferenceCli, BadInputExitsWithTwo) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+TEST(ReferenceCli, ASceneWithoutLightIsRefusedUntilTheCommandLineGivesOne) {
+  // transforms.gltf has geometry and no light, no camera: every image of it would be black.
+  const fs::path scene = fs::path(GIQ_TEST_DATA) / "scenes" / "transforms.gltf", out = work_dir() / "unlit.exr";
+  std::vector<std::string> args = {"reference", "--scene", scene.string(), "--spp", "8", "--width", "16", "--height", "16",
+                                   "--camera", "auto", "--out", out.string()};
+  EXPECT_EQ(giq(args), 2);
+  EXPECT_FALSE(fs::exists(out));
+  // A sun straight down: the floor quad (facing +y) is lit. The scene hash names the sun, so
+  // this image cannot pass for a render of the file alone.
+  args.insert(args.end(), {"--sun", "dir=0,-1,0", "illuminance=2"});
+  ASSERT_EQ(giq(args), 0);
+  const giq::image::Image lit = giq::image::read_image(out);
+  EXPECT_EQ(lit.metadata.at("giq.view"), "camera");
+  double sum = 0.0;
+  for (size_t k = 0; k < lit.pixel_count(); ++k) sum += lit.channel("G")[k];
+  EXPECT_GT(sum, 0.0);
+  const std::string sun_hash = lit.metadata.at("giq.scene_hash");
+  // The same with a constant environment instead: lit again, under another scene hash.
+  fs::remove(out);
+  args.resize(args.size() - 3);
+  args.insert(args.end(), {"--env", "0.5"});
+  ASSERT_EQ(giq(args), 0);
+  const std::string env_hash = giq::image::read_image(out).metadata.at("giq.scene_hash");
+  EXPECT_NE(sun_hash, env_hash);
+  // Malformed light options are input errors.
+  for (const std::vector<std::string>& bad : {std::vector<std::string>{"--sun", "dir=0,0,0", "illuminance=1"},
+                                              {"--sun", "dir=0,-1,0", "illuminance=-1"},
+                                              {"--sun", "illuminance=1", "color=1,1,1"},
+                                              {"--env", "1,2"},
+                                              {"--env", "-1"}}) {
+    std::vector<std::string> a = {"reference", "--scene", scene.string(), "--spp", "4", "--camera", "auto", "--out",
+                                  (work_dir() / "bad_light.exr").string()};
+    a.insert(a.end(), bad.begin(), bad.end());
+    EXPECT_EQ(giq(a), 2) << bad[1];
+  }
+}
+
 TEST(ReferenceCli, OutputsAreCheckedBeforeAnyWork) {
   const fs::path scene = write_scene(), dir = work_dir();
   const std::string before = slurp(scene);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "giq/base/error.h"
 #include "giq/scenes/scene.h"
 #include "test_paths.h"
 
@@ -95,6 +96,37 @@ TEST_F(Animation, FramesAreTimesOverFps) {
   // Materials and textures are shared, not re-read.
   EXPECT_EQ(f.materials.size(), scene().materials.size());
   EXPECT_EQ(f.meshes.size(), scene().meshes.size());
+}
+
+}  // namespace
+}  // namespace giq::scenes
+
+namespace giq::scenes {
+namespace {
+
+TEST(SceneAdditions, LightsAndViewsAddedAfterLoadingStayThroughTime) {
+  Scene s = load(test::data("animated.gltf"));
+  const size_t lights = s.lights.size(), views = s.views.size();
+  const std::string file_hash = s.content_hash;
+  Light sun;
+  sun.name = "sun";
+  sun.type = LightType::Directional;
+  sun.direction = {0.0f, -1.0f, 0.0f};
+  s.add_light(sun, "sun dir=0,-1,0 illuminance=1");
+  View v;
+  v.name = "camera";
+  v.camera = Camera::look_at({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 0.8f);
+  s.add_view(v);
+  EXPECT_NE(s.content_hash, file_hash);  // the scene as rendered is not the file alone
+  EXPECT_THROW(s.add_view(v), InputError);  // view names stay unique
+  const Scene later = s.at(1.5);
+  ASSERT_EQ(later.lights.size(), lights + 1);
+  EXPECT_EQ(later.lights.back().name, "sun");
+  EXPECT_EQ(later.lights.back().direction, glm::vec3(0.0f, -1.0f, 0.0f));  // posed as given, not by a node
+  ASSERT_EQ(later.views.size(), views + 1);
+  EXPECT_EQ(later.view("camera").camera.position, v.camera.position);
+  EXPECT_EQ(later.content_hash, s.content_hash);
+  EXPECT_TRUE(later.features.directional_lights);
 }
 
 }  // namespace

@@ -241,6 +241,76 @@ TEST(Loader, MaterialsAndExtensions) {
   EXPECT_TRUE(s.features.normal_maps && s.features.textures && s.features.specular && s.features.emissive_meshes);
 }
 
+TEST(Loader, TextureTransformAndSecondUvSetAreAppliedToTheUvs) {
+  const Scene s = load(data("uv_sets.gltf"));
+  ASSERT_EQ(s.meshes.size(), 2u);
+  EXPECT_TRUE(s.warnings.empty());
+  // Both quads carry TEXCOORD_1 = ((x + 1) / 2, (z + 1) / 2) and a TEXCOORD_0 shifted by 7 that
+  // no material reads.
+  auto uv1 = [&](const Mesh& m, size_t i) {
+    const glm::dvec3 p = world(s, m.positions[i]) - glm::dvec3(m.name == "override" ? 3.0 : 0.0, 0.0, 0.0);
+    return glm::dvec2((p.x + 1.0) / 2.0, (p.z + 1.0) / 2.0);
+  };
+  // KHR_texture_transform's own example (offset (0, 1), rotation pi/2, scale 0.5): the unit
+  // square maps onto the image's lower-left quadrant, turned clockwise: (u, v) -> (v/2, 1 - u/2).
+  const Mesh& t = s.meshes[0];
+  ASSERT_EQ(t.uvs.size(), t.positions.size());
+  for (size_t i = 0; i < t.uvs.size(); ++i) {
+    const glm::dvec2 a = uv1(t, i);
+    EXPECT_NEAR(t.uvs[i].x, a.y / 2.0, 1e-6);
+    EXPECT_NEAR(t.uvs[i].y, 1.0 - a.x / 2.0, 1e-6);
+    EXPECT_TRUE(t.uvs[i].x >= -1e-6f && t.uvs[i].x <= 0.5f + 1e-6f && t.uvs[i].y >= 0.5f - 1e-6f && t.uvs[i].y <= 1.0f + 1e-6f);
+  }
+  // The transform's texCoord overrides the textureInfo's: TEXCOORD_1 shifted by (0.25, 0).
+  const Mesh& o = s.meshes[1];
+  ASSERT_EQ(o.uvs.size(), o.positions.size());
+  for (size_t i = 0; i < o.uvs.size(); ++i) {
+    EXPECT_NEAR(o.uvs[i].x, uv1(o, i).x + 0.25, 1e-6);
+    EXPECT_NEAR(o.uvs[i].y, uv1(o, i).y, 1e-6);
+  }
+}
+
+TEST(Loader, UnlitIorPointsLinesAndIgnoredExtensions) {
+  const Scene s = load(data("extensions.gltf"));
+  ASSERT_EQ(s.materials.size(), 2u);
+  // KHR_materials_unlit: the base colour is emitted and nothing is reflected; alpha stays.
+  const Material& unlit = s.materials[0];
+  EXPECT_EQ(unlit.emissive, glm::vec3(0.2f, 0.4f, 0.6f));
+  EXPECT_EQ(unlit.base_color, glm::vec4(0.0f, 0.0f, 0.0f, 0.5f));
+  EXPECT_FALSE(unlit.has_specular_lobe());
+  // KHR_materials_ior 2: F0 = ((2 - 1) / (2 + 1))^2 = 1/9 where the renderers' default is 0.04.
+  const float ratio = float((1.0 / 9.0) / 0.04);
+  EXPECT_NEAR(s.materials[1].specular_color.r, ratio, 1e-6f * ratio);
+  EXPECT_EQ(s.materials[1].specular_color.r, s.materials[1].specular_color.b);
+  // Two triangles; the points and the line strip are dropped with one warning that counts them.
+  EXPECT_EQ(s.stats.triangles, 2u);
+  ASSERT_EQ(s.warnings.size(), 3u);
+  EXPECT_NE(s.warnings[0].find("KHR_materials_clearcoat is not implemented and was ignored: materials have no clear-coat layer"), std::string::npos);
+  EXPECT_NE(s.warnings[1].find("EXT_made_up is not implemented"), std::string::npos);  // KHR_xmp_json_ld: metadata, silent
+  EXPECT_EQ(s.warnings[2].rfind("meshes[0].primitives[2].mode: a primitive of points or lines", 0), 0u);
+  EXPECT_NE(s.warnings[2].find("(2 times in the file)"), std::string::npos);
+}
+
+TEST(Loader, GpuInstancingAndQuantizedAttributes) {
+  const Scene s = load(data("instancing.gltf"));
+  ASSERT_EQ(s.meshes.size(), 3u);
+  // Node: translate (0, 5, 0), scale 0.001; the positions are 16-bit integers (0..1000), the UVs
+  // 8-bit integers, the normals 8-bit normalized (127 -> 1).
+  const glm::dvec3 corners[3][3] = {{{0, 5, 0}, {1, 5, 0}, {0, 6, 0}},              // instance 0: identity
+                                    {{0.01, 5, 0}, {0.01, 6, 0}, {-0.99, 5, 0}},     // T(10, 0, 0) Rz(90)
+                                    {{0, 5, 0.01}, {2, 5, 0.01}, {0, 7, 0.01}}};     // T(0, 0, 10) S(2)
+  for (size_t k = 0; k < 3; ++k) {
+    const Mesh& m = s.meshes[k];
+    EXPECT_EQ(m.name, "crowd");
+    EXPECT_EQ(m.object_id, 1u);
+    ASSERT_EQ(m.positions.size(), 3u);
+    for (size_t i = 0; i < 3; ++i) expect_world(s, m.positions[i], corners[k][i]);
+    for (const auto& n : m.normals) expect_vec(n, {0, 0, 1});
+    EXPECT_EQ(m.uvs[1], glm::vec2(2.0f, 0.0f));
+    EXPECT_EQ(m.uvs[2], glm::vec2(0.0f, 2.0f));
+  }
+}
+
 TEST(Loader, TangentsFollowTheNodeAndItsHandedness) {
   const Scene s = load(data("materials.gltf"));
   ASSERT_EQ(s.meshes.size(), 4u);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "command.h"
+#include "scene_setup.h"
 #include "output_guard.h"
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
@@ -31,6 +32,8 @@ namespace rt = giq::realtime;
 struct RealtimeArgs {
   std::string scene;
   std::string view = "0";
+  CLI::Option* view_option = nullptr;
+  SceneSetup setup;  // --camera, --sun, --env
   std::string technique = "direct";
   std::vector<std::string> params;
   int frames = 1;
@@ -91,7 +94,8 @@ int run(const RealtimeArgs& a) {
   }
   if (a.scene.empty()) throw InputError("", "--scene", "a scene is required (a .gltf/.glb path)");
   if (a.out.empty()) throw InputError("", "--out", "an output folder is required");
-  const scenes::Scene scene = scenes::load(resolve_scene(a.scene));
+  if (a.setup.has_camera() && a.view_option->count() > 0) throw InputError("", "--view/--camera", "give a view or a camera, not both");
+  const scenes::Scene scene = a.setup.load(resolve_scene(a.scene));
   rt::ContextOptions co;
   co.device = a.device;
   co.validation = a.validation || rt::ContextOptions::default_validation();
@@ -100,7 +104,7 @@ int run(const RealtimeArgs& a) {
   rt::RenderOptions o;
   o.technique = a.technique;
   o.parameters = a.params;
-  o.view = a.view;
+  o.view = a.setup.has_camera() ? kCameraView : a.view;
   o.width = a.width;
   o.height = a.height;
   o.frames = a.frames;
@@ -137,7 +141,8 @@ void add_realtime_command(CLI::App& app, int& exit_code) {
   static RealtimeArgs a;
   auto* cmd = app.add_subcommand("realtime", "Render a view with a real-time technique on a Vulkan device (headless)");
   cmd->add_option("--scene", a.scene, "glTF 2.0 scene (.gltf/.glb), or a built-in scene's name");
-  cmd->add_option("--view", a.view, "View name or index")->capture_default_str();
+  a.view_option = cmd->add_option("--view", a.view, "View name or index")->capture_default_str();
+  a.setup.add_options(*cmd);
   cmd->add_option("--technique", a.technique, "Technique (see --list)")->capture_default_str();
   cmd->add_option("--param", a.params, "Technique parameter name=value (repeatable)");
   cmd->add_option("--frames", a.frames, "Measured frames (one EXR each)")->capture_default_str();

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "command.h"
+#include "scene_setup.h"
 #include "integer_check.h"
 #include "output_guard.h"
 #include "giq/base/error.h"
@@ -57,7 +58,7 @@ class InterruptGuard {
 struct Options {
   std::string scene;
   std::string view;
-  std::vector<std::string> camera;
+  SceneSetup setup;  // --camera, --sun, --env
   int frame = 0;
   std::string frames;
   uint32_t spp = 0;
@@ -73,48 +74,6 @@ struct Options {
   bool record_time = false;
   bool half = false;
 };
-
-glm::dvec3 parse_vec3(const std::string& key, const std::string& text) {
-  glm::dvec3 v;
-  char tail;
-  if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &v.x, &v.y, &v.z, &tail) != 3 || !std::isfinite(v.x) ||
-      !std::isfinite(v.y) || !std::isfinite(v.z))
-    throw InputError("", "--camera", key + "=" + text + " is not three finite numbers x,y,z");
-  return v;
-}
-
-// --camera eye=x,y,z target=x,y,z [up=x,y,z] [fov=deg]: world coordinates, as the scene's
-// extras views are given, moved into the scene's local frame.
-sc::Camera parse_camera(const std::vector<std::string>& args, const sc::Scene& scene) {
-  glm::dvec3 eye, target, up(0.0, 1.0, 0.0);
-  double fov = 45.0;
-  bool has_eye = false, has_target = false;
-  for (const std::string& a : args) {
-    const size_t eq = a.find('=');
-    const std::string key = a.substr(0, eq), value = eq == std::string::npos ? "" : a.substr(eq + 1);
-    if (key == "eye") {
-      eye = parse_vec3(key, value), has_eye = true;
-    } else if (key == "target") {
-      target = parse_vec3(key, value), has_target = true;
-    } else if (key == "up") {
-      up = parse_vec3(key, value);
-    } else if (key == "fov") {
-      char* end = nullptr;
-      fov = std::strtod(value.c_str(), &end);
-      if (value.empty() || *end != '\0' || !(fov > 0.0 && fov < 180.0))
-        throw InputError("", "--camera", "fov=" + value + " must be a vertical field of view in degrees in (0, 180)");
-    } else {
-      throw InputError("", "--camera", "'" + a + "' is not one of eye=x,y,z target=x,y,z up=x,y,z fov=deg");
-    }
-  }
-  if (!has_eye || !has_target) throw InputError("", "--camera", "needs both eye=x,y,z and target=x,y,z");
-  try {
-    return sc::Camera::look_at(glm::vec3(eye - scene.origin), glm::vec3(target - scene.origin), glm::vec3(up),
-                               float(fov * 3.14159265358979323846 / 180.0));
-  } catch (const std::invalid_argument& e) {
-    throw InputError("", "--camera", e.what());
-  }
-}
 
 std::pair<int, int> frame_range(const Options& o, const sc::Scene& scene) {
   int a = o.frame, b = o.frame;
@@ -197,7 +156,7 @@ void draw_bar(const ref::Progress& p, const std::string& label) {
 
 int run(const Options& o) {
   const InterruptGuard interrupts;
-  if (!o.view.empty() && !o.camera.empty()) throw InputError("", "--view/--camera", "give a view or a camera, not both");
+  if (!o.view.empty() && o.setup.has_camera()) throw InputError("", "--view/--camera", "give a view or a camera, not both");
   ref::RenderSettings settings = o.settings;
   if (o.estimator == "mis") settings.estimator = ref::Estimator::Mis;
   else if (o.estimator == "light") settings.estimator = ref::Estimator::LightOnly;
@@ -209,7 +168,7 @@ int run(const Options& o) {
   if (!(o.checkpoint_interval > 0.0)) throw InputError("", "--checkpoint-interval", "must be a positive number of seconds");
 
   if (o.resume && o.overwrite) throw InputError("", "--resume/--overwrite", "give one of them, not both");
-  const sc::Scene scene = sc::load(o.scene);
+  const sc::Scene scene = o.setup.load(o.scene);
   const auto [first, last] = frame_range(o, scene);
   // Every output and checkpoint is checked before the first sample: a render of hours must not
   // fail at its end, overwrite its scene, or discard another render's saved progress.
@@ -231,14 +190,9 @@ int run(const Options& o) {
     meta.scene = o.scene;
     meta.scene_hash = scene.content_hash;
     meta.frame = f;
-    if (!o.camera.empty()) {
-      meta.camera = parse_camera(o.camera, posed);
-      meta.view = "cli";
-    } else {
-      const sc::View& v = posed.view(o.view.empty() ? "0" : o.view);
-      meta.camera = v.camera;
-      meta.view = v.name;
-    }
+    const sc::View& v = posed.view(o.setup.has_camera() ? kCameraView : o.view.empty() ? "0" : o.view);
+    meta.camera = v.camera;
+    meta.view = v.name;
     const fs::path out = frame_path(o.out, f, first != last);
     if (out.has_parent_path()) fs::create_directories(out.parent_path());
     const ref::Renderer renderer(posed, meta.camera, settings);
@@ -281,8 +235,7 @@ void add_reference_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand("reference", "Render the path-traced reference EXR of a view");
   cmd->add_option("--scene", o.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
   cmd->add_option("--view", o.view, "View name or index (default: the first view)");
-  cmd->add_option("--camera", o.camera, "Camera in world coordinates: eye=x,y,z target=x,y,z [up=x,y,z] [fov=deg]")
-      ->expected(1, 4);
+  o.setup.add_options(*cmd);
   auto* frame = cmd->add_option("--frame", o.frame, "Frame of the sequence to render (default 0)");
   cmd->add_option("--frames", o.frames, "Frames A:B (inclusive); '#' in --out becomes the frame number")->excludes(frame);
   cmd->add_option("--spp", o.spp, "Stop at this many samples per pixel");

@@ -85,6 +85,7 @@ json describe(const sc::Scene& s) {
                    {"duration_s", s.duration()}};
   j["leak_regions"] = s.leak_regions;
   j["leak_object_ids"] = s.leak_object_ids;
+  j["warnings"] = s.warnings;
   return j;
 }
 
@@ -128,6 +129,9 @@ void print_table(const json& j) {
   std::string leaks;
   for (const auto& l : j["leak_regions"]) leaks += (leaks.empty() ? "" : ", ") + l.get<std::string>();
   row("leak regions", leaks.empty() ? "(none)" : leaks);
+  // What the file holds that giq dropped or approximated (Scene::warnings).
+  if (!j["warnings"].empty()) std::printf("  warnings\n");
+  for (const auto& w : j["warnings"]) std::printf("    %s\n", w.get<std::string>().c_str());
 }
 
 }  // namespace

@@ -15,7 +15,7 @@ import zlib
 HERE = os.path.dirname(os.path.abspath(__file__))
 HOSTILE = os.path.join(HERE, "hostile")
 
-FLOAT, USHORT, UINT, UBYTE = 5126, 5123, 5125, 5121
+FLOAT, USHORT, UINT, UBYTE, BYTE, SHORT = 5126, 5123, 5125, 5121, 5120, 5122
 
 
 class Gltf:
@@ -38,7 +38,7 @@ class Gltf:
 
     def accessor(self, values, type_, ctype=FLOAT, minmax=False, **extra):
         n = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[type_]
-        fmt = {FLOAT: "f", USHORT: "H", UINT: "I", UBYTE: "B"}[ctype]
+        fmt = {FLOAT: "f", USHORT: "H", UINT: "I", UBYTE: "B", BYTE: "b", SHORT: "h"}[ctype]
         flat = [x for v in values for x in (v if isinstance(v, (list, tuple)) else [v])]
         a = {"bufferView": self.view(struct.pack("<%d%s" % (len(flat), fmt), *flat)),
              "componentType": ctype, "count": len(flat) // n, "type": type_}
@@ -155,6 +155,73 @@ def textured():
     quad = g.mesh("screen", [(0, 1, 0), (1, 1, 0), (1, 0, 0), (0, 0, 0)], [0, 3, 2, 0, 2, 1],
                   [(0, 0, 1)] * 4, [(0, 0), (1, 0), (1, 1), (0, 1)], material=0)
     g.node(name="screen", mesh=quad)
+    return g.finish()
+
+
+def uv_sets():
+    """Texture coordinates as real assets use them: a second UV set, KHR_texture_transform (the
+    extension's own example), and a transform's texCoord override."""
+    g = Gltf()
+    png = png_rgba(1, 1, [[(255, 255, 255, 255)]])
+    g.add("images", {"uri": "data:image/png;base64," + base64.b64encode(png).decode()})
+    g.add("textures", {"source": 0})
+    example = {"offset": [0, 1], "rotation": 1.57079632679, "scale": [0.5, 0.5]}
+    g.add("materials", {"name": "second_set_transformed",
+                        "pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": 1,
+                                                                      "extensions": {"KHR_texture_transform": example}}},
+                        "emissiveTexture": {"index": 0, "texCoord": 1, "extensions": {"KHR_texture_transform": example}}})
+    g.add("materials", {"name": "override", "pbrMetallicRoughness": {"baseColorTexture": {
+        "index": 0, "extensions": {"KHR_texture_transform": {"texCoord": 1, "offset": [0.25, 0]}}}}})
+    g.doc["extensionsUsed"] = ["KHR_texture_transform"]
+    uv0 = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    uv1 = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    for k, name in enumerate(["transformed", "override"]):
+        attrs = {"POSITION": g.accessor([(x + 3 * k, y, z) for x, y, z in QUAD_P], "VEC3", minmax=True),
+                 "TEXCOORD_0": g.accessor([(u + 7, v) for u, v in uv0], "VEC2"),
+                 "TEXCOORD_1": g.accessor(uv1, "VEC2")}
+        m = g.add("meshes", {"name": name, "primitives": [{"attributes": attrs, "indices": g.accessor(QUAD_I, "SCALAR", USHORT),
+                                                           "material": k}]})
+        g.node(name=name, mesh=m)
+    return g.finish()
+
+
+def extensions():
+    """Extensions real assets use that giq maps onto its materials at load (unlit, ior),
+    primitives it drops with a warning (points, lines) and optional extensions it ignores."""
+    g = Gltf()
+    g.add("materials", {"name": "unlit", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.6, 0.5], "metallicFactor": 0.5},
+                        "extensions": {"KHR_materials_unlit": {}}})
+    g.add("materials", {"name": "ior2", "pbrMetallicRoughness": {"metallicFactor": 0.0},
+                        "extensions": {"KHR_materials_ior": {"ior": 2.0}, "KHR_materials_clearcoat": {"clearcoatFactor": 1.0}}})
+    g.doc["extensionsUsed"] = ["KHR_materials_unlit", "KHR_materials_ior", "KHR_materials_clearcoat", "KHR_xmp_json_ld", "EXT_made_up"]
+    tri = g.accessor(TRI_P, "VEC3", minmax=True)
+    prims = [{"attributes": {"POSITION": tri}, "material": 0}, {"attributes": {"POSITION": tri}, "material": 1},
+             {"attributes": {"POSITION": tri}, "mode": 0}, {"attributes": {"POSITION": tri}, "mode": 3}]
+    m = g.add("meshes", {"name": "mixed", "primitives": prims})
+    g.node(name="mixed", mesh=m)
+    return g.finish()
+
+
+def instancing():
+    """EXT_mesh_gpu_instancing (three instances of a triangle under a translated node) and
+    KHR_mesh_quantization (16-bit integer positions scaled by the node, 8-bit normalized normals,
+    8-bit integer UVs)."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["EXT_mesh_gpu_instancing", "KHR_mesh_quantization"]
+    g.doc["extensionsRequired"] = ["KHR_mesh_quantization"]
+    pos = g.accessor([(0, 0, 0), (1000, 0, 0), (0, 1000, 0)], "VEC3", SHORT, minmax=True)
+    nrm = g.accessor([(0, 0, 127, 0)] * 3, "VEC4", BYTE, normalized=True)  # VEC3 padded to 4 bytes
+    g.doc["accessors"][nrm]["type"] = "VEC3"
+    g.doc["bufferViews"][g.doc["accessors"][nrm]["bufferView"]]["byteStride"] = 4
+    uv = g.accessor([(0, 0, 0, 0), (2, 0, 0, 0), (0, 2, 0, 0)], "VEC4", UBYTE)  # VEC2 padded to 4 bytes
+    g.doc["accessors"][uv]["type"] = "VEC2"
+    g.doc["bufferViews"][g.doc["accessors"][uv]["bufferView"]]["byteStride"] = 4
+    m = g.add("meshes", {"name": "tri", "primitives": [{"attributes": {"POSITION": pos, "NORMAL": nrm, "TEXCOORD_0": uv}}]})
+    t = g.accessor([(0, 0, 0), (10, 0, 0), (0, 0, 10)], "VEC3")
+    r = g.accessor([(0, 0, 0, 1), (0, 0, 0.70710678, 0.70710678), (0, 0, 0, 1)], "VEC4")
+    sc = g.accessor([(1, 1, 1), (1, 1, 1), (2, 2, 2)], "VEC3")
+    g.node(name="crowd", mesh=m, translation=[0, 5, 0], scale=[0.001, 0.001, 0.001],
+           extensions={"EXT_mesh_gpu_instancing": {"attributes": {"TRANSLATION": t, "ROTATION": r, "SCALE": sc}}})
     return g.finish()
 
 
@@ -461,7 +528,7 @@ def hostile():
     case("overflowing_transform.gltf", "nodes", minimal(a=overflow))
     case("bad_child.gltf", "nodes[0].children", minimal(a=setp(("nodes", 0, "children"), [5])))
     case("unsupported_extension.gltf", "extensionsRequired[0]",
-         minimal(a=setp(("extensionsRequired",), ["KHR_texture_transform"]), b=setp(("extensionsUsed",), ["KHR_texture_transform"])))
+         minimal(a=setp(("extensionsRequired",), ["KHR_materials_transmission"]), b=setp(("extensionsUsed",), ["KHR_materials_transmission"])))
 
     def texture(uri_bytes, tex_coord=0, ext=None):
         def f(d, g):
@@ -477,9 +544,11 @@ def hostile():
         return f
     good_png = png_rgba(1, 1, [[(255, 255, 255, 255)]])
     case("bad_texture.gltf", "images[0]", minimal(a=texture(b"\x89PNG\r\n\x1a\n this is not an image")))
-    case("texcoord1.gltf", "materials[0].pbrMetallicRoughness.baseColorTexture.texCoord", minimal(a=texture(good_png, tex_coord=1)))
-    case("texture_transform.gltf", "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform",
-         minimal(a=texture(good_png, ext={"KHR_texture_transform": {"scale": [2, 2]}})))
+    def mixed_uv_sets(d, g):
+        d["materials"][0]["emissiveTexture"] = {"index": 0, "texCoord": 1}
+    case("mixed_uv_sets.gltf", "materials[0].emissiveTexture", minimal(a=texture(good_png), b=mixed_uv_sets))
+    case("bad_texture_transform.gltf", "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.scale",
+         minimal(a=texture(good_png, ext={"KHR_texture_transform": {"scale": [2]}})))
 
     def camera(kind):
         def f(d, g):
@@ -492,8 +561,7 @@ def hostile():
          minimal(a=setp(("materials",), [{"alphaMode": "BLEND"}]), b=setp(tri_mesh_prim + ("material",), 0)))
     case("skin.gltf", "nodes[0].skin", minimal(a=setp(("skins",), [{"joints": [0]}]), b=setp(("nodes", 0, "skin"), 0)))
     case("morph.gltf", "meshes[0].primitives[0].targets", minimal(a=setp(tri_mesh_prim + ("targets",), [{"POSITION": 0}])))
-    case("points.gltf", "meshes[0].primitives[0].mode", minimal(a=setp(tri_mesh_prim + ("mode",), 0)))
-    case("lines.gltf", "meshes[0].primitives[0].mode", minimal(a=setp(tri_mesh_prim + ("mode",), 1)))
+    case("unknown_mode.gltf", "meshes[0].primitives[0].mode", minimal(a=setp(tri_mesh_prim + ("mode",), 7)))
 
     def anim(path, times=(0.0, 1.0)):
         def f(d, g):
@@ -534,6 +602,9 @@ def main():
     write(os.path.join(HERE, "lights_cameras.gltf"), lights_cameras())
     write(os.path.join(HERE, "materials.gltf"), materials())
     write(os.path.join(HERE, "textured_room.gltf"), textured_room())
+    write(os.path.join(HERE, "uv_sets.gltf"), uv_sets())
+    write(os.path.join(HERE, "extensions.gltf"), extensions())
+    write(os.path.join(HERE, "instancing.gltf"), instancing())
     write(os.path.join(HERE, "external.gltf"), external())
     with open(os.path.join(HERE, "quad_tri.glb"), "wb") as f:
         f.write(glb(None))

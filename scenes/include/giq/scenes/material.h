@@ -1,7 +1,8 @@
 #pragma once
 // glTF 2.0 metallic-roughness material with the extensions giq understands
-// (KHR_materials_emissive_strength, KHR_materials_specular). Texture members index
-// Scene::textures; -1 means "no texture". All textures use TEXCOORD_0.
+// (KHR_materials_emissive_strength, KHR_materials_specular; KHR_materials_ior and
+// KHR_materials_unlit are mapped onto these fields when loaded). Texture members index
+// Scene::textures; -1 means "no texture". Every texture reads Mesh::uvs.
 
 #include <glm/glm.hpp>
 #include <string>

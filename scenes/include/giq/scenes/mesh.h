@@ -21,7 +21,7 @@ struct Mesh {
   std::vector<glm::vec3> positions;   // local frame
   std::vector<glm::vec3> normals;     // unit; flat normals generated when the file has none
   std::vector<glm::vec4> tangents;    // xyz unit, w = bitangent sign; empty when absent
-  std::vector<glm::vec2> uvs;         // TEXCOORD_0; empty when absent
+  std::vector<glm::vec2> uvs;         // the set the material reads, texture transform applied; empty when absent
   std::vector<glm::uvec3> triangles;  // vertex indices; degenerate triangles removed
 
   size_t triangle_count() const { return triangles.size(); }

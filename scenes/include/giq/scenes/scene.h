@@ -88,6 +88,10 @@ class Scene {
   // --- provenance
   std::filesystem::path path;  // empty for a scene built in code
   std::string content_hash;    // hash of the glTF and every file it references
+  // What the file holds that giq dropped or approximated (points and lines, optional
+  // extensions it ignores), one line each with the glTF path; commands print them and
+  // `giq scene info` lists them.
+  std::vector<std::string> warnings;
   // World position of the local frame every position below is relative to. Chosen at load
   // (the centre of the scene's bounds at t = 0, computed in double precision) and kept for
   // all times, so geometry far from the world origin keeps full float precision.
@@ -125,10 +129,23 @@ class Scene {
   // the available views when there is no such view.
   const View& view(std::string_view name_or_index) const;
 
+  // Light and views given from outside the file (the command line's --sun, --env, --camera),
+  // in the local frame. They stay through at(t), after the file's own lights and views. A
+  // light or an environment changes what the scene looks like, so it also changes
+  // content_hash, which then names the scene as rendered (`description` says what was added,
+  // e.g. "sun dir=0,-1,0 illuminance=3"); a view does not.
+  void add_light(const Light& light, const std::string& description);
+  void set_environment(glm::vec3 radiance, const std::string& description);
+  void add_view(const View& view);
+  const std::vector<Light>& added_lights() const { return added_lights_; }
+  const std::vector<View>& added_views() const { return added_views_; }
+
  private:
   void derive_area_lights();
   friend Scene load(const std::filesystem::path&);
   std::shared_ptr<const SceneSource> source_;
+  std::vector<Light> added_lights_;
+  std::vector<View> added_views_;
 };
 
 // Loads a .gltf or .glb file. Throws InputError (file, glTF path, what was expected) for

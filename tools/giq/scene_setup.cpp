@@ -1,0 +1,162 @@
+#include "scene_setup.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <numbers>
+#include <stdexcept>
+
+#include "giq/base/error.h"
+
+namespace giq::cli {
+namespace {
+
+namespace sc = giq::scenes;
+
+struct KeyValue {
+  std::string key, value;
+};
+
+KeyValue split(const std::string& arg) {
+  const size_t eq = arg.find('=');
+  return {arg.substr(0, eq), eq == std::string::npos ? "" : arg.substr(eq + 1)};
+}
+
+glm::dvec3 parse_vec3(const std::string& option, const std::string& key, const std::string& text) {
+  glm::dvec3 v;
+  char tail;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &v.x, &v.y, &v.z, &tail) != 3 || !std::isfinite(v.x) ||
+      !std::isfinite(v.y) || !std::isfinite(v.z))
+    throw InputError("", option, key + "=" + text + " is not three finite numbers x,y,z");
+  return v;
+}
+
+double parse_number(const std::string& option, const std::string& key, const std::string& text, double lo, double hi,
+                    const std::string& expected) {
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !(x >= lo && x <= hi)) throw InputError("", option, key + "=" + text + " must be " + expected);
+  return x;
+}
+
+double parse_fov(const std::string& value) {
+  const double fov = parse_number("--camera", "fov", value, 0.0, 180.0, "a vertical field of view in degrees in (0, 180)");
+  if (fov == 0.0 || fov == 180.0) throw InputError("", "--camera", "fov=" + value + " must be a vertical field of view in degrees in (0, 180)");
+  return fov;
+}
+
+sc::Camera look_at(glm::dvec3 eye, glm::dvec3 target, glm::dvec3 up, double fov_deg, const sc::Scene& scene) {
+  try {
+    return sc::Camera::look_at(glm::vec3(eye - scene.origin), glm::vec3(target - scene.origin), glm::vec3(up),
+                               float(fov_deg * std::numbers::pi / 180.0));
+  } catch (const std::invalid_argument& e) {
+    throw InputError("", "--camera", e.what());
+  }
+}
+
+// --camera auto: the bounds' sphere seen whole from the front (+Z, the way glTF assets face),
+// 20 degrees above the horizon.
+sc::Camera auto_camera(const std::vector<std::string>& args, const sc::Scene& scene) {
+  double fov = 45.0;
+  for (size_t i = 1; i < args.size(); ++i) {
+    const KeyValue kv = split(args[i]);
+    if (kv.key != "fov") throw InputError("", "--camera", "'" + args[i] + "' is not fov=deg; after 'auto' only fov may follow");
+    fov = parse_fov(kv.value);
+  }
+  if (scene.bounds.empty()) throw InputError(scene.path.string(), "--camera", "auto needs geometry to frame; the scene has none");
+  const glm::dvec3 centre = scene.origin + glm::dvec3(scene.bounds.centre());
+  const double radius = 0.5 * double(scene.bounds.diagonal());
+  const double distance = 1.05 * radius / std::sin(0.5 * fov * std::numbers::pi / 180.0);
+  const double elevation = 20.0 * std::numbers::pi / 180.0;
+  const glm::dvec3 eye = centre + distance * glm::dvec3(0.0, std::sin(elevation), std::cos(elevation));
+  std::fprintf(stderr, "giq: --camera auto: eye=%.6g,%.6g,%.6g target=%.6g,%.6g,%.6g fov=%.6g\n", eye.x, eye.y, eye.z, centre.x,
+               centre.y, centre.z, fov);
+  return look_at(eye, centre, glm::dvec3(0.0, 1.0, 0.0), fov, scene);
+}
+
+sc::Camera parse_camera(const std::vector<std::string>& args, const sc::Scene& scene) {
+  if (args.front() == "auto") return auto_camera(args, scene);
+  glm::dvec3 eye, target, up(0.0, 1.0, 0.0);
+  double fov = 45.0;
+  bool has_eye = false, has_target = false;
+  for (const std::string& a : args) {
+    const KeyValue kv = split(a);
+    if (kv.key == "eye") eye = parse_vec3("--camera", kv.key, kv.value), has_eye = true;
+    else if (kv.key == "target") target = parse_vec3("--camera", kv.key, kv.value), has_target = true;
+    else if (kv.key == "up") up = parse_vec3("--camera", kv.key, kv.value);
+    else if (kv.key == "fov") fov = parse_fov(kv.value);
+    else throw InputError("", "--camera", "'" + a + "' is not one of eye=x,y,z target=x,y,z up=x,y,z fov=deg, or auto");
+  }
+  if (!has_eye || !has_target) throw InputError("", "--camera", "needs both eye=x,y,z and target=x,y,z, or auto");
+  return look_at(eye, target, up, fov, scene);
+}
+
+sc::Light parse_sun(const std::vector<std::string>& args) {
+  sc::Light sun;
+  sun.name = "sun";
+  sun.type = sc::LightType::Directional;
+  bool has_dir = false, has_illuminance = false;
+  for (const std::string& a : args) {
+    const KeyValue kv = split(a);
+    if (kv.key == "dir") {
+      const glm::dvec3 d = parse_vec3("--sun", kv.key, kv.value);
+      if (!(glm::length(d) > 0.0)) throw InputError("", "--sun", "dir=" + kv.value + " must not be zero");
+      sun.direction = glm::vec3(glm::normalize(d)), has_dir = true;
+    } else if (kv.key == "illuminance") {
+      sun.intensity = float(parse_number("--sun", kv.key, kv.value, 0.0, 1e30, "a non-negative number (irradiance on a surface facing the sun)"));
+      has_illuminance = true;
+    } else if (kv.key == "color") {
+      const glm::dvec3 c = parse_vec3("--sun", kv.key, kv.value);
+      if (c.x < 0.0 || c.y < 0.0 || c.z < 0.0) throw InputError("", "--sun", "color=" + kv.value + " must not be negative");
+      sun.color = glm::vec3(c);
+    } else {
+      throw InputError("", "--sun", "'" + a + "' is not one of dir=x,y,z illuminance=E color=r,g,b");
+    }
+  }
+  if (!has_dir || !has_illuminance) throw InputError("", "--sun", "needs both dir=x,y,z (the way the light travels) and illuminance=E");
+  return sun;
+}
+
+glm::vec3 parse_env(const std::string& text) {
+  glm::dvec3 v;
+  char tail;
+  const int n = std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &v.x, &v.y, &v.z, &tail);
+  if (n == 1 && text.find(',') == std::string::npos) v = glm::dvec3(v.x);
+  else if (n != 3) throw InputError("", "--env", "'" + text + "' is not a radiance r,g,b or one number");
+  if (!(v.x >= 0.0 && v.y >= 0.0 && v.z >= 0.0 && v.x < 1e30 && v.y < 1e30 && v.z < 1e30))
+    throw InputError("", "--env", "'" + text + "' must be finite and not negative");
+  return glm::vec3(v);
+}
+
+}  // namespace
+
+void SceneSetup::add_options(CLI::App& cmd) {
+  cmd.add_option("--camera", camera, "Camera in world coordinates: eye=x,y,z target=x,y,z [up=x,y,z] [fov=deg], or auto [fov=deg]")
+      ->expected(1, 4);
+  cmd.add_option("--sun", sun, "Add a directional light: dir=x,y,z (the way it travels) illuminance=E [color=r,g,b]")->expected(2, 3);
+  cmd.add_option("--env", env, "Constant environment radiance r,g,b (or one number), replacing the scene's");
+}
+
+sc::Scene SceneSetup::load(const std::filesystem::path& path) const {
+  sc::Scene scene = sc::load(path);
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "giq: warning: %s: %s\n", path.string().c_str(), w.c_str());
+  if (!sun.empty()) {
+    std::string description = "sun";
+    for (const std::string& a : sun) description += " " + a;
+    scene.add_light(parse_sun(sun), description);
+  }
+  if (!env.empty()) scene.set_environment(parse_env(env), "env " + env);
+  if (scene.stats.total_light_power <= 0.0 && scene.environment == glm::vec3(0.0f))
+    throw InputError(path.string(), "lights",
+                     "the scene has no light (no punctual light, no emissive material, no environment, or all of zero "
+                     "strength), so every image of it is black; add one with --sun dir=x,y,z illuminance=E or --env r,g,b");
+  if (!camera.empty()) {
+    sc::View view;
+    view.name = kCameraView;
+    view.camera = parse_camera(camera, scene);
+    scene.add_view(view);
+  }
+  return scene;
+}
+
+}  // namespace giq::cli

@@ -1,0 +1,37 @@
+#pragma once
+// What every rendering command (giq reference, giq realtime) does to the scene it is given
+// before rendering: load it and print what was dropped or approximated, add the light and the
+// camera the command line gives, and refuse a scene without any light, whose every image
+// would be black.
+//
+//   --camera eye=x,y,z target=x,y,z [up=x,y,z] [fov=deg]    world coordinates, vertical fov
+//   --camera auto [fov=deg]                                  frames the scene's bounds
+//   --sun dir=x,y,z illuminance=E [color=r,g,b]              a directional light; dir is the
+//                                                            way the light travels
+//   --env r,g,b  (or one number)                             constant environment radiance
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "giq/scenes/scene.h"
+
+namespace giq::cli {
+
+// The name of the view --camera adds.
+inline constexpr const char* kCameraView = "camera";
+
+struct SceneSetup {
+  std::vector<std::string> camera;
+  std::vector<std::string> sun;
+  std::string env;
+
+  void add_options(CLI::App& cmd);
+  bool has_camera() const { return !camera.empty(); }
+  // Loads the scene, prints its warnings on stderr, adds --sun, --env and the --camera view
+  // (kCameraView), then throws InputError when the scene has no light at all.
+  scenes::Scene load(const std::filesystem::path& path) const;
+};
+
+}  // namespace giq::cli
