@@ -76,6 +76,7 @@ TEST(Error, AllNonFiniteGivesUndefinedNotZero) {
   EXPECT_EQ(e.valid_pixels, 0u);
   EXPECT_TRUE(std::isnan(e.mse));
   EXPECT_TRUE(std::isnan(e.psnr));
+  EXPECT_TRUE(std::isnan(e.relmse_trimmed));
 }
 
 TEST(Error, AllBlackReferenceAndAllBlackTest) {
@@ -167,4 +168,27 @@ TEST(Error, AVarianceLayerThatCannotBeOneIsNotTrusted) {
   const auto h = error_stats(rgb_layer(huge, "", "h"), rgb_layer(t, "", "t"), &hv);
   EXPECT_LT(h.mse_debiased, 0.0);
   EXPECT_TRUE(h.unresolved_mse);
+}
+
+TEST(Error, TrimmedRelmseLeavesOutTheHottestPixelsOnly) {
+  // 200 x 100 = 20000 pixels: floor(1e-4 x 20000) = 2 are trimmed. Every pixel is 0.1 off
+  // a reference of 1, and two "fireflies" are 1e4 off: relmse is theirs, the trimmed mean is
+  // the rest's closed form exactly (within the float inputs' rounding).
+  auto r = test::rgb_image(200, 100, [](int, int, int) { return 1.0f; });
+  auto t = test::rgb_image(200, 100, [](int x, int y, int) {
+    return (x == 7 && y == 3) || (x == 150 && y == 90) ? 1.0e4f : 1.1f;
+  });
+  const auto e = error_stats(rgb_layer(r, "", "r"), rgb_layer(t, "", "t"));
+  const double d = double(1.1f) - 1.0, hot = 1.0e4 - 1.0;
+  const double body = d * d / 1.01;
+  EXPECT_EQ(e.trimmed_pixels, 2u);
+  EXPECT_NEAR(e.relmse, (19998.0 * body + 2.0 * hot * hot / 1.01) / 20000.0, 1e-9 * e.relmse);
+  EXPECT_GT(e.relmse, 1e3 * body);
+  EXPECT_NEAR(e.relmse_trimmed, body, 1e-12);
+  // Under 10000 valid pixels nothing is trimmed: the two means are the same number.
+  auto small_r = test::rgb_image(50, 40, [](int x, int y, int k) { return test::hash01(x, y, k); });
+  auto small_t = test::rgb_image(50, 40, [](int x, int y, int k) { return test::hash01(x, y, k) * 1.5f; });
+  const auto s = error_stats(rgb_layer(small_r, "", "r"), rgb_layer(small_t, "", "t"));
+  EXPECT_EQ(s.trimmed_pixels, 0u);
+  EXPECT_NEAR(s.relmse_trimmed, s.relmse, 1e-12 * s.relmse);
 }

@@ -26,17 +26,24 @@ struct MeanSum {
   double mean() const { return n ? sum / double(n) : std::numeric_limits<double>::quiet_NaN(); }
 };
 
+// Chunks summed at once before their sums are added: bounds the partial sums kept, which
+// matters when an Acc holds more than a few numbers (error_stats' largest errors).
+constexpr int kChunksPerBatch = 32;
+
 // body(y0, y1, Acc& acc) accumulates rows [y0, y1) into acc; Acc needs operator+=.
 template <class Acc, class Body>
 Acc reduce_rows(int height, const Body& body) {
   const int chunks = (height + kRowsPerChunk - 1) / kRowsPerChunk;
-  std::vector<Acc> partial(size_t(std::max(chunks, 0)));
-  tbb::parallel_for(tbb::blocked_range<int>(0, chunks), [&](const tbb::blocked_range<int>& r) {
-    for (int k = r.begin(); k != r.end(); ++k)
-      body(k * kRowsPerChunk, std::min(height, (k + 1) * kRowsPerChunk), partial[size_t(k)]);
-  });
   Acc total{};
-  for (const auto& p : partial) total += p;
+  for (int b0 = 0; b0 < chunks; b0 += kChunksPerBatch) {
+    const int b1 = std::min(chunks, b0 + kChunksPerBatch);
+    std::vector<Acc> partial(size_t(b1 - b0));
+    tbb::parallel_for(tbb::blocked_range<int>(b0, b1), [&](const tbb::blocked_range<int>& r) {
+      for (int k = r.begin(); k != r.end(); ++k)
+        body(k * kRowsPerChunk, std::min(height, (k + 1) * kRowsPerChunk), partial[size_t(k - b0)]);
+    });
+    for (const auto& p : partial) total += p;
+  }
   return total;
 }
 

@@ -81,6 +81,9 @@ json score_image(const image::Image& ref, const std::string& ref_file, const ima
   m["rmse"] = with_floor(metric(e.rmse, "rmse", io, unit_of("rmse")), e.unresolved_mse, std::sqrt(nf_mse));
   m["mae"] = with_floor(metric(e.mae, "mae", io, unit_of("mae")), e.unresolved_mae, e.noise ? e.noise->mae : 0.0);
   m["relmse"] = with_floor(metric(e.relmse, "relmse", io, unit_of("relmse")), e.unresolved_relmse, e.noise ? e.noise->relmse : 0.0);
+  m["relmse_trimmed"] = with_floor(metric(e.relmse_trimmed, "relmse_trimmed", io, unit_of("relmse_trimmed")),
+                                   e.unresolved_relmse_trimmed, e.noise ? e.noise->relmse_trimmed : 0.0);
+  m["relmse_trimmed"]["trimmed_pixels"] = e.trimmed_pixels;
   m["smape"] = with_floor(metric(e.smape, "smape", io, unit_of("smape")), e.unresolved_smape, e.noise ? e.noise->smape : 0.0);
   m["psnr"] = with_floor(metric(e.psnr, "psnr", io, unit_of("psnr")), e.unresolved_mse, nf_mse);
   if (e.noise) {

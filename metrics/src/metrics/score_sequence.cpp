@@ -120,6 +120,7 @@ json score_sequence(const ScoreRequest& req) {
                          {"mse", number(e.mse)},
                          {"mae", number(e.mae)},
                          {"relmse", number(e.relmse)},
+                         {"relmse_trimmed", number(e.relmse_trimmed)},
                          {"nonfinite_pixels", e.nonfinite_pixels}});
     if (!region.empty()) r_t.push_back(region_abs_error(r, t, region));
     if (prev_test) {

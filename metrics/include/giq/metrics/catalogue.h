@@ -35,11 +35,12 @@ struct MetricInfo {
 };
 
 // In the order the tables list them.
-inline constexpr std::array<MetricInfo, 25> kMetricCatalogue = {{
+inline constexpr std::array<MetricInfo, 26> kMetricCatalogue = {{
     {"mse", "mse", {"mse"}, {}, "radiance^2", Better::Lower, false, "per-image-error", Scope::Image},
     {"rmse", "rmse", {"rmse"}, {}, "radiance", Better::Lower, false, "per-image-error", Scope::Image},
     {"mae", "mae", {"mae"}, {}, "radiance", Better::Lower, false, "per-image-error", Scope::Image},
     {"relmse", "relmse", {"relmse"}, {}, "1", Better::Lower, true, "per-image-error", Scope::Image},
+    {"relmse_trimmed", "relmse (trimmed)", {"relmse_trimmed"}, {}, "1", Better::Lower, false, "per-image-error", Scope::Image},
     {"smape", "smape", {"smape"}, {}, "1", Better::Lower, true, "per-image-error", Scope::Image},
     {"psnr", "psnr", {"psnr"}, {}, "dB", Better::Higher, true, "per-image-error", Scope::Image},
     {"noise_floor", "noise_floor", {"noise_floor"}, {}, "radiance^2", Better::Lower, false,
