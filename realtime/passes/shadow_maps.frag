@@ -7,9 +7,10 @@
 #include "shaders/textures.glsl"
 
 layout(location = 0) in vec2 in_uv;
+layout(location = 1) in float in_alpha;
 
 void main() {
   // One draw covers every triangle in SceneGpu order, so gl_PrimitiveID is the global index.
   uint tri = uint(gl_PrimitiveID);
-  if (alpha_cut(scene_materials[scene_triangles[tri].v.w], tri, in_uv)) discard;
+  if (alpha_cut(scene_materials[scene_triangles[tri].v.w], tri, in_uv, in_alpha)) discard;
 }

@@ -7,14 +7,16 @@
 layout(push_constant) uniform Push { mat4 view_proj; } pc;
 
 #ifdef GIQ_ALPHA_MASK
-// Texture coordinates for the cut-out test of shadow_maps.frag; perspective-correct
-// interpolation gives the surface point's own TEXCOORD_0.
+// Texture coordinates and COLOR_0's alpha for the cut-out test of shadow_maps.frag;
+// perspective-correct interpolation gives the surface point's own values.
 layout(location = 0) out vec2 out_uv;
+layout(location = 1) out float out_alpha;
 #endif
 
 void main() {
   gl_Position = pc.view_proj * vec4(scene_vertices[gl_VertexIndex].position.xyz, 1.0);
 #ifdef GIQ_ALPHA_MASK
   out_uv = scene_vertex_extra[gl_VertexIndex].uv.xy;
+  out_alpha = scene_vertex_extra[gl_VertexIndex].color.a;
 #endif
 }

@@ -38,23 +38,32 @@ using uint = uint32_t;
 #define GIQ_TRIANGLE_HAS_UVS 1u
 #define GIQ_TRIANGLE_HAS_TANGENTS 2u
 #define GIQ_TRIANGLE_HAS_NORMALS 4u
+#define GIQ_TRIANGLE_HAS_COLORS 8u
 
-// GpuTexture::info.w: wrap_s | wrap_t << 2 | filter << 4 (scenes::Wrap, scenes::Filter order).
+// GpuTexture::info.w: wrap_s | wrap_t << 2 | filter << 4 | format << 5 (scenes::Wrap,
+// scenes::Filter, scenes::TexelFormat order).
 #define GIQ_WRAP_REPEAT 0u
 #define GIQ_WRAP_CLAMP 1u
 #define GIQ_WRAP_MIRROR 2u
 #define GIQ_FILTER_NEAREST 0u
 #define GIQ_FILTER_LINEAR 1u
+#define GIQ_TEXELS_RGBA8_SRGB 0u
+#define GIQ_TEXELS_RGBA8_UNORM 1u
+#define GIQ_TEXELS_RGBA32F 2u
+// The texel buffer opens with scenes::decode_table: word c (c < 256) is the float c / 255,
+// word 256 + c the sRGB decoding of c / 255.
+#define GIQ_DECODE_SRGB 256u
 
 struct GpuVertex {
   vec4 position;  // xyz in the scene's local frame
   vec4 normal;    // xyz unit shading normal
 };
 
-// Per vertex, beside GpuVertex, for textured scenes only.
+// Per vertex, beside GpuVertex, for scenes with textures or vertex colours only.
 struct GpuVertexExtra {
   vec4 tangent;  // xyz tangent, w bitangent sign (scenes::Mesh::tangents)
-  vec4 uv;       // xy TEXCOORD_0
+  vec4 uv;       // xy: the UVs the material reads (scenes::Mesh::uvs)
+  vec4 color;    // COLOR_0, linear RGBA (scenes::Mesh::colors); white without
 };
 
 struct GpuTriangle {
@@ -74,10 +83,10 @@ struct GpuMaterial {
   vec4 mask;            // x: 1 = alpha mode MASK, y: alpha cutoff, z: normal scale
 };
 
-// A texture: texels[first .. first + width * height), row-major, first row = v 0, linear
-// float RGBA exactly as scenes::Texture holds them (sRGB already decoded on the CPU).
+// A texture: its words from `first`, row-major, first row = v 0, exactly as scenes::Texture
+// holds them: one word a texel (8-bit RGBA, R in the low byte) or four (float RGBA bits).
 struct GpuTexture {
-  uvec4 info;  // x first texel, y width, z height, w wrap and filter (GIQ_WRAP_*, GIQ_FILTER_*)
+  uvec4 info;  // x first word, y width, z height, w wrap, filter and format (GIQ_WRAP_*, GIQ_FILTER_*, GIQ_TEXELS_*)
 };
 
 // Flattened BVH node (32 bytes). count == 0: interior, `index` = right child (the left child

@@ -11,7 +11,7 @@
 #include "textures.glsl"
 #include "brdf.glsl"
 
-#if defined(GIQ_TEXTURES) || defined(GIQ_NORMAL_MAPS)
+#if defined(GIQ_TEXTURES) || defined(GIQ_NORMAL_MAPS) || defined(GIQ_VERTEX_COLORS)
 #define GIQ_SURFACE_TEXTURES 1
 #endif
 
@@ -119,6 +119,7 @@ Surface hit_material(uint tri, float b1, float b2, vec3 n) {
   }
   if (m.textures2.x >= 0) s.specular *= texture_sample(m.textures2.x, uv).a;
   if (m.textures2.y >= 0) s.specular_color *= texture_sample(m.textures2.y, uv).rgb;
+  s.base_color *= triangle_color(tri, b1, b2).rgb;  // COLOR_0 (reference make_surface)
 #endif
   return s;
 }

@@ -1,8 +1,8 @@
 // Texture lookups, texture coordinates and the alpha-mask test, with the arithmetic of the
 // scene library (scenes/src/texture.cpp, Texture::sample) and of the reference
-// (reference/src/surface.h, reference/src/embree_scene.cpp). Textures are float RGBA texels
-// in one storage buffer (scene.glsl, GIQ_BINDING_TEXELS) filtered here by hand: the same
-// texels as the reference (sRGB decoded on the CPU), the same wrap modes and the same
+// (reference/src/surface.h, reference/src/embree_scene.cpp). Textures are 8-bit (or float)
+// RGBA texels in one storage buffer (scene.glsl, GIQ_BINDING_TEXELS) decoded and filtered here
+// by hand: the same floats as the reference (one decode table), the same wrap modes and the same
 // bilinear weights (the same bits for power-of-two sizes), on every Vulkan device without
 // samplers or descriptor indexing.
 // Needs scene.glsl.
@@ -11,7 +11,7 @@
 
 #include "scene.glsl"
 
-#if defined(GIQ_TEXTURES) || defined(GIQ_NORMAL_MAPS) || defined(GIQ_ALPHA_MASK)
+#if defined(GIQ_TEXTURES) || defined(GIQ_NORMAL_MAPS) || defined(GIQ_ALPHA_MASK) || defined(GIQ_VERTEX_COLORS)
 
 // An integer texel coordinate i (held in a float) mapped onto [0, n) by a glTF wrap mode
 // (glTF 2.0, 5.26 "Sampler": OpenGL REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT).
@@ -29,7 +29,18 @@ int texture_wrap(float i, float n, uint mode) {
   return clamp(int(w), 0, int(n) - 1);
 }
 
-vec4 texel_at(GpuTexture t, int x, int y) { return scene_texels[t.info.x + uint(y) * t.info.y + uint(x)]; }
+// Texel (x, y) decoded as scenes::Texture::texel does: 8-bit channels through the decode
+// table at the start of the buffer (the same floats as the reference's), float texels as stored.
+vec4 texel_at(GpuTexture t, int x, int y) {
+  uint i = uint(y) * t.info.y + uint(x), format = (t.info.w >> 5) & 3u;
+  if (format == GIQ_TEXELS_RGBA32F) {
+    uint w = t.info.x + 4u * i;
+    return uintBitsToFloat(uvec4(scene_texels[w], scene_texels[w + 1u], scene_texels[w + 2u], scene_texels[w + 3u]));
+  }
+  uint p = scene_texels[t.info.x + i], colour = format == GIQ_TEXELS_RGBA8_SRGB ? GIQ_DECODE_SRGB : 0u;
+  return vec4(uintBitsToFloat(scene_texels[colour + (p & 255u)]), uintBitsToFloat(scene_texels[colour + ((p >> 8) & 255u)]),
+              uintBitsToFloat(scene_texels[colour + ((p >> 16) & 255u)]), uintBitsToFloat(scene_texels[p >> 24]));
+}
 
 // Texture `index` at uv: nearest or bilinear between the four nearest texel centres, which
 // sit at (i + 0.5) / size; first texel row at v = 0 (glTF's top-left origin).
@@ -80,23 +91,32 @@ vec2 triangle_uv(uint tri, float b1, float b2) {
          b2 * scene_vertex_extra[v.z].uv.xy;
 }
 
+// COLOR_0 at barycentrics (b1, b2) of triangle `tri`; white when its mesh has none, as
+// scenes::Mesh::color_at.
+vec4 triangle_color(uint tri, float b1, float b2) {
+  uvec4 v = scene_triangles[tri].v;
+  if ((scene_triangles[tri].extra.z & GIQ_TRIANGLE_HAS_COLORS) == 0u) return vec4(1.0);
+  return (1.0 - b1 - b2) * scene_vertex_extra[v.x].color + b1 * scene_vertex_extra[v.y].color + b2 * scene_vertex_extra[v.z].color;
+}
+
 #endif
 
 #ifdef GIQ_ALPHA_MASK
 // glTF 2.0, 3.9.4 "Alpha Coverage": a MASK material is absent where baseColorFactor.a times
-// the base colour texture's alpha is below alphaCutoff (the texture only when the mesh has
-// texture coordinates, as the reference's Embree filter).
-bool alpha_cut(GpuMaterial m, uint tri, vec2 uv) {
+// the base colour texture's alpha times COLOR_0's alpha (`vertex_alpha`) is below alphaCutoff
+// (the texture only when the mesh has texture coordinates, as the reference's Embree filter).
+bool alpha_cut(GpuMaterial m, uint tri, vec2 uv, float vertex_alpha) {
   if (m.mask.x == 0.0) return false;
   float alpha = m.base_color.a;
   if (m.textures.x >= 0 && (scene_triangles[tri].extra.z & GIQ_TRIANGLE_HAS_UVS) != 0u) alpha *= texture_sample(m.textures.x, uv).a;
+  alpha *= vertex_alpha;
   return alpha < m.mask.y;
 }
 
 bool alpha_cut(uint tri, float b1, float b2) {
   GpuMaterial m = scene_materials[scene_triangles[tri].v.w];
   if (m.mask.x == 0.0) return false;
-  return alpha_cut(m, tri, triangle_uv(tri, b1, b2));
+  return alpha_cut(m, tri, triangle_uv(tri, b1, b2), triangle_color(tri, b1, b2).a);
 }
 #endif
 

@@ -115,6 +115,7 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
                                  std::to_string(VK_API_VERSION_MINOR(ctx.info().api_version)) + "." +
                                  std::to_string(VK_API_VERSION_PATCH(ctx.info().api_version))}}},
       {"gpu_memory_mb", {{"scene", double(memory_scene - memory_before) / (1 << 20)},
+                         {"textures", double(scene_gpu.texture_bytes()) / (1 << 20)},  // part of "scene"
                          {"technique", double(memory_technique) / (1 << 20)}}},
       {"validation", ctx.validation_enabled()},
   };

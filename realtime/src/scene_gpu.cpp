@@ -1,6 +1,7 @@
 #include "giq/realtime/scene_gpu.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -37,7 +38,11 @@ uint32_t wrap_code(scenes::Wrap w) {
 // Scenes that sample textures, map normals or cut out by alpha get their texture
 // coordinates, tangents and texels; the others a 16-byte empty buffer per binding, so that
 // every pipeline has the same scene bindings.
-bool needs_textures(const scenes::FeatureSet& f) { return f.textures || f.normal_maps || f.alpha_mask; }
+uint32_t format_code(scenes::TexelFormat f) {
+  return f == scenes::TexelFormat::Rgba8Srgb ? GIQ_TEXELS_RGBA8_SRGB : f == scenes::TexelFormat::Rgba8Unorm ? GIQ_TEXELS_RGBA8_UNORM : GIQ_TEXELS_RGBA32F;
+}
+
+bool needs_textures(const scenes::FeatureSet& f) { return f.textures || f.normal_maps || f.alpha_mask || f.vertex_colors; }
 
 }  // namespace
 
@@ -107,7 +112,8 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat) {
     const scenes::Mesh& mesh = scene.meshes[m];
     const uint32_t flags = (mesh.uvs.size() == mesh.positions.size() && !mesh.uvs.empty() ? GIQ_TRIANGLE_HAS_UVS : 0u) |
                            (mesh.tangents.size() == mesh.positions.size() && !mesh.tangents.empty() ? GIQ_TRIANGLE_HAS_TANGENTS : 0u) |
-                           (mesh.normals.size() == mesh.positions.size() && !mesh.normals.empty() ? GIQ_TRIANGLE_HAS_NORMALS : 0u);
+                           (mesh.normals.size() == mesh.positions.size() && !mesh.normals.empty() ? GIQ_TRIANGLE_HAS_NORMALS : 0u) |
+                           (mesh.colors.size() == mesh.positions.size() && !mesh.colors.empty() ? GIQ_TRIANGLE_HAS_COLORS : 0u);
     const uint32_t first = geometry_.mesh_first_triangle[m];
     for (size_t t = 0; t < mesh.triangles.size(); ++t) triangles[first + t].extra.z = flags;
   }
@@ -116,9 +122,10 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat) {
   if (needs_textures(scene.features))
     for (const auto& mesh : scene.meshes)
       for (size_t i = 0; i < mesh.positions.size(); ++i) {
-        GpuVertexExtra e{glm::vec4(0.0f), glm::vec4(0.0f)};
+        GpuVertexExtra e{glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(1.0f)};
         if (i < mesh.tangents.size()) e.tangent = mesh.tangents[i];
         if (i < mesh.uvs.size()) e.uv = glm::vec4(mesh.uvs[i], 0.0f, 0.0f);
+        if (i < mesh.colors.size()) e.color = mesh.colors[i];
         vertex_extra.push_back(e);
       }
 
@@ -140,29 +147,34 @@ void SceneGpu::upload_materials(const scenes::Scene& scene) {
   using namespace gpu;
   Context& ctx = *ctx_;
   std::vector<GpuTexture> textures;
-  std::vector<glm::vec4> texels;
+  std::vector<uint32_t> words;
   if (needs_textures(scene.features)) {
-    // One storage buffer of float RGBA texels, filtered in the shader (shaders/textures.glsl)
-    // with scenes::Texture::sample's arithmetic: no sampler or image array to bind, no
-    // descriptor indexing (lavapipe has none), and the reference's texels to the bit.
+    // One storage buffer of texel words, decoded and filtered in the shader
+    // (shaders/textures.glsl) with scenes::Texture::sample's arithmetic: no sampler or image
+    // array to bind, no descriptor indexing (lavapipe has none), and the reference's floats to
+    // the bit. It opens with scenes::decode_table (512 floats), through which 8-bit texels
+    // become floats on both sides.
+    const auto& table = scenes::decode_table();
     const uint64_t limit = ctx.properties().limits.maxStorageBufferRange;
-    uint64_t total = 0;
-    for (const auto& t : scene.textures) total += uint64_t(std::max(t.width, 0)) * uint64_t(std::max(t.height, 0));
-    if (total * sizeof(glm::vec4) > limit)
+    uint64_t total = table.size();
+    for (const auto& t : scene.textures)
+      if (t.valid()) total += uint64_t(t.width) * uint64_t(t.height) * scenes::Texture::words_per_texel(t.format);
+    if (total * sizeof(uint32_t) > limit)
       throw InputError(scene.path.string(), "textures",
-                       "the scene's textures hold " + std::to_string(total) + " texels (" + std::to_string(total * sizeof(glm::vec4)) +
-                           " bytes as float RGBA); expected at most " + std::to_string(limit) +
-                           " bytes, this device's largest storage buffer");
-    texels.reserve(size_t(total));
+                       "the scene's textures take " + std::to_string(total * sizeof(uint32_t)) + " bytes (8-bit RGBA, float for 16-bit images); expected at most " +
+                           std::to_string(limit) + " bytes, this device's largest storage buffer");
+    words.reserve(size_t(total));
+    for (float f : table) words.push_back(std::bit_cast<uint32_t>(f));
     for (const auto& t : scene.textures) {
-      const size_t n = size_t(std::max(t.width, 0)) * size_t(std::max(t.height, 0));
       GpuTexture g;
-      const bool valid = n > 0 && t.texels && t.texels->size() >= n;
+      const bool valid = t.valid();
+      const size_t n = valid ? size_t(t.width) * size_t(t.height) * scenes::Texture::words_per_texel(t.format) : 0;
       // A texture without texels samples as 0, like scenes::Texture::sample.
-      g.info = glm::uvec4(uint32_t(texels.size()), valid ? uint32_t(t.width) : 0u, valid ? uint32_t(t.height) : 0u,
+      g.info = glm::uvec4(uint32_t(words.size()), valid ? uint32_t(t.width) : 0u, valid ? uint32_t(t.height) : 0u,
                           wrap_code(t.wrap_s) | wrap_code(t.wrap_t) << 2 |
-                              (t.filter == scenes::Filter::Linear ? GIQ_FILTER_LINEAR : GIQ_FILTER_NEAREST) << 4);
-      if (valid) texels.insert(texels.end(), t.texels->begin(), t.texels->begin() + std::ptrdiff_t(n));
+                              (t.filter == scenes::Filter::Linear ? GIQ_FILTER_LINEAR : GIQ_FILTER_NEAREST) << 4 |
+                              format_code(t.format) << 5);
+      if (valid) words.insert(words.end(), t.words->begin(), t.words->begin() + std::ptrdiff_t(n));
       textures.push_back(g);
     }
   }
@@ -186,7 +198,8 @@ void SceneGpu::upload_materials(const scenes::Scene& scene) {
 
   materials_ = Buffer::storage(ctx, materials);
   textures_ = Buffer::storage(ctx, textures);
-  texels_ = Buffer::storage(ctx, texels);
+  texels_ = Buffer::storage(ctx, words);
+  texture_bytes_ = words.size() * sizeof(uint32_t);
 }
 
 bool SceneGpu::upload_lights(const scenes::Scene& scene) {

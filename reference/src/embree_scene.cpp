@@ -11,14 +11,15 @@ struct EmbreeScene::AlphaMask {
   const scenes::Texture* texture;  // base colour texture, or null
 
   // glTF 2.0, "Alpha Coverage": MASK renders a fragment when alpha >= alphaCutoff, alpha being
-  // baseColorFactor.a times the base colour texture's alpha.
+  // baseColorFactor.a times the base colour texture's alpha times COLOR_0's.
   bool transparent(uint32_t triangle, float b1, float b2) const {
     float alpha = material->base_color.a;
+    const glm::uvec3 t = mesh->triangles[triangle];
     if (texture != nullptr && !mesh->uvs.empty()) {
-      const glm::uvec3 t = mesh->triangles[triangle];
       const glm::vec2 uv = (1.0f - b1 - b2) * mesh->uvs[t.x] + b1 * mesh->uvs[t.y] + b2 * mesh->uvs[t.z];
       alpha *= texture->sample(uv).a;
     }
+    alpha *= mesh->color_at(t, b1, b2).a;
     return alpha < material->alpha_cutoff;
   }
 };

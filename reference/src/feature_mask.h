@@ -9,7 +9,7 @@ namespace giq::reference {
 
 enum FeatureBit : unsigned {
   kSpecular = 1u << 0,     // some material has a GGX lobe
-  kTextures = 1u << 1,     // some material samples a texture (normal maps included)
+  kTextures = 1u << 1,     // some material samples a texture (normal maps included), or a mesh has vertex colours
   kPunctual = 1u << 2,     // directional, point or spot lights
   kEmissive = 1u << 3,     // emissive triangles
   kEnvironment = 1u << 4,  // constant environment
@@ -21,7 +21,7 @@ constexpr bool has(unsigned mask, unsigned bit) { return (mask & bit) != 0; }
 inline unsigned feature_mask(const scenes::FeatureSet& f) {
   unsigned m = 0;
   if (f.specular) m |= kSpecular;
-  if (f.textures || f.normal_maps) m |= kTextures;
+  if (f.textures || f.normal_maps || f.vertex_colors) m |= kTextures;
   if (f.directional_lights || f.point_lights || f.spot_lights) m |= kPunctual;
   if (f.emissive_meshes) m |= kEmissive;
   if (f.environment) m |= kEnvironment;

@@ -56,6 +56,7 @@ Surface make_surface(const RenderContext& ctx, const Hit& hit, glm::vec3 dir) {
     uv = interpolate_uv(mesh, tri, b1, b2);
     const auto tex = [&](int i) { return ctx.scene.textures[size_t(i)].sample(uv); };
     if (m.base_color_texture >= 0) base *= glm::vec3(tex(m.base_color_texture));
+    base *= glm::vec3(mesh.color_at(tri, b1, b2));
     if (m.metallic_roughness_texture >= 0) {
       const glm::vec4 t = tex(m.metallic_roughness_texture);  // glTF: G = roughness, B = metallic
       roughness *= t.g, metallic *= t.b;

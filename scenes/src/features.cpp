@@ -14,6 +14,7 @@ std::vector<std::string> FeatureSet::names() const {
       {specular, "specular"},
       {textures, "textures"},
       {normal_maps, "normal_maps"},
+      {vertex_colors, "vertex_colors"},
       {alpha_mask, "alpha_mask"},
       {double_sided, "double_sided"},
       {one_sided, "one_sided"},

@@ -23,7 +23,7 @@ using nlohmann::json;
 // says what is then approximated.
 constexpr const char* kImplemented[] = {"KHR_lights_punctual",     "KHR_materials_emissive_strength", "KHR_materials_specular",
                                         "KHR_materials_ior",       "KHR_materials_unlit",             "KHR_texture_transform",
-                                        "KHR_mesh_quantization",   "EXT_mesh_gpu_instancing"};
+                                        "KHR_mesh_quantization",   "EXT_mesh_gpu_instancing",         "KHR_materials_pbrSpecularGlossiness"};
 
 // What ignoring an optional extension means for the image ("" = nothing visible: metadata).
 struct Ignored {
@@ -39,7 +39,6 @@ constexpr Ignored kIgnored[] = {
     {"KHR_materials_iridescence", "materials have no thin-film iridescence"},
     {"KHR_materials_anisotropy", "specular highlights are isotropic"},
     {"KHR_materials_dispersion", "refraction has no dispersion"},
-    {"KHR_materials_pbrSpecularGlossiness", "materials render with their metallic-roughness parameters"},
     {"KHR_materials_variants", "every primitive keeps its default material"},
     {"KHR_animation_pointer", "only node transforms animate"},
     {"KHR_texture_basisu", "textures use their core PNG or JPEG image"},

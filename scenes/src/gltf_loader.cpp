@@ -245,11 +245,15 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
       ctx.fail(uv.field + ".extensions.KHR_texture_transform", "maps " + w + ".attributes." + uv_name + " beyond the float range");
   }
   if (auto a = p.attributes.find("COLOR_0"); a != p.attributes.end()) {
-    // Vertex colours multiply the base colour; giq has no per-vertex colour, so only the
-    // neutral all-white case is accepted rather than rendered differently.
+    // Linear RGB(A) multiplying the base colour, alpha included (glTF 2.0 spec, 3.7.2.1 and
+    // 3.9.2). An all-white set changes nothing and is not kept.
     const AccessorData d = read_accessor(ctx, a->second, w + ".attributes.COLOR_0", {{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, true, true});
+    same_count(d, "COLOR_0");
     if (std::any_of(d.values.begin(), d.values.end(), [](double x) { return x != 1.0; }))
-      ctx.fail(w + ".attributes.COLOR_0", "vertex colours other than white are not supported; bake them into a base colour texture");
+      for (size_t i = 0; i < n; ++i) {
+        const double* c = &d.values[size_t(d.components) * i];
+        out.colors.emplace_back(c[0], c[1], c[2], d.components == 4 ? c[3] : 1.0);
+      }
   }
   std::vector<uint32_t> idx;
   if (p.indices >= 0) {
@@ -273,7 +277,7 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
     out.collapsed_triangles += collapsed;
     return collapsed;
   });
-  if (out.triangles.empty()) out.positions.clear(), out.normals.clear(), out.tangents.clear(), out.uvs.clear();
+  if (out.triangles.empty()) out.positions.clear(), out.normals.clear(), out.tangents.clear(), out.uvs.clear(), out.colors.clear();
   return out;
 }
 

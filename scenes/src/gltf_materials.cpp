@@ -2,7 +2,9 @@
 
 #include <stb_image.h>
 
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -12,17 +14,16 @@ namespace giq::scenes::gltf {
 namespace {
 
 // Larger images are refused before decoding so a forged header cannot exhaust memory: 2^26
-// texels are 1 GiB as float RGBA.
+// texels are 256 MiB as 8-bit RGBA, 1 GiB as float. All of a scene's textures together hold
+// at most 2 GiB (512 textures of 1024^2 at 8 bits).
 constexpr int kMaxImageSide = 16384;
 constexpr int64_t kMaxImageTexels = int64_t(1) << 26;
+constexpr int64_t kMaxTextureBytes = int64_t(2) << 30;
 
 std::string decode_failure() {
   const char* r = stbi_failure_reason();
   return r ? r : "unknown reason";
 }
-
-// IEC 61966-2-1 sRGB electro-optical transfer function.
-float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 class TextureTable {
  public:
@@ -61,6 +62,37 @@ class TextureTable {
     return index_[key] = int(out_.size()) - 1;
   }
 
+  // A metallic-roughness texture made from a specular-glossiness one (glTF texture `index`):
+  // G = roughness = 1 - glossiness_factor x A, B = metallic 1 (the material's metallic factor
+  // is 0). 8-bit texels stay 8-bit when the factor is 1 (G = 255 - A exactly); otherwise the
+  // texels are float.
+  int roughness_from_glossiness(int index, const std::string& field, double glossiness_factor) {
+    const int source = use(index, field, false);
+    const auto key = std::make_pair(source, glossiness_factor);
+    if (auto it = derived_.find(key); it != derived_.end()) return it->second;
+    Texture tex = out_[size_t(source)];  // name and sampler
+    const size_t texels = size_t(tex.width) * size_t(tex.height);
+    auto words = std::make_shared<std::vector<uint32_t>>();
+    if (tex.format == TexelFormat::Rgba8Unorm && glossiness_factor == 1.0) {
+      words->reserve(texels);
+      for (uint32_t w : *tex.words) words->push_back((255u - (w >> 24)) << 8 | 255u << 16 | 255u << 24);
+    } else {
+      words->reserve(4 * texels);
+      for (int y = 0; y < tex.height; ++y)
+        for (int x = 0; x < tex.width; ++x) {
+          const float roughness = std::clamp(1.0f - float(glossiness_factor) * tex.texel(x, y).a, 0.0f, 1.0f);
+          for (float c : {0.0f, roughness, 1.0f, 1.0f}) words->push_back(std::bit_cast<uint32_t>(c));
+        }
+      tex.format = TexelFormat::Rgba32F;
+    }
+    total_bytes_ += int64_t(words->size() * sizeof(uint32_t));
+    if (total_bytes_ > kMaxTextureBytes)
+      ctx_.fail(field, "the scene's textures decode to more than " + std::to_string(kMaxTextureBytes >> 20) + " MiB in all; too large");
+    tex.words = std::move(words);
+    out_.push_back(std::move(tex));
+    return derived_[key] = int(out_.size()) - 1;
+  }
+
  private:
   Wrap wrap(int mode, const std::string& field) const {
     switch (mode) {
@@ -71,12 +103,19 @@ class TextureTable {
     }
   }
 
-  // Decodes an image once per colour space. Colour textures are stored sRGB-encoded (glTF 2.0
-  // spec, 3.9.2: "MUST be ... sRGB"); alpha and data textures are linear already.
+  // Decodes an image once. 8-bit images stay 8-bit, one word a texel (R in the low byte), and
+  // are read as colour or as data by their format (Texture, decode_table): colour textures are
+  // sRGB-encoded by the glTF spec (2.0, 3.9.2: "MUST be ... sRGB"); alpha and data textures
+  // are linear already. 16-bit images become float RGBA, once per colour space.
   void decode(int image, bool srgb, Texture& tex) {
     const auto key = std::make_pair(image, srgb);
+    if (auto it = texels_.find(std::make_pair(image, false)); it != texels_.end() && it->second.format != TexelFormat::Rgba32F) {
+      tex.width = it->second.width, tex.height = it->second.height, tex.words = it->second.words;
+      tex.format = srgb ? TexelFormat::Rgba8Srgb : TexelFormat::Rgba8Unorm;
+      return;
+    }
     if (auto it = texels_.find(key); it != texels_.end()) {
-      tex.width = it->second.width, tex.height = it->second.height, tex.texels = it->second.texels;
+      tex.width = it->second.width, tex.height = it->second.height, tex.words = it->second.words, tex.format = it->second.format;
       return;
     }
     const std::string where = index_path("images", size_t(image));
@@ -90,43 +129,51 @@ class TextureTable {
     if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide || int64_t(w) * h > kMaxImageTexels)
       ctx_.fail(where, std::to_string(w) + "x" + std::to_string(h) + " image; expected sides of 1 to " + std::to_string(kMaxImageSide) +
                            " pixels and at most " + std::to_string(kMaxImageTexels) + " pixels in all");
+    const bool sixteen = stbi_is_16_bit_from_memory(bytes.data(), n) != 0;
     // Small compressed files can decode to gigabytes; the whole scene's textures are bounded
     // like each one.
-    total_texels_ += int64_t(w) * h;
-    if (total_texels_ > 2 * kMaxImageTexels)
-      ctx_.fail(where, "the scene's textures decode to more than " + std::to_string(2 * kMaxImageTexels) + " texels in all; too large");
-    auto texels = std::make_shared<std::vector<glm::vec4>>(size_t(w) * size_t(h));
-    auto convert = [&](auto* pixels, float max) {
-      for (size_t i = 0; i < texels->size(); ++i) {
-        glm::vec4 c(pixels[4 * i] / max, pixels[4 * i + 1] / max, pixels[4 * i + 2] / max, pixels[4 * i + 3] / max);
-        if (srgb) c = glm::vec4(srgb_to_linear(c.r), srgb_to_linear(c.g), srgb_to_linear(c.b), c.a);
-        (*texels)[i] = c;
-      }
-    };
+    total_bytes_ += int64_t(w) * h * (sixteen ? 16 : 4);
+    if (total_bytes_ > kMaxTextureBytes)
+      ctx_.fail(where, "the scene's textures decode to more than " + std::to_string(kMaxTextureBytes >> 20) + " MiB in all; too large");
+    const size_t texels = size_t(w) * size_t(h);
+    auto words = std::make_shared<std::vector<uint32_t>>();
     int dw = 0, dh = 0;
-    if (stbi_is_16_bit_from_memory(bytes.data(), n)) {
+    TexelFormat format = TexelFormat::Rgba8Unorm;
+    if (sixteen) {
       std::unique_ptr<stbi_us, void (*)(void*)> px(stbi_load_16_from_memory(bytes.data(), n, &dw, &dh, &comp, 4), stbi_image_free);
       if (!px || dw != w || dh != h) ctx_.fail(where, "cannot decode the image (" + decode_failure() + ")");
-      convert(px.get(), 65535.0f);
+      words->resize(4 * texels);
+      for (size_t i = 0; i < 4 * texels; ++i) {
+        const float c = px.get()[i] / 65535.0f;
+        (*words)[i] = std::bit_cast<uint32_t>(srgb && i % 4 != 3 ? srgb_to_linear(c) : c);
+      }
+      format = TexelFormat::Rgba32F;
     } else {
       std::unique_ptr<stbi_uc, void (*)(void*)> px(stbi_load_from_memory(bytes.data(), n, &dw, &dh, &comp, 4), stbi_image_free);
       if (!px || dw != w || dh != h) ctx_.fail(where, "cannot decode the image (" + decode_failure() + ")");
-      convert(px.get(), 255.0f);
+      words->resize(texels);
+      const stbi_uc* p = px.get();
+      for (size_t i = 0; i < texels; ++i)
+        (*words)[i] = uint32_t(p[4 * i]) | uint32_t(p[4 * i + 1]) << 8 | uint32_t(p[4 * i + 2]) << 16 | uint32_t(p[4 * i + 3]) << 24;
     }
-    tex.width = w, tex.height = h, tex.texels = texels;
-    texels_[key] = {w, h, texels};
+    tex.width = w, tex.height = h, tex.words = words;
+    tex.format = format == TexelFormat::Rgba32F ? format : srgb ? TexelFormat::Rgba8Srgb : TexelFormat::Rgba8Unorm;
+    // 8-bit texels serve both colour spaces and are kept under (image, false).
+    texels_[format == TexelFormat::Rgba32F ? key : std::make_pair(image, false)] = {w, h, format, words};
   }
 
   struct Decoded {
     int width, height;
-    std::shared_ptr<const std::vector<glm::vec4>> texels;
+    TexelFormat format;  // Rgba32F, or Rgba8Unorm for 8-bit texels read either way
+    std::shared_ptr<const std::vector<uint32_t>> words;
   };
   const Context& ctx_;
   const Document& doc_;
   std::vector<Texture>& out_;
   std::map<std::tuple<int, int, bool>, int> index_;
+  std::map<std::pair<int, double>, int> derived_;  // (source texture, glossiness factor) -> texture
   std::map<std::pair<int, bool>, Decoded> texels_;
-  int64_t total_texels_ = 0;
+  int64_t total_bytes_ = 0;
 };
 
 double number(const Context& ctx, const tinygltf::Value& v, const std::string& field, double lo, double hi) {
@@ -282,6 +329,44 @@ void load_materials(const Context& ctx, const Document& doc, std::vector<Materia
       if (e.Has("specularTexture")) mat.specular_texture = extension_texture(ctx, table, uv, e.Get("specularTexture"), sw + ".specularTexture", false);
       if (e.Has("specularColorTexture"))
         mat.specular_color_texture = extension_texture(ctx, table, uv, e.Get("specularColorTexture"), sw + ".specularColorTexture", true);
+    }
+    if (auto it = g.extensions.find("KHR_materials_pbrSpecularGlossiness"); it != g.extensions.end()) {
+      // Converted as glTF-Transform's metalRough() does: a dielectric whose F0 is the specular
+      // colour (KHR_materials_specular with specular 1; renderers take min(0.04 x
+      // specular_color, 1), hence the 1/0.04), whose base colour is the diffuse colour and whose
+      // roughness is 1 - glossiness. What differs: the spec-gloss model weighs diffuse by
+      // 1 - max(specular), giq's dielectric by 1 - max(Fresnel), which is the same at normal
+      // incidence and less towards grazing angles.
+      const std::string xw = where + ".extensions.KHR_materials_pbrSpecularGlossiness";
+      const auto& e = it->second;
+      if (!e.IsObject()) ctx.fail(xw, "must be a JSON object");
+      mat.base_color = glm::vec4(1.0f), mat.base_color_texture = -1;
+      if (e.Has("diffuseFactor")) {
+        const auto& c = e.Get("diffuseFactor");
+        if (!c.IsArray() || c.ArrayLen() != 4) ctx.fail(xw + ".diffuseFactor", "expected an array of 4 numbers");
+        for (int k = 0; k < 4; ++k) mat.base_color[k] = float(number(ctx, c.Get(k), xw + ".diffuseFactor[" + std::to_string(k) + "]", 0.0, 1.0));
+      }
+      if (e.Has("diffuseTexture")) mat.base_color_texture = extension_texture(ctx, table, uv, e.Get("diffuseTexture"), xw + ".diffuseTexture", true);
+      glm::vec3 specular(1.0f);
+      if (e.Has("specularFactor")) {
+        const auto& c = e.Get("specularFactor");
+        if (!c.IsArray() || c.ArrayLen() != 3) ctx.fail(xw + ".specularFactor", "expected an array of 3 numbers");
+        for (int k = 0; k < 3; ++k) specular[k] = float(number(ctx, c.Get(k), xw + ".specularFactor[" + std::to_string(k) + "]", 0.0, 1.0));
+      }
+      const double glossiness = e.Has("glossinessFactor") ? number(ctx, e.Get("glossinessFactor"), xw + ".glossinessFactor", 0.0, 1.0) : 1.0;
+      mat.metallic = 0.0f, mat.metallic_roughness_texture = -1;
+      mat.roughness = float(1.0 - glossiness);
+      mat.specular = 1.0f, mat.specular_texture = -1, mat.specular_color_texture = -1;
+      mat.specular_color = specular / 0.04f;
+      if (e.Has("specularGlossinessTexture")) {
+        const std::string tw = xw + ".specularGlossinessTexture";
+        mat.specular_color_texture = extension_texture(ctx, table, uv, e.Get("specularGlossinessTexture"), tw, true);
+        mat.metallic_roughness_texture = table.roughness_from_glossiness(e.Get("specularGlossinessTexture").Get("index").GetNumberAsInt(), tw, glossiness);
+        mat.roughness = 1.0f;  // the texture holds 1 - glossiness x A
+      }
+      ctx.warn("KHR_materials_pbrSpecularGlossiness",
+               xw + ": converted to metallic-roughness (F0 = the specular colour, roughness = 1 - glossiness); diffuse is weighted by "
+                    "1 - Fresnel instead of 1 - max(specular)");
     }
     if (auto it = g.extensions.find("KHR_materials_ior"); it != g.extensions.end() && it->second.Has("ior")) {
       // F0 = min(((ior - 1) / (ior + 1))^2 x specularColor, 1) x specular (KHR_materials_ior,

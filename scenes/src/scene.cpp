@@ -105,6 +105,7 @@ void Scene::derive() {
     features.specular |= mat.has_specular_lobe();
     features.textures |= mat.has_textures();
     features.normal_maps |= mat.normal_texture >= 0;
+    features.vertex_colors |= m.colors.size() == m.positions.size() && !m.colors.empty();
     features.alpha_mask |= mat.alpha_mode == AlphaMode::Mask;
     features.double_sided |= mat.double_sided;
     features.one_sided |= !mat.double_sided;

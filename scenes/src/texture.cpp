@@ -1,6 +1,7 @@
 #include "giq/scenes/texture.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace giq::scenes {
@@ -31,19 +32,50 @@ int wrap_index(double i, int n, Wrap mode) {
 
 }  // namespace
 
+float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+
+const std::array<float, 512>& decode_table() {
+  static const std::array<float, 512> table = [] {
+    std::array<float, 512> t{};
+    for (int c = 0; c < 256; ++c) t[size_t(c)] = float(c) / 255.0f, t[size_t(256 + c)] = srgb_to_linear(float(c) / 255.0f);
+    return t;
+  }();
+  return table;
+}
+
+bool Texture::valid() const {
+  return width > 0 && height > 0 && words && words->size() >= size_t(width) * size_t(height) * words_per_texel(format);
+}
+
+glm::vec4 Texture::texel(int x, int y) const {
+  const size_t i = size_t(y) * size_t(width) + size_t(x);
+  const auto& w = *words;
+  if (format == TexelFormat::Rgba32F)
+    return {std::bit_cast<float>(w[4 * i]), std::bit_cast<float>(w[4 * i + 1]), std::bit_cast<float>(w[4 * i + 2]),
+            std::bit_cast<float>(w[4 * i + 3])};
+  const auto& t = decode_table();
+  const uint32_t p = w[i], colour = format == TexelFormat::Rgba8Srgb ? 256u : 0u;
+  return {t[colour + (p & 255u)], t[colour + (p >> 8 & 255u)], t[colour + (p >> 16 & 255u)], t[p >> 24]};
+}
+
+void Texture::assign(int w, int h, const std::vector<glm::vec4>& rgba) {
+  auto out = std::make_shared<std::vector<uint32_t>>();
+  out->reserve(4 * rgba.size());
+  for (const glm::vec4& c : rgba)
+    for (int k = 0; k < 4; ++k) out->push_back(std::bit_cast<uint32_t>(c[k]));
+  width = w, height = h, format = TexelFormat::Rgba32F, words = std::move(out);
+}
+
 glm::vec4 Texture::sample(glm::vec2 uv) const {
-  if (width <= 0 || height <= 0 || !texels || texels->size() < size_t(width) * size_t(height))
-    return glm::vec4(0.0f);
+  if (!valid()) return glm::vec4(0.0f);
   // Beyond |uv| = 1e6 a float uv cannot address a texel anyway; bounding it keeps the index
   // arithmetic below finite.
   const double u = std::isfinite(uv.x) ? std::clamp(double(uv.x), -1e6, 1e6) : 0.0;
   const double v = std::isfinite(uv.y) ? std::clamp(double(uv.y), -1e6, 1e6) : 0.0;
-  const auto& t = *texels;
-  auto at = [&](int x, int y) { return t[size_t(y) * size_t(width) + size_t(x)]; };
   if (filter == Filter::Nearest) {
     const int x = wrap_index(std::floor(u * width), width, wrap_s);
     const int y = wrap_index(std::floor(v * height), height, wrap_t);
-    return at(x, y);
+    return texel(x, y);
   }
   // Bilinear between the four nearest texel centres, which sit at (i + 0.5) / size.
   const double x = u * width - 0.5, y = v * height - 0.5;
@@ -51,8 +83,8 @@ glm::vec4 Texture::sample(glm::vec2 uv) const {
   const float fx = float(x - x0), fy = float(y - y0);
   const int xa = wrap_index(x0, width, wrap_s), xb = wrap_index(x0 + 1.0, width, wrap_s);
   const int ya = wrap_index(y0, height, wrap_t), yb = wrap_index(y0 + 1.0, height, wrap_t);
-  const glm::vec4 top = at(xa, ya) * (1.0f - fx) + at(xb, ya) * fx;
-  const glm::vec4 bottom = at(xa, yb) * (1.0f - fx) + at(xb, yb) * fx;
+  const glm::vec4 top = texel(xa, ya) * (1.0f - fx) + texel(xb, ya) * fx;
+  const glm::vec4 bottom = texel(xa, yb) * (1.0f - fx) + texel(xb, yb) * fx;
   return top * (1.0f - fy) + bottom * fy;
 }
 

@@ -76,6 +76,52 @@ TEST(RealtimeCli, RendersTexturedNormalMappedAlphaMaskedScenes) {
   }
 }
 
+// An asset as real ones come: four 2048^2 8-bit textures (DamagedHelmet's set), no light and
+// no camera. As float RGBA its texels took 256 MiB, twice lavapipe's largest storage buffer;
+// at 8 bits they take 64 MiB. --sun and --camera auto light and frame it.
+TEST(RealtimeCli, RendersAssetTexturesAtTheirRealSize) {
+  const fs::path dir = scratch() / "asset";
+  fs::create_directories(dir);
+  const int n = 2048;
+  std::vector<unsigned char> rgba(size_t(n) * n * 4);
+  for (int k = 0; k < 4; ++k) {
+    for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = (i % 4 == 3) ? 255 : (unsigned char)(40 * (k + 1) + (i / 4) % 7);
+    giq::image::write_png_rgb8(dir / ("t" + std::to_string(k) + ".png"), n, n, 4, rgba.data());
+  }
+  // A unit quad in the xy plane facing +z, with UVs: positions, normals, uvs, indices.
+  const float data[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 1, 1, 1, 1, 0, 0, 0};
+  const uint16_t idx[] = {0, 1, 2, 0, 2, 3};
+  {
+    std::ofstream bin(dir / "quad.bin", std::ios::binary);
+    bin.write(reinterpret_cast<const char*>(data), sizeof data);
+    bin.write(reinterpret_cast<const char*>(idx), sizeof idx);
+  }
+  std::ofstream(dir / "asset.gltf") << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1,"TEXCOORD_0":2},"indices":3,"material":0}]}],
+    "materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0},"metallicRoughnessTexture":{"index":1}},
+                  "normalTexture":{"index":2},"emissiveTexture":{"index":3},"emissiveFactor":[0.1,0.1,0.1]}],
+    "textures":[{"source":0},{"source":1},{"source":2},{"source":3}],
+    "images":[{"uri":"t0.png"},{"uri":"t1.png"},{"uri":"t2.png"},{"uri":"t3.png"}],
+    "buffers":[{"uri":"quad.bin","byteLength":140}],
+    "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":48},
+                   {"buffer":0,"byteOffset":96,"byteLength":32},{"buffer":0,"byteOffset":128,"byteLength":12}],
+    "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+                 {"bufferView":1,"componentType":5126,"count":4,"type":"VEC3"},
+                 {"bufferView":2,"componentType":5126,"count":4,"type":"VEC2"},
+                 {"bufferView":3,"componentType":5123,"count":6,"type":"SCALAR"}]})";
+  const fs::path out = dir / "run";
+  const Outcome r = giq("--scene '" + (dir / "asset.gltf").string() + "' --technique direct --param shadow_map_size=64 --sun dir=0,0,-1 "
+                        "illuminance=2 --camera auto --width 16 --height 16 --out '" + out.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(out / "timings.json"));
+  // Four textures of 2048^2 words plus the 512-word decode table.
+  EXPECT_NEAR(j["gpu_memory_mb"]["textures"].get<double>(), (4.0 * n * n + 512.0) * 4.0 / (1 << 20), 1e-9);
+  const giq::image::Image img = giq::image::read_image(out / "frame_0000.exr");
+  double sum = 0.0;
+  for (size_t i = 0; i < img.pixel_count(); ++i) sum += img.channel("G")[i];
+  EXPECT_TRUE(std::isfinite(sum) && sum > 0.0);
+}
+
 TEST(RealtimeCli, ListsTechniquesWithTheirParameters) {
   const Outcome r = giq("--list");
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -34,12 +34,10 @@ int add_texture(scenes::Scene& s, int w, int h, const std::function<glm::vec4(in
                 scenes::Wrap wrap) {
   scenes::Texture t;
   t.name = "texture" + std::to_string(s.textures.size());
-  t.width = w;
-  t.height = h;
-  auto texels = std::make_shared<std::vector<glm::vec4>>();
+  std::vector<glm::vec4> texels;
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) texels->push_back(texel(x, y));
-  t.texels = texels;
+    for (int x = 0; x < w; ++x) texels.push_back(texel(x, y));
+  t.assign(w, h, texels);
   t.filter = filter;
   t.wrap_s = t.wrap_t = wrap;
   s.textures.push_back(std::move(t));

@@ -121,9 +121,7 @@ TEST(Materials, FirstHitLayersAndTextures) {
   scenes::Scene s;
   scenes::Texture t;
   t.name = "red-green";
-  t.width = 2;
-  t.height = 1;
-  t.texels = std::make_shared<const std::vector<glm::vec4>>(std::vector<glm::vec4>{{1, 0, 0, 1}, {0, 1, 0, 1}});
+  t.assign(2, 1, {{1, 0, 0, 1}, {0, 1, 0, 1}});
   t.wrap_s = t.wrap_t = scenes::Wrap::ClampToEdge;
   t.filter = scenes::Filter::Nearest;
   s.textures.push_back(t);

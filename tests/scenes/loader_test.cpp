@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -160,8 +161,17 @@ TEST(Loader, TexturesDecodeSrgbToLinearOnlyForColour) {
   const Texture& data_tex = s.textures[size_t(m.metallic_roughness_texture)];
   ASSERT_EQ(colour.width, 2);
   ASSERT_EQ(colour.height, 2);
-  const auto& c = *colour.texels;
-  const auto& d = *data_tex.texels;
+  // One 8-bit image, stored once and read as colour (sRGB) or as data.
+  EXPECT_EQ(colour.format, TexelFormat::Rgba8Srgb);
+  EXPECT_EQ(data_tex.format, TexelFormat::Rgba8Unorm);
+  EXPECT_EQ(colour.words, data_tex.words);
+  auto texels = [](const Texture& t) {
+    std::vector<glm::vec4> v;
+    for (int y = 0; y < t.height; ++y)
+      for (int x = 0; x < t.width; ++x) v.push_back(t.texel(x, y));
+    return v;
+  };
+  const std::vector<glm::vec4> c = texels(colour), d = texels(data_tex);
   // 8-bit values decoded in float: within a few ulps.
   constexpr float tol = 1e-6f;
   EXPECT_NEAR(c[0].r, 1.0f, tol);
@@ -230,8 +240,8 @@ TEST(Loader, MaterialsAndExtensions) {
   // One image (texel 128, 128, 255) in two colour spaces: the normal map as stored, the
   // specular colour decoded from sRGB.
   EXPECT_EQ(s.textures.size(), 2u);
-  const glm::vec4 n = (*s.textures[size_t(masked.normal_texture)].texels)[0];
-  const glm::vec4 c = (*s.textures[size_t(masked.specular_color_texture)].texels)[0];
+  const glm::vec4 n = s.textures[size_t(masked.normal_texture)].texel(0, 0);
+  const glm::vec4 c = s.textures[size_t(masked.specular_color_texture)].texel(0, 0);
   EXPECT_NEAR(n.r, 128.0f / 255.0f, 1e-6f);
   EXPECT_NEAR(c.r, kLin128, 1e-6f);
   EXPECT_NEAR(c.b, 1.0f, 1e-6f);
@@ -270,9 +280,9 @@ TEST(Loader, TextureTransformAndSecondUvSetAreAppliedToTheUvs) {
   }
 }
 
-TEST(Loader, UnlitIorPointsLinesAndIgnoredExtensions) {
+TEST(Loader, UnlitIorSpecGlossPointsLinesAndIgnoredExtensions) {
   const Scene s = load(data("extensions.gltf"));
-  ASSERT_EQ(s.materials.size(), 2u);
+  ASSERT_EQ(s.materials.size(), 4u);
   // KHR_materials_unlit: the base colour is emitted and nothing is reflected; alpha stays.
   const Material& unlit = s.materials[0];
   EXPECT_EQ(unlit.emissive, glm::vec3(0.2f, 0.4f, 0.6f));
@@ -282,13 +292,34 @@ TEST(Loader, UnlitIorPointsLinesAndIgnoredExtensions) {
   const float ratio = float((1.0 / 9.0) / 0.04);
   EXPECT_NEAR(s.materials[1].specular_color.r, ratio, 1e-6f * ratio);
   EXPECT_EQ(s.materials[1].specular_color.r, s.materials[1].specular_color.b);
+  // KHR_materials_pbrSpecularGlossiness, converted: F0 = specular (min(0.04 x specular_color,
+  // 1) in the renderers), base colour = diffuse, roughness = 1 - glossiness x texel A.
+  for (int k : {2, 3}) {
+    const Material& sg = s.materials[size_t(k)];
+    EXPECT_EQ(sg.base_color, glm::vec4(0.5f, 0.25f, 0.125f, 1.0f));
+    EXPECT_EQ(sg.metallic, 0.0f);
+    EXPECT_EQ(sg.specular, 1.0f);
+    EXPECT_NEAR(0.04f * sg.specular_color.r, 0.02f, 1e-8f);
+    EXPECT_NEAR(0.04f * sg.specular_color.b, 0.08f, 1e-8f);
+    ASSERT_GE(sg.specular_color_texture, 0);
+    EXPECT_EQ(s.textures[size_t(sg.specular_color_texture)].format, TexelFormat::Rgba8Srgb);
+    ASSERT_GE(sg.metallic_roughness_texture, 0);
+    const Texture& r = s.textures[size_t(sg.metallic_roughness_texture)];
+    const float gloss = k == 2 ? 1.0f : 0.75f;
+    EXPECT_EQ(r.format, k == 2 ? TexelFormat::Rgba8Unorm : TexelFormat::Rgba32F);  // exact bytes when the factor is 1
+    EXPECT_NEAR(sg.roughness * r.texel(0, 0).g, 1.0f - gloss * 64.0f / 255.0f, 1e-6f);
+    EXPECT_NEAR(sg.roughness * r.texel(1, 0).g, 1.0f - gloss, 1e-6f);
+    EXPECT_EQ(r.texel(0, 0).b, 1.0f);  // metallic texel 1 x factor 0
+  }
   // Two triangles; the points and the line strip are dropped with one warning that counts them.
   EXPECT_EQ(s.stats.triangles, 2u);
-  ASSERT_EQ(s.warnings.size(), 3u);
+  ASSERT_EQ(s.warnings.size(), 4u);
   EXPECT_NE(s.warnings[0].find("KHR_materials_clearcoat is not implemented and was ignored: materials have no clear-coat layer"), std::string::npos);
   EXPECT_NE(s.warnings[1].find("EXT_made_up is not implemented"), std::string::npos);  // KHR_xmp_json_ld: metadata, silent
-  EXPECT_EQ(s.warnings[2].rfind("meshes[0].primitives[2].mode: a primitive of points or lines", 0), 0u);
+  EXPECT_EQ(s.warnings[2].rfind("materials[2].extensions.KHR_materials_pbrSpecularGlossiness: converted", 0), 0u);
   EXPECT_NE(s.warnings[2].find("(2 times in the file)"), std::string::npos);
+  EXPECT_EQ(s.warnings[3].rfind("meshes[0].primitives[2].mode: a primitive of points or lines", 0), 0u);
+  EXPECT_NE(s.warnings[3].find("(2 times in the file)"), std::string::npos);
 }
 
 TEST(Loader, GpuInstancingAndQuantizedAttributes) {
@@ -309,6 +340,23 @@ TEST(Loader, GpuInstancingAndQuantizedAttributes) {
     EXPECT_EQ(m.uvs[1], glm::vec2(2.0f, 0.0f));
     EXPECT_EQ(m.uvs[2], glm::vec2(0.0f, 2.0f));
   }
+}
+
+TEST(Loader, VertexColoursMultiplyTheBaseColour) {
+  const Scene s = load(data("textured_room.gltf"));
+  EXPECT_TRUE(s.features.vertex_colors);
+  const auto mesh = [&](const std::string& name) {
+    return *std::find_if(s.meshes.begin(), s.meshes.end(), [&](const Mesh& m) { return m.name == name; });
+  };
+  const Mesh wall = mesh("wall"), grating = mesh("grating"), floor = mesh("floor");
+  ASSERT_EQ(wall.colors.size(), wall.positions.size());
+  EXPECT_EQ(wall.colors[0], glm::vec4(1.0f, 0.6f, 0.6f, 1.0f));
+  EXPECT_TRUE(floor.colors.empty());  // no COLOR_0: white
+  EXPECT_EQ(floor.color_at(floor.triangles[0], 0.3f, 0.3f), glm::vec4(1.0f));
+  // Interpolated like every other attribute: the centre of the grating's diagonal is between
+  // alpha 1 (vertices 0, 1) and 0.2 (vertices 2, 3).
+  const glm::uvec3 t = grating.triangles[0];  // 0, 1, 2
+  EXPECT_NEAR(grating.color_at(t, 0.0f, 0.5f).a, 0.5f * (grating.colors[t.x].a + grating.colors[t.z].a), 1e-6f);
 }
 
 TEST(Loader, TangentsFollowTheNodeAndItsHandedness) {
@@ -404,8 +452,8 @@ TEST(Loader, BinaryGltfWithImageInTheBinChunk) {
   const Texture& t = s.textures[0];
   ASSERT_EQ(t.width, 1);
   ASSERT_EQ(t.height, 2);
-  EXPECT_EQ((*t.texels)[0], glm::vec4(1, 0, 0, 1));  // sRGB 255 and 0 decode exactly
-  EXPECT_EQ((*t.texels)[1], glm::vec4(0, 0, 1, 1));
+  EXPECT_EQ(t.texel(0, 0), glm::vec4(1, 0, 0, 1));  // sRGB 255 and 0 decode exactly
+  EXPECT_EQ(t.texel(0, 1), glm::vec4(0, 0, 1, 1));
   EXPECT_EQ(s.materials[0].base_color_texture, 0);
 }
 

@@ -10,8 +10,7 @@ namespace {
 // A 2 x 1 texture: black texel at u in [0, 0.5), white at [0.5, 1).
 Texture two_texels(Wrap wrap, Filter filter) {
   Texture t;
-  t.width = 2, t.height = 1;
-  t.texels = std::make_shared<std::vector<glm::vec4>>(std::vector<glm::vec4>{glm::vec4(0, 0, 0, 1), glm::vec4(1, 1, 1, 1)});
+  t.assign(2, 1, {glm::vec4(0, 0, 0, 1), glm::vec4(1, 1, 1, 1)});
   t.wrap_s = t.wrap_t = wrap;
   t.filter = filter;
   return t;
@@ -50,8 +49,7 @@ TEST(Texture, NearestPicksTheCoveringTexel) {
 
 TEST(Texture, RowsRunAlongV) {
   Texture t;
-  t.width = 1, t.height = 2;
-  t.texels = std::make_shared<std::vector<glm::vec4>>(std::vector<glm::vec4>{glm::vec4(0.25f), glm::vec4(0.75f)});
+  t.assign(1, 2, {glm::vec4(0.25f), glm::vec4(0.75f)});
   t.filter = Filter::Nearest;
   EXPECT_FLOAT_EQ(t.sample({0.5f, 0.1f}).g, 0.25f);  // first row = v 0
   EXPECT_FLOAT_EQ(t.sample({0.5f, 0.9f}).g, 0.75f);
@@ -65,6 +63,36 @@ TEST(Texture, HostileCoordinatesStayInside) {
     EXPECT_LE(r, 1.0f);
   }
   EXPECT_EQ(Texture{}.sample({0.5f, 0.5f}), glm::vec4(0.0f));
+}
+
+}  // namespace
+}  // namespace giq::scenes
+
+namespace giq::scenes {
+namespace {
+
+TEST(Texture, EightBitTexelsDecodeThroughOneTable) {
+  const auto& table = decode_table();
+  // Linear half: c / 255 exactly rounded; sRGB half: IEC 61966-2-1 at c / 255.
+  for (int c = 0; c < 256; ++c) {
+    EXPECT_EQ(table[size_t(c)], float(c) / 255.0f);
+    EXPECT_EQ(table[size_t(256 + c)], srgb_to_linear(float(c) / 255.0f));
+  }
+  EXPECT_EQ(table[256], 0.0f);
+  EXPECT_EQ(table[511], 1.0f);
+  EXPECT_NEAR(table[256 + 128], 0.2158605f, 1e-6f);  // ((128/255 + 0.055) / 1.055)^2.4
+  // One word a texel, R in the low byte: colour channels through the sRGB half, alpha linear.
+  Texture t;
+  t.width = 1, t.height = 1;
+  t.words = std::make_shared<std::vector<uint32_t>>(std::vector<uint32_t>{128u | 64u << 8 | 255u << 16 | 128u << 24});
+  t.format = TexelFormat::Rgba8Srgb;
+  EXPECT_EQ(t.texel(0, 0), glm::vec4(table[256 + 128], table[256 + 64], 1.0f, table[128]));
+  t.format = TexelFormat::Rgba8Unorm;
+  EXPECT_EQ(t.texel(0, 0), glm::vec4(table[128], table[64], 1.0f, table[128]));
+  // Too few words for the size: not a texture (samples as 0, as the GPU's).
+  t.width = 2;
+  EXPECT_FALSE(t.valid());
+  EXPECT_EQ(t.sample({0.5f, 0.5f}), glm::vec4(0.0f));
 }
 
 }  // namespace

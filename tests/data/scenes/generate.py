@@ -193,7 +193,16 @@ def extensions():
                         "extensions": {"KHR_materials_unlit": {}}})
     g.add("materials", {"name": "ior2", "pbrMetallicRoughness": {"metallicFactor": 0.0},
                         "extensions": {"KHR_materials_ior": {"ior": 2.0}, "KHR_materials_clearcoat": {"clearcoatFactor": 1.0}}})
-    g.doc["extensionsUsed"] = ["KHR_materials_unlit", "KHR_materials_ior", "KHR_materials_clearcoat", "KHR_xmp_json_ld", "EXT_made_up"]
+    # Specular-glossiness: texel 0 specular (64, 128, 255) glossiness 64, texel 1 glossiness 255.
+    sg = png_rgba(2, 1, [[(64, 128, 255, 64), (0, 0, 0, 255)]])
+    g.add("images", {"uri": "data:image/png;base64," + base64.b64encode(sg).decode()})
+    g.add("textures", {"source": 0})
+    for gloss in (1.0, 0.75):
+        g.add("materials", {"name": "specgloss%g" % gloss, "extensions": {"KHR_materials_pbrSpecularGlossiness": {
+            "diffuseFactor": [0.5, 0.25, 0.125, 1.0], "specularFactor": [0.02, 0.04, 0.08], "glossinessFactor": gloss,
+            "specularGlossinessTexture": {"index": 0}}}})
+    g.doc["extensionsUsed"] = ["KHR_materials_unlit", "KHR_materials_ior", "KHR_materials_clearcoat", "KHR_xmp_json_ld", "EXT_made_up",
+                               "KHR_materials_pbrSpecularGlossiness"]
     tri = g.accessor(TRI_P, "VEC3", minmax=True)
     prims = [{"attributes": {"POSITION": tri}, "material": 0}, {"attributes": {"POSITION": tri}, "material": 1},
              {"attributes": {"POSITION": tri}, "mode": 0}, {"attributes": {"POSITION": tri}, "mode": 3}]
@@ -319,7 +328,8 @@ def textured_room():
     """Every texture feature giq renders, in a small room with a view: an sRGB checker on the
     floor (bilinear, repeating), a normal-mapped wall with TANGENT and a metallic-roughness
     texture, an alpha-masked grating (nearest) under a lamp with an emissive texture, and a
-    point light. The real-time tests compare `pt` with `giq reference` on it."""
+    point light; vertex colours (COLOR_0) tint the wall and fade the grating's alpha. The
+    real-time tests compare `pt` with `giq reference` on it."""
     g = Gltf()
     g.doc["extensionsUsed"] = ["KHR_lights_punctual", "KHR_materials_emissive_strength"]
 
@@ -357,7 +367,7 @@ def textured_room():
                                  "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0]},
                                  "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 6.0}}})
 
-    def quad(name, p, uvs, material, tangent=None):
+    def quad(name, p, uvs, material, tangent=None, colors=None):
         a, b, c = p[0], p[1], p[2]
         e1 = [b[i] - a[i] for i in range(3)]
         e2 = [c[i] - a[i] for i in range(3)]
@@ -368,15 +378,17 @@ def textured_room():
                  "TEXCOORD_0": g.accessor(uvs, "VEC2")}
         if tangent:
             attrs["TANGENT"] = g.accessor([tangent] * 4, "VEC4")
+        if colors:
+            attrs["COLOR_0"] = g.accessor(colors, "VEC4")
         m = g.add("meshes", {"name": name, "primitives": [
             {"attributes": attrs, "indices": g.accessor([0, 1, 2, 0, 2, 3], "SCALAR", USHORT), "material": material}]})
         g.node(name=name, mesh=m)
 
     quad("floor", [(-1.5, 0, 1.5), (1.5, 0, 1.5), (1.5, 0, -1.5), (-1.5, 0, -1.5)], [(0, 2), (2, 2), (2, 0), (0, 0)], floor_m)
     quad("wall", [(-1.5, 0, -1.5), (1.5, 0, -1.5), (1.5, 2.5, -1.5), (-1.5, 2.5, -1.5)], [(0, 1), (1, 1), (1, 0), (0, 0)], wall_m,
-         tangent=(1, 0, 0, 1))
+         tangent=(1, 0, 0, 1), colors=[(1, 0.6, 0.6, 1), (0.6, 1, 0.6, 1), (0.6, 0.6, 1, 1), (1, 1, 1, 1)])
     quad("grating", [(-0.5, 1.2, 0.5), (0.5, 1.2, 0.5), (0.5, 1.2, -0.5), (-0.5, 1.2, -0.5)], [(0, 1), (1, 1), (1, 0), (0, 0)],
-         grating_m)
+         grating_m, colors=[(1, 1, 1, 1), (1, 1, 1, 1), (1, 1, 1, 0.2), (1, 1, 1, 0.2)])
     quad("lamp", [(-0.4, 2.3, -0.4), (0.4, 2.3, -0.4), (0.4, 2.3, 0.4), (-0.4, 2.3, 0.4)], [(0, 0), (1, 0), (1, 1), (0, 1)], lamp_m)
     g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [{"name": "bulb", "type": "point", "intensity": 3.0}]}}
     g.node(name="bulb", translation=[0.8, 1.8, 0.6], extensions={"KHR_lights_punctual": {"light": 0}})

@@ -56,6 +56,7 @@ class SceneGpu {
   // The FeatureSet the scene was uploaded for; passes compile their shaders with its defines.
   const scenes::FeatureSet& features() const { return features_; }
   uint32_t texture_count() const { return texture_count_; }
+  uint64_t texture_bytes() const { return texture_bytes_; }  // the texel buffer, decode table included
 
  private:
   void upload_materials(const scenes::Scene& scene);
@@ -71,6 +72,7 @@ class SceneGpu {
   Buffer vertices_, triangles_, materials_, nodes_, prims_, lights_, emissive_, indices_, previous_vertices_;
   Buffer vertex_extra_, textures_, texels_;
   uint32_t triangle_count_ = 0, light_count_ = 0, emissive_count_ = 0, texture_count_ = 0;
+  uint64_t texture_bytes_ = 0;
 };
 
 }  // namespace giq::realtime

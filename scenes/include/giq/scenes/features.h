@@ -16,6 +16,7 @@ struct FeatureSet {
   bool specular = false;     // some material has a GGX lobe (Material::has_specular_lobe)
   bool textures = false;     // some material samples a texture
   bool normal_maps = false;
+  bool vertex_colors = false;  // some mesh has COLOR_0
   bool alpha_mask = false;
   bool double_sided = false;  // some material is double-sided
   bool one_sided = false;     // some material is not (its back faces are black)

@@ -22,9 +22,16 @@ struct Mesh {
   std::vector<glm::vec3> normals;     // unit; flat normals generated when the file has none
   std::vector<glm::vec4> tangents;    // xyz unit, w = bitangent sign; empty when absent
   std::vector<glm::vec2> uvs;         // the set the material reads, texture transform applied; empty when absent
+  std::vector<glm::vec4> colors;      // COLOR_0, linear RGBA multiplying the base colour; empty when absent
   std::vector<glm::uvec3> triangles;  // vertex indices; degenerate triangles removed
 
   size_t triangle_count() const { return triangles.size(); }
+  // COLOR_0 at barycentrics (b1, b2) of triangle t, white without vertex colours; the GPU's
+  // triangle_color (realtime/shaders/textures.glsl) interpolates the same way.
+  glm::vec4 color_at(const glm::uvec3& t, float b1, float b2) const {
+    if (colors.empty()) return glm::vec4(1.0f);
+    return (1.0f - b1 - b2) * colors[t.x] + b1 * colors[t.y] + b2 * colors[t.z];
+  }
 };
 
 }  // namespace giq::scenes
