@@ -120,6 +120,11 @@ TEST(RealtimeCli, RendersAssetTexturesAtTheirRealSize) {
   double sum = 0.0;
   for (size_t i = 0; i < img.pixel_count(); ++i) sum += img.channel("G")[i];
   EXPECT_TRUE(std::isfinite(sum) && sum > 0.0);
+  // Lit by an environment instead: `direct` shows it only as background, and says so.
+  const Outcome env = giq("--scene '" + (dir / "asset.gltf").string() + "' --technique direct --param shadow_map_size=64 --env 0.2 "
+                          "--camera auto --width 8 --height 8 --out '" + (dir / "env").string() + "'");
+  ASSERT_EQ(env.exit_code, 0) << env.err;
+  EXPECT_NE(env.err.find("technique direct does not light surfaces with the environment"), std::string::npos) << env.err;
 }
 
 TEST(RealtimeCli, ListsTechniquesWithTheirParameters) {

@@ -96,6 +96,11 @@ int run(const RealtimeArgs& a) {
   if (a.out.empty()) throw InputError("", "--out", "an output folder is required");
   if (a.setup.has_camera() && a.view_option->count() > 0) throw InputError("", "--view/--camera", "give a view or a camera, not both");
   const scenes::Scene scene = a.setup.load(resolve_scene(a.scene));
+  if (const rt::TechniqueInfo& info = rt::find_technique(a.technique); scene.features.environment && !info.lights_with_environment)
+    std::fprintf(stderr,
+                 "giq: warning: %s: technique %s does not light surfaces with the environment (it shows it as background "
+                 "only); the reference does, and the difference counts as error\n",
+                 scene.path.string().c_str(), a.technique.c_str());
   rt::ContextOptions co;
   co.device = a.device;
   co.validation = a.validation || rt::ContextOptions::default_validation();

@@ -282,7 +282,7 @@ class Ddgi : public IndirectLight {
 }  // namespace
 
 TechniqueInfo ddgi_technique() {
-  return deferred_technique<Ddgi>(
+  TechniqueInfo info = deferred_technique<Ddgi>(
       "ddgi",
       "Dynamic Diffuse GI (Majercik et al. 2019, 2021): a probe grid over the scene, rays per probe through the "
       "compute BVH each frame, octahedral irradiance and distance-moment maps blended with hysteresis, Chebyshev "
@@ -308,6 +308,8 @@ TechniqueInfo ddgi_technique() {
        {"feedback", 1, 0, 1, true,
         "1: probe rays see the volume's irradiance at their hits (multi-bounce); 0: one bounce"}},
       {"probe_grid", {4, 6, 8, 12, 16, 24}});
+  info.lights_with_environment = true;  // probe rays that miss see it (docs/techniques/ddgi.md)
+  return info;
 }
 
 }  // namespace giq::realtime

@@ -98,7 +98,8 @@ TechniqueInfo pt_technique() {
            {"max_bounces", 64, 1, 1024, true, "surface interactions after the camera ray; Russian roulette after 3"},
            {"seed", 0, 0, 2147483647, true, "random sequence; same seed, same image"}},
           {"samples_per_frame", {1, 2, 4, 8, 16}},
-          [](const TechniqueCreateInfo& ci) { return std::make_unique<PathTracer>(ci); }};
+          [](const TechniqueCreateInfo& ci) { return std::make_unique<PathTracer>(ci); },
+          /*lights_with_environment=*/true};
 }
 
 }  // namespace giq::realtime

@@ -104,6 +104,9 @@ struct TechniqueInfo {
   std::vector<Parameter> parameters;
   QualityKnob quality;
   std::function<std::unique_ptr<Technique>(const TechniqueCreateInfo&)> create;
+  // The image carries the light a constant environment sends onto surfaces (not only the
+  // background the camera sees); `giq realtime` warns for a scene with an environment when not.
+  bool lights_with_environment = false;
 };
 
 // Every registered technique, in registration order (techniques/registry.cpp).
