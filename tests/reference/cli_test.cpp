@@ -247,6 +247,12 @@ TEST(ReferenceCli, ASceneWithoutLightIsRefusedUntilTheCommandLineGivesOne) {
   for (size_t k = 0; k < lit.pixel_count(); ++k) sum += lit.channel("G")[k];
   EXPECT_GT(sum, 0.0);
   const std::string sun_hash = lit.metadata.at("giq.scene_hash");
+  // The same sun spelt differently (an unnormalised direction, 2.0 for 2) is the same scene.
+  fs::remove(out);
+  std::vector<std::string> respelt(args.begin(), args.end() - 3);
+  respelt.insert(respelt.end(), {"--sun", "dir=0,-2,0", "illuminance=2.0"});
+  ASSERT_EQ(giq(respelt), 0);
+  EXPECT_EQ(giq::image::read_image(out).metadata.at("giq.scene_hash"), sun_hash);
   // The same with a constant environment instead: lit again, under another scene hash.
   fs::remove(out);
   args.resize(args.size() - 3);

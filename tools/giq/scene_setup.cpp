@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <initializer_list>
 #include <numbers>
 #include <stdexcept>
 
@@ -140,12 +141,22 @@ void SceneSetup::add_options(CLI::App& cmd) {
 sc::Scene SceneSetup::load(const std::filesystem::path& path) const {
   sc::Scene scene = sc::load(path);
   for (const std::string& w : scene.warnings) std::fprintf(stderr, "giq: warning: %s: %s\n", path.string().c_str(), w.c_str());
+  // Described by the parsed values, so that two spellings of one light name the same scene.
+  auto numbers = [](std::initializer_list<float> v) {
+    std::string out;
+    char b[32];
+    for (float x : v) std::snprintf(b, sizeof b, "%s%.9g", out.empty() ? "" : ",", double(x)), out += b;
+    return out;
+  };
   if (!sun.empty()) {
-    std::string description = "sun";
-    for (const std::string& a : sun) description += " " + a;
-    scene.add_light(parse_sun(sun), description);
+    const sc::Light l = parse_sun(sun);
+    scene.add_light(l, "sun dir=" + numbers({l.direction.x, l.direction.y, l.direction.z}) + " illuminance=" +
+                           numbers({l.intensity}) + " color=" + numbers({l.color.r, l.color.g, l.color.b}));
   }
-  if (!env.empty()) scene.set_environment(parse_env(env), "env " + env);
+  if (!env.empty()) {
+    const glm::vec3 e = parse_env(env);
+    scene.set_environment(e, "env " + numbers({e.r, e.g, e.b}));
+  }
   if (scene.stats.total_light_power <= 0.0 && scene.environment == glm::vec3(0.0f))
     throw InputError(path.string(), "lights",
                      "the scene has no light (no punctual light, no emissive material, no environment, or all of zero "
