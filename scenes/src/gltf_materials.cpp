@@ -85,15 +85,20 @@ class TextureTable {
         }
       tex.format = TexelFormat::Rgba32F;
     }
-    total_bytes_ += int64_t(words->size() * sizeof(uint32_t));
-    if (total_bytes_ > kMaxTextureBytes)
-      ctx_.fail(field, "the scene's textures decode to more than " + std::to_string(kMaxTextureBytes >> 20) + " MiB in all; too large");
+    count_bytes(int64_t(words->size() * sizeof(uint32_t)), field);
     tex.words = std::move(words);
     out_.push_back(std::move(tex));
     return derived_[key] = int(out_.size()) - 1;
   }
 
  private:
+  // Adds a texture's bytes to the scene's, which may hold at most kMaxTextureBytes.
+  void count_bytes(int64_t bytes, const std::string& field) {
+    total_bytes_ += bytes;
+    if (total_bytes_ > kMaxTextureBytes)
+      ctx_.fail(field, "the scene's textures decode to more than " + std::to_string(kMaxTextureBytes >> 20) + " MiB in all; too large");
+  }
+
   Wrap wrap(int mode, const std::string& field) const {
     switch (mode) {
       case TINYGLTF_TEXTURE_WRAP_REPEAT: return Wrap::Repeat;
@@ -132,9 +137,7 @@ class TextureTable {
     const bool sixteen = stbi_is_16_bit_from_memory(bytes.data(), n) != 0;
     // Small compressed files can decode to gigabytes; the whole scene's textures are bounded
     // like each one.
-    total_bytes_ += int64_t(w) * h * (sixteen ? 16 : 4);
-    if (total_bytes_ > kMaxTextureBytes)
-      ctx_.fail(where, "the scene's textures decode to more than " + std::to_string(kMaxTextureBytes >> 20) + " MiB in all; too large");
+    count_bytes(int64_t(w) * h * (sixteen ? 16 : 4), where);
     const size_t texels = size_t(w) * size_t(h);
     auto words = std::make_shared<std::vector<uint32_t>>();
     int dw = 0, dh = 0;
@@ -183,6 +186,15 @@ double number(const Context& ctx, const tinygltf::Value& v, const std::string& f
   return x;
 }
 
+// An extension's array of N numbers in [lo, hi] (`field` names it; components as field[k]).
+template <int N>
+glm::vec<N, float> numbers(const Context& ctx, const tinygltf::Value& a, const std::string& field, double lo, double hi) {
+  if (!a.IsArray() || a.ArrayLen() != N) ctx.fail(field, "expected an array of " + std::to_string(N) + " numbers");
+  glm::vec<N, float> v;
+  for (int k = 0; k < N; ++k) v[k] = float(number(ctx, a.Get(k), field + "[" + std::to_string(k) + "]", lo, hi));
+  return v;
+}
+
 glm::vec3 color3(const Context& ctx, const std::vector<double>& v, const std::string& field, double hi) {
   if (v.size() != 3) ctx.fail(field, "has " + std::to_string(v.size()) + " components; expected 3");
   for (double x : v)
@@ -196,12 +208,7 @@ glm::vec3 color3(const Context& ctx, const std::vector<double>& v, const std::st
 glm::dmat3 texture_transform(const Context& ctx, const tinygltf::Value& e, const std::string& field, int& set) {
   if (!e.IsObject()) ctx.fail(field, "must be a JSON object");
   auto pair = [&](const char* key, glm::dvec2 fallback) {
-    if (!e.Has(key)) return fallback;
-    const auto& a = e.Get(key);
-    if (!a.IsArray() || a.ArrayLen() != 2) ctx.fail(field + "." + key, "expected an array of 2 numbers");
-    glm::dvec2 v;
-    for (int k = 0; k < 2; ++k) v[k] = number(ctx, a.Get(k), field + "." + key + "[" + std::to_string(k) + "]", -1e30, 1e30);
-    return v;
+    return e.Has(key) ? glm::dvec2(numbers<2>(ctx, e.Get(key), field + "." + key, -1e30, 1e30)) : fallback;
   };
   const glm::dvec2 offset = pair("offset", glm::dvec2(0.0)), scale = pair("scale", glm::dvec2(1.0));
   const double r = e.Has("rotation") ? number(ctx, e.Get("rotation"), field + ".rotation", -1e30, 1e30) : 0.0;
@@ -320,12 +327,7 @@ void load_materials(const Context& ctx, const Document& doc, std::vector<Materia
       const std::string sw = where + ".extensions.KHR_materials_specular";
       const auto& e = it->second;
       if (e.Has("specularFactor")) mat.specular = float(number(ctx, e.Get("specularFactor"), sw + ".specularFactor", 0.0, 1.0));
-      if (e.Has("specularColorFactor")) {
-        const auto& c = e.Get("specularColorFactor");
-        if (!c.IsArray() || c.ArrayLen() != 3) ctx.fail(sw + ".specularColorFactor", "expected an array of 3 numbers");
-        for (int k = 0; k < 3; ++k)
-          mat.specular_color[k] = float(number(ctx, c.Get(k), sw + ".specularColorFactor[" + std::to_string(k) + "]", 0.0, 1e6));
-      }
+      if (e.Has("specularColorFactor")) mat.specular_color = numbers<3>(ctx, e.Get("specularColorFactor"), sw + ".specularColorFactor", 0.0, 1e6);
       if (e.Has("specularTexture")) mat.specular_texture = extension_texture(ctx, table, uv, e.Get("specularTexture"), sw + ".specularTexture", false);
       if (e.Has("specularColorTexture"))
         mat.specular_color_texture = extension_texture(ctx, table, uv, e.Get("specularColorTexture"), sw + ".specularColorTexture", true);
@@ -341,18 +343,9 @@ void load_materials(const Context& ctx, const Document& doc, std::vector<Materia
       const auto& e = it->second;
       if (!e.IsObject()) ctx.fail(xw, "must be a JSON object");
       mat.base_color = glm::vec4(1.0f), mat.base_color_texture = -1;
-      if (e.Has("diffuseFactor")) {
-        const auto& c = e.Get("diffuseFactor");
-        if (!c.IsArray() || c.ArrayLen() != 4) ctx.fail(xw + ".diffuseFactor", "expected an array of 4 numbers");
-        for (int k = 0; k < 4; ++k) mat.base_color[k] = float(number(ctx, c.Get(k), xw + ".diffuseFactor[" + std::to_string(k) + "]", 0.0, 1.0));
-      }
+      if (e.Has("diffuseFactor")) mat.base_color = numbers<4>(ctx, e.Get("diffuseFactor"), xw + ".diffuseFactor", 0.0, 1.0);
       if (e.Has("diffuseTexture")) mat.base_color_texture = extension_texture(ctx, table, uv, e.Get("diffuseTexture"), xw + ".diffuseTexture", true);
-      glm::vec3 specular(1.0f);
-      if (e.Has("specularFactor")) {
-        const auto& c = e.Get("specularFactor");
-        if (!c.IsArray() || c.ArrayLen() != 3) ctx.fail(xw + ".specularFactor", "expected an array of 3 numbers");
-        for (int k = 0; k < 3; ++k) specular[k] = float(number(ctx, c.Get(k), xw + ".specularFactor[" + std::to_string(k) + "]", 0.0, 1.0));
-      }
+      const glm::vec3 specular = e.Has("specularFactor") ? numbers<3>(ctx, e.Get("specularFactor"), xw + ".specularFactor", 0.0, 1.0) : glm::vec3(1.0f);
       const double glossiness = e.Has("glossinessFactor") ? number(ctx, e.Get("glossinessFactor"), xw + ".glossinessFactor", 0.0, 1.0) : 1.0;
       mat.metallic = 0.0f, mat.metallic_roughness_texture = -1;
       mat.roughness = float(1.0 - glossiness);
