@@ -12,6 +12,7 @@
 #include "shaders/scene.glsl"
 #include "shaders/brdf.glsl"
 #include "shaders/surface.glsl"
+#include "shaders/camera.glsl"
 #include "shaders/lights.glsl"
 #include "shaders/closest_point.glsl"
 #include "shaders/polygon_irradiance.glsl"
@@ -82,7 +83,7 @@ void main() {
     GpuMaterial mat = scene_materials[r.material];
     vec3 p = r.x;
     vec3 n = r.n;
-    vec3 wo = normalize(pc.camera.position.xyz - p);
+    vec3 wo = camera_to_eye(pc.camera, p);
     vec3 ta, tb, tc;
     triangle_vertices(r.tri, ta, tb, tc);
     // The geometric normal on the viewer's side: light from below it would leak through the

@@ -65,7 +65,19 @@ void GBufferPass::record(VkCommandBuffer cmd, const scenes::Camera& camera, GpuT
   // A camera without a near plane (znear 0) would map every depth to 1; 1 mm keeps the
   // rasteriser working at every scene scale the tests use.
   const float znear = camera.znear > 0.0f ? camera.znear : 1e-3f;
-  const gpu::GBufferPush pc{gpu::make_gpu_camera(camera), glm::vec2(float(width_), float(height_)), znear, 0.0f};
+  // An orthographic depth is linear from the near plane to the scene's farthest point (the
+  // reference sees everything in front of the camera, so no far plane may clip it).
+  float zscale = 0.0f;
+  if (camera.orthographic() && !scene_.bounds().empty()) {
+    const scenes::Bounds& b = scene_.bounds();
+    float far_d = 0.0f;
+    for (int i = 0; i < 8; ++i) {
+      const glm::vec3 corner((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z);
+      far_d = std::max(far_d, glm::dot(corner - camera.position, camera.forward));
+    }
+    zscale = 1.0f / std::max(1.001f * (far_d - znear), znear);
+  }
+  const gpu::GBufferPush pc{gpu::make_gpu_camera(camera), glm::vec2(float(width_), float(height_)), znear, zscale};
   timer.begin(cmd, "gbuffer");
   if (ray_traced_) {
     for (Image* i : {&position_, &normal_, &ids_}) i->transition(cmd, VK_IMAGE_LAYOUT_GENERAL);

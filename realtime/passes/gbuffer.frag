@@ -19,7 +19,7 @@ void main() {
   vec3 a, b, c;
   triangle_vertices(tri, a, b, c);
   vec3 ng = normalize(cross(b - a, c - a));
-  vec3 o = pc.camera.position.xyz;
+  vec3 o = camera_ray_origin(pc.camera, gl_FragCoord.xy, pc.size);
   vec3 d = camera_ray_direction(pc.camera, gl_FragCoord.xy, pc.size);
   float denom = dot(d, ng);
   // The ray through the pixel centre meets the triangle's plane at t; a plane seen exactly

@@ -21,7 +21,7 @@ layout(push_constant) uniform Push { GBufferPush pc; };
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   if (px.x >= int(pc.size.x) || px.y >= int(pc.size.y)) return;
-  vec3 o = pc.camera.position.xyz;
+  vec3 o = camera_ray_origin(pc.camera, vec2(px) + 0.5, pc.size);
   vec3 d = camera_ray_direction(pc.camera, vec2(px) + 0.5, pc.size);
   // The rasteriser clips at the near plane along the view axis; so does this.
   float tmin = pc.znear / max(dot(d, pc.camera.forward.xyz), 1e-6);

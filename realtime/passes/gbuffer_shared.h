@@ -14,7 +14,7 @@ struct GBufferPush {
   GpuCamera camera;
   vec2 size;    // the image's width and height
   float znear;  // the rasteriser's near plane; the ray caster's minimum distance along forward
-  float pad;
+  float zscale; // orthographic: 1 / (farthest scene depth - znear), so depth spans [0, 1]
 };
 
 // Motion vectors (motion_vectors.comp): the cameras of this frame and of the previous one.

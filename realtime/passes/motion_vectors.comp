@@ -27,7 +27,10 @@ void main() {
   uvec4 ids = imageLoad(gb_ids, px);
   vec3 previous;
   if (ids.x == 0u) {
-    previous = camera_project_direction(pc.previous, camera_ray_direction(pc.current, centre, size), size);
+    // The direction, seen from the previous camera (from the same point of its image plane
+    // when orthographic): a static camera keeps every environment pixel where it is.
+    vec3 offset = camera_ray_origin(pc.current, centre, size) - pc.current.position.xyz;
+    previous = camera_project(pc.previous, pc.previous.position.xyz + offset + camera_ray_direction(pc.current, centre, size), size);
   } else {
     uvec3 t = scene_triangles[ids.x - 1u].v.xyz;
     vec3 a = scene_vertices[t.x].position.xyz, b = scene_vertices[t.y].position.xyz, c = scene_vertices[t.z].position.xyz;

@@ -119,7 +119,9 @@ void ShadowMaps::update_cascades(const Source& s, const scenes::Camera& camera, 
     for (int i = 0; i < 8; ++i) {
       const float d = (i & 4) ? d1 : d0;
       const float x = (i & 1) ? 1.0f : -1.0f, y = (i & 2) ? 1.0f : -1.0f;
-      corners[i] = camera.position + d * (camera.forward + x * t * aspect * camera.right + y * t * camera.up);
+      // A slice of a pinhole's frustum widens with depth; an orthographic one does not.
+      const float half_h = camera.orthographic() ? camera.ymag : d * t;
+      corners[i] = camera.position + d * camera.forward + half_h * (x * aspect * camera.right + y * camera.up);
       mid += corners[i] / 8.0f;
     }
     float r = 0.0f;

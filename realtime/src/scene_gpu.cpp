@@ -70,6 +70,7 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat) {
   using namespace gpu;
   Context& ctx = *ctx_;
   geometry_ = std::move(flat);
+  bounds_ = scene.bounds;
   triangle_count_ = uint32_t(geometry_.triangles.size());
   bvh_ = build_bvh(geometry_.positions, geometry_.triangles);
 

@@ -342,7 +342,7 @@ class LaneIntegrator {
     const PathSampler sampler(uint32_t(y) * uint32_t(rs.width) + uint32_t(x), s.pixel[l]->samples, rs.seed, rs.block());
     const PathSampler::Group j = sampler.get(SampleDimensions::kPixel);
     lanes::set(s.dir, l, c_.rays.direction(float(x) + j[0], float(y) + j[1]));
-    lanes::set(s.origin, l, c_.eye);
+    lanes::set(s.origin, l, c_.eye + c_.rays.origin_offset(float(x) + j[0], float(y) + j[1]));
     lanes::set(s.beta, l, glm::vec3(1.0f));
     lanes::set(s.direct, l, glm::vec3(0.0f));
     lanes::set(s.indirect, l, glm::vec3(0.0f));

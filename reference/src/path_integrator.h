@@ -77,7 +77,7 @@ class PathIntegrator {
     const PathSampler s(uint32_t(y) * uint32_t(rs.width) + uint32_t(x), sample_index, rs.seed, rs.block());
     const PathSampler::Group j = s.get(D::kPixel);
     glm::vec3 d = c_.rays.direction(float(x) + j[0], float(y) + j[1]);
-    glm::vec3 o = c_.eye;
+    glm::vec3 o = c_.eye + c_.rays.origin_offset(float(x) + j[0], float(y) + j[1]);
     glm::vec3 beta(1.0f), direct(0.0f), indirect(0.0f);
     float prev_pdf = 0.0f;  // BSDF pdf of the direction that led to the current hit
     uint32_t rays = 0;
@@ -157,7 +157,7 @@ class PathIntegrator {
   PixelAux aux(int x, int y) const {
     PixelAux a;
     const glm::vec3 d = c_.rays.direction(float(x) + 0.5f, float(y) + 0.5f);
-    const Hit hit = c_.bvh.intersect(c_.eye, d);
+    const Hit hit = c_.bvh.intersect(c_.eye + c_.rays.origin_offset(float(x) + 0.5f, float(y) + 0.5f), d);
     if (!hit.valid()) return a;
     const Surface sf = make_surface<F>(c_, hit, d);
     const glm::vec3 albedo = sf.black ? glm::vec3(0.0f) : sf.bsdf.base;

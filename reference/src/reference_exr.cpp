@@ -46,7 +46,7 @@ std::string settings_json(const RenderSettings& s) {
 std::string describe_camera(const scenes::Camera& c) {
   const auto v = [](glm::vec3 x) { return exact(x.x) + "," + exact(x.y) + "," + exact(x.z); };
   return "position=" + v(c.position) + " forward=" + v(c.forward) + " up=" + v(c.up) +
-         " yfov_deg=" + exact(float(double(c.yfov) * 180.0 / 3.14159265358979323846));
+         (c.orthographic() ? " ymag=" + exact(c.ymag) : " yfov_deg=" + exact(float(double(c.yfov) * 180.0 / 3.14159265358979323846)));
 }
 
 image::Image reference_image(const Film& film, const RenderSettings& settings, const ReferenceMetadata& meta) {

@@ -32,10 +32,18 @@ glm::vec3 Camera::ray_direction(float px, float py, int width, int height) const
   return ImageRays(*this, width, height).direction(px, py);
 }
 
-// Pinhole model: the image plane at distance 1 spans tan(yfov/2) above and below the axis;
-// horizontally it spans aspect times that. (px, py) are continuous pixel coordinates, y down.
+glm::vec3 Camera::ray_origin(float px, float py, int width, int height) const {
+  return position + ImageRays(*this, width, height).origin_offset(px, py);
+}
+
+// Pinhole: the image plane at distance 1 spans tan(yfov/2) above and below the axis.
+// Orthographic: the plane through the camera spans ymag above and below it (glTF 2.0 spec,
+// 3.10.3; like a pinhole's yfov, ymag spans the height, and the width follows the image's
+// aspect). Horizontally both span aspect times that. (px, py) are continuous pixel
+// coordinates, y down.
 ImageRays::ImageRays(const Camera& camera, int width, int height)
-    : forward_(camera.forward), right_(camera.right), up_(camera.up), tan_half_fov_(std::tan(0.5 * double(camera.yfov))),
+    : forward_(camera.forward), right_(camera.right), up_(camera.up), orthographic_(camera.orthographic()),
+      half_height_(camera.orthographic() ? double(camera.ymag) : std::tan(0.5 * double(camera.yfov))),
       aspect_(double(width) / double(height)), width_(double(width)), height_(double(height)) {}
 
 }  // namespace giq::scenes

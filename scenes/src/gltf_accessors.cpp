@@ -111,6 +111,7 @@ std::pair<const unsigned char*, size_t> view_bytes(const Context& ctx, int view,
   const auto& m = ctx.model;
   if (view < 0 || size_t(view) >= m.bufferViews.size())
     ctx.fail(field, "is " + std::to_string(view) + "; the file has " + std::to_string(m.bufferViews.size()) + " buffer views");
+  if (auto it = ctx.decoded_views.find(view); it != ctx.decoded_views.end()) return {it->second.data(), it->second.size()};
   const auto& bv = m.bufferViews[size_t(view)];
   if (bv.buffer < 0 || size_t(bv.buffer) >= m.buffers.size())
     ctx.fail(index_path("bufferViews", size_t(view)) + ".buffer", "is " + std::to_string(bv.buffer) + "; the file has " + std::to_string(m.buffers.size()) + " buffers");
@@ -178,6 +179,13 @@ AccessorData read_accessor(const Context& ctx, int index, const std::string& fie
   if (ctx.values_read > kMaxValues)
     ctx.fail(field, "reading " + where + " brings the accessor data read to more than " + std::to_string(kMaxValues) + " values; too large");
 
+  if (auto it = ctx.decoded_accessors.find(index); it != ctx.decoded_accessors.end()) {
+    if (a.sparse.isSparse) ctx.fail(where + ".sparse", "is given for an accessor of a Draco-compressed primitive; expected none");
+    if (it->second.count != a.count || it->second.components != comps)
+      ctx.fail(where + ".count", "is " + std::to_string(a.count) + " " + type_name(a.type) + "; the Draco data decodes to " +
+                                     std::to_string(it->second.count) + " elements of " + std::to_string(it->second.components) + " components");
+    return it->second;
+  }
   AccessorData out;
   out.components = comps;
   out.count = a.count;

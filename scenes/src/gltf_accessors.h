@@ -5,10 +5,17 @@
 #include <tiny_gltf.h>
 
 #include <initializer_list>
+#include <map>
 #include <string>
 #include <vector>
 
 namespace giq::scenes::gltf {
+
+struct AccessorData {
+  int components = 0;
+  size_t count = 0;
+  std::vector<double> values;  // count * components; normalized integers already mapped to [0,1]/[-1,1]
+};
 
 struct Context {
   Context(const std::string& file_, const tinygltf::Model& model_) : file(file_), model(model_) {}
@@ -20,6 +27,12 @@ struct Context {
   // What was loaded but dropped or approximated: one line per kind, however often it occurs
   // (Scene::warnings).
   mutable std::vector<std::string> warnings;
+  // Buffer views decoded from their compressed form (gltf_meshopt.cpp), by view index: they
+  // replace the view's bytes wherever it is read.
+  std::map<int, std::vector<unsigned char>> decoded_views;
+  // Accessors decoded from a Draco-compressed primitive (gltf_draco.cpp), by accessor index,
+  // while that primitive is loaded: they replace the accessor's data.
+  mutable std::map<int, AccessorData> decoded_accessors;
   [[noreturn]] void fail(const std::string& field, const std::string& message) const;
   // Adds a warning of kind `kind`: the first one keeps `message`; later ones of the same kind
   // only count, and the line says how many there were.
@@ -45,11 +58,6 @@ struct AccessorRule {
   bool small_integers = false;       // BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT, not normalized
 };
 
-struct AccessorData {
-  int components = 0;
-  size_t count = 0;
-  std::vector<double> values;  // count * components; normalized integers already mapped to [0,1]/[-1,1]
-};
 
 // Reads accessor `index`, referenced from `field`. Checks the index, type and component type
 // against `rule`, bounds against the buffer view and buffer, sparse substitution, and that

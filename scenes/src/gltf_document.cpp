@@ -12,6 +12,28 @@
 #include "giq/base/hash.h"
 
 namespace giq::scenes::gltf {
+
+const nlohmann::json* member(const nlohmann::json& o, const char* key) {
+  if (!o.is_object()) return nullptr;
+  auto it = o.find(key);
+  return it == o.end() ? nullptr : &*it;
+}
+
+uint64_t unsigned_property(const Document& d, const nlohmann::json& o, const char* key, const std::string& where,
+                           bool required, uint64_t fallback) {
+  const nlohmann::json* v = member(o, key);
+  if (!v) {
+    if (required) throw InputError(d.file, where + "." + key, "missing; expected a non-negative integer");
+    return fallback;
+  }
+  if (v->is_number_unsigned()) return v->get<uint64_t>();
+  if (v->is_number_float()) {
+    const double x = v->get<double>();
+    if (x >= 0.0 && x < 9.0e15 && x == double(uint64_t(x))) return uint64_t(x);
+  }
+  throw InputError(d.file, where + "." + key, "is " + v->dump() + "; expected a non-negative integer");
+}
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -23,7 +45,8 @@ using nlohmann::json;
 // says what is then approximated.
 constexpr const char* kImplemented[] = {"KHR_lights_punctual",     "KHR_materials_emissive_strength", "KHR_materials_specular",
                                         "KHR_materials_ior",       "KHR_materials_unlit",             "KHR_texture_transform",
-                                        "KHR_mesh_quantization",   "EXT_mesh_gpu_instancing",         "KHR_materials_pbrSpecularGlossiness"};
+                                        "KHR_mesh_quantization",   "EXT_mesh_gpu_instancing",         "KHR_materials_pbrSpecularGlossiness",
+                                        kMeshoptExtension,         "KHR_draco_mesh_compression"};
 
 // What ignoring an optional extension means for the image ("" = nothing visible: metadata).
 struct Ignored {
@@ -45,8 +68,6 @@ constexpr Ignored kIgnored[] = {
     {"EXT_texture_webp", "textures use their core PNG or JPEG image"},
     {"EXT_texture_avif", "textures use their core PNG or JPEG image"},
     {"MSFT_texture_dds", "textures use their core PNG or JPEG image"},
-    {"KHR_draco_mesh_compression", "the uncompressed fallback geometry is read"},
-    {"EXT_meshopt_compression", "the uncompressed fallback geometry is read"},
     {"KHR_xmp_json_ld", ""},
     {"KHR_xmp", ""},
 };
@@ -105,12 +126,6 @@ void read_glb_layout(Document& d) {
   d.bin_size = size_t(bin_len);
 }
 
-const json* member(const json& o, const char* key) {
-  if (!o.is_object()) return nullptr;
-  auto it = o.find(key);
-  return it == o.end() ? nullptr : &*it;
-}
-
 const json& array_of_objects(const Document& d, const char* key) {
   static const json empty = json::array();
   const json* a = member(d.json, key);
@@ -119,22 +134,6 @@ const json& array_of_objects(const Document& d, const char* key) {
   for (size_t i = 0; i < a->size(); ++i)
     if (!(*a)[i].is_object()) throw InputError(d.file, std::string(key) + "[" + std::to_string(i) + "]", "must be a JSON object");
   return *a;
-}
-
-// A non-negative integer property, or `fallback` when absent (required: absent is an error).
-uint64_t unsigned_property(const Document& d, const json& o, const char* key, const std::string& where,
-                           bool required, uint64_t fallback = 0) {
-  const json* v = member(o, key);
-  if (!v) {
-    if (required) throw InputError(d.file, where + "." + key, "missing; expected a non-negative integer");
-    return fallback;
-  }
-  if (v->is_number_unsigned()) return v->get<uint64_t>();
-  if (v->is_number_float()) {
-    const double x = v->get<double>();
-    if (x >= 0.0 && x < 9.0e15 && x == double(uint64_t(x))) return uint64_t(x);
-  }
-  throw InputError(d.file, where + "." + key, "is " + v->dump() + "; expected a non-negative integer");
 }
 
 int base64_value(unsigned char c) {
@@ -281,6 +280,7 @@ void check_extensions(Document& d) {
 void check_binary_data(Document& d, Hasher& hash) {
   const json& buffers = array_of_objects(d, "buffers");
   std::vector<uint64_t> buffer_length(buffers.size());
+  d.placeholder_buffers.assign(buffers.size(), false);
   for (size_t i = 0; i < buffers.size(); ++i) {
     const std::string where = "buffers[" + std::to_string(i) + "]";
     const uint64_t declared = unsigned_property(d, buffers[i], "byteLength", where, true);
@@ -288,10 +288,13 @@ void check_binary_data(Document& d, Hasher& hash) {
     buffer_length[i] = declared;
     const json* uri = member(buffers[i], "uri");
     if (!uri) {
-      if (!d.binary || i != 0)
-        throw InputError(d.file, where + ".uri", "missing; only the first buffer of a .glb may omit it");
-      if (declared > d.bin_size)
-        throw InputError(d.file, where + ".byteLength", "declares " + std::to_string(declared) + " bytes but the .glb BIN chunk has " + std::to_string(d.bin_size));
+      if (d.binary && i == 0) {
+        if (declared > d.bin_size)
+          throw InputError(d.file, where + ".byteLength", "declares " + std::to_string(declared) + " bytes but the .glb BIN chunk has " + std::to_string(d.bin_size));
+        continue;
+      }
+      // No data: a placeholder that only compressed views may name (checked below).
+      d.placeholder_buffers[i] = true;
       continue;
     }
     if (!uri->is_string()) throw InputError(d.file, where + ".uri", "must be a string");
@@ -308,6 +311,10 @@ void check_binary_data(Document& d, Hasher& hash) {
     const uint64_t b = unsigned_property(d, views[i], "buffer", where, true);
     if (b >= buffers.size())
       throw InputError(d.file, where + ".buffer", "is " + std::to_string(b) + "; the file has " + std::to_string(buffers.size()) + " buffers");
+    const json* ext = member(views[i], "extensions");
+    if (d.placeholder_buffers[b] && !(ext && member(*ext, kMeshoptExtension)))
+      throw InputError(d.file, where + ".buffer", "names buffers[" + std::to_string(b) + "], which has no uri and holds no data; only a view compressed with " +
+                                                      kMeshoptExtension + " may (and only the first buffer of a .glb may name the BIN chunk)");
     const uint64_t offset = unsigned_property(d, views[i], "byteOffset", where, false, 0);
     const uint64_t length = unsigned_property(d, views[i], "byteLength", where, true);
     if (length < 1) throw InputError(d.file, where + ".byteLength", "is 0; expected at least 1");
@@ -423,6 +430,63 @@ bool stash_image(tinygltf::Image*, const int index, std::string*, std::string*, 
   return true;
 }
 
+// The document with its JSON replaced by `text`: the text itself, or for a .glb the
+// container rebuilt around it (glTF 2.0 spec, 4.4: JSON chunk padded with spaces to 4 bytes,
+// the BIN chunk kept as it is).
+std::vector<unsigned char> with_json(const Document& d, std::string text) {
+  if (!d.binary) return std::vector<unsigned char>(text.begin(), text.end());
+  while (text.size() % 4) text += ' ';
+  const size_t bin_at = d.json_offset + d.json_size;  // the BIN chunk's header, if any
+  std::vector<unsigned char> out;
+  auto put32 = [&](uint32_t v) {
+    for (int k = 0; k < 4; ++k) out.push_back(static_cast<unsigned char>(v >> (8 * k)));
+  };
+  const size_t total = 12 + 8 + text.size() + (d.bytes.size() - bin_at);
+  put32(0x46546C67u), put32(2), put32(uint32_t(total));
+  put32(uint32_t(text.size())), put32(0x4E4F534Au);
+  out.insert(out.end(), text.begin(), text.end());
+  out.insert(out.end(), d.bytes.begin() + std::ptrdiff_t(bin_at), d.bytes.end());
+  return out;
+}
+
+// What glTF allows but tinygltf 2.7 refuses, patched in the copy it parses; nothing patched
+// is read from that copy (the views and accessors concerned are decoded instead):
+//  - a buffer without data (a placeholder) would be refused, or in a .glb given the BIN
+//    chunk: it gets three zero bytes;
+//  - an indices accessor without a buffer view (a Draco-compressed primitive's) would be
+//    refused: it gets a one-byte view of such a buffer.
+// Returns whether anything was patched.
+bool patch_for_tinygltf(const Document& d, json& j) {
+  const json kEmpty = {{"uri", "data:application/octet-stream;base64,AAAA"}, {"byteLength", 3}};
+  bool patched = false;
+  for (size_t i = 0; i < d.placeholder_buffers.size(); ++i)
+    if (d.placeholder_buffers[i]) {
+      j["buffers"][i]["uri"] = kEmpty["uri"];
+      j["buffers"][i]["byteLength"] = 3;
+      patched = true;
+    }
+  const json* meshes = member(j, "meshes");
+  const json* accessors = member(j, "accessors");
+  if (!meshes || !accessors) return patched;
+  std::vector<size_t> viewless;
+  for (const json& mesh : *meshes) {
+    const json* prims = member(mesh, "primitives");
+    if (!prims) continue;
+    for (const json& prim : *prims) {
+      const json* ext = member(prim, "extensions");
+      const json* idx = member(prim, "indices");
+      if (!ext || !member(*ext, "KHR_draco_mesh_compression") || !idx || !idx->is_number_unsigned()) continue;
+      const size_t a = idx->get<size_t>();
+      if (a < accessors->size() && !member((*accessors)[a], "bufferView")) viewless.push_back(a);
+    }
+  }
+  if (viewless.empty()) return patched;
+  j["buffers"].push_back(kEmpty);
+  j["bufferViews"].push_back({{"buffer", j["buffers"].size() - 1}, {"byteLength", 1}});
+  for (size_t a : viewless) j["accessors"][a]["bufferView"] = j["bufferViews"].size() - 1;
+  return true;
+}
+
 }  // namespace
 
 Document read_document(const fs::path& path) {
@@ -463,10 +527,17 @@ tinygltf::Model parse_model(Document& d) {
   tinygltf::Model model;
   std::string err, warn;
   const std::string base = d.folder.string();
+  const std::vector<unsigned char>* bytes = &d.bytes;
+  std::vector<unsigned char> rewritten;
+  nlohmann::json patched = d.json;
+  if (patch_for_tinygltf(d, patched)) {
+    rewritten = with_json(d, patched.dump());
+    bytes = &rewritten;
+  }
   const bool ok =
-      d.binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, d.bytes.data(), unsigned(d.bytes.size()), base)
-               : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(d.bytes.data()),
-                                            unsigned(d.bytes.size()), base);
+      d.binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes->data(), unsigned(bytes->size()), base)
+               : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes->data()),
+                                            unsigned(bytes->size()), base);
   if (!ok) {
     std::string first = err.substr(0, err.find('\n'));
     if (first.empty()) first = "rejected by the glTF parser";

@@ -30,7 +30,20 @@ struct Document {
   std::vector<std::vector<unsigned char>> encoded_images;
   // Optional extensions the file uses that giq ignores, with what that approximates.
   std::vector<std::string> warnings;
+  // Buffers without data (no uri, and not a .glb's BIN chunk): placeholders that only views
+  // compressed with EXT_meshopt_compression may name (gltf_meshopt.cpp decodes those views).
+  std::vector<bool> placeholder_buffers;
 };
+
+// The extension whose compressed buffer views gltf_meshopt.cpp decodes.
+inline constexpr const char* kMeshoptExtension = "EXT_meshopt_compression";
+
+// The member `key` of object `o`, or nullptr.
+const nlohmann::json* member(const nlohmann::json& o, const char* key);
+// A non-negative integer property of `o` (at glTF path `where`), or `fallback` when absent
+// and not required. Throws InputError naming where.key.
+uint64_t unsigned_property(const Document& d, const nlohmann::json& o, const char* key, const std::string& where,
+                           bool required, uint64_t fallback = 0);
 
 // Reads `path`, checks the container, the JSON and every buffer and image URI, and computes
 // the content hash. Throws InputError.

@@ -46,7 +46,7 @@ void parse_views(const Reader& r, const json& a, Extras& out) {
   if (!a.is_array()) r.fail(base, "must be an array of view objects");
   for (size_t i = 0; i < a.size(); ++i) {
     const std::string w = base + "[" + std::to_string(i) + "]";
-    r.only_keys(a[i], w, {"name", "eye", "target", "up", "yfov_deg"});
+    r.only_keys(a[i], w, {"name", "eye", "target", "up", "yfov_deg", "ymag"});
     ExtraView v;
     v.field = w;
     if (!a[i].contains("name") || !a[i]["name"].is_string() || a[i]["name"].get<std::string>().empty())
@@ -59,6 +59,11 @@ void parse_views(const Reader& r, const json& a, Extras& out) {
     if (a[i].contains("up")) v.up = r.vec3(a[i]["up"], w + ".up");
     if (a[i].contains("yfov_deg")) v.yfov_deg = r.number(a[i]["yfov_deg"], w + ".yfov_deg");
     if (!(v.yfov_deg > 0.0 && v.yfov_deg < 180.0)) r.fail(w + ".yfov_deg", "is " + std::to_string(v.yfov_deg) + "; expected degrees in (0, 180)");
+    if (a[i].contains("ymag")) {
+      if (a[i].contains("yfov_deg")) r.fail(w + ".ymag", "given with yfov_deg; a view is orthographic (ymag) or perspective (yfov_deg), not both");
+      v.ymag = r.number(a[i]["ymag"], w + ".ymag");
+      if (!(v.ymag > 0.0 && v.ymag < 1e30)) r.fail(w + ".ymag", "is " + std::to_string(v.ymag) + "; expected an orthographic half height in metres, > 0");
+    }
     out.views.push_back(std::move(v));
   }
 }

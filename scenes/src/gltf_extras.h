@@ -18,6 +18,7 @@ struct ExtraView {
   std::string field;  // "extras.giq.views[i]", for messages
   glm::dvec3 eye{0.0}, target{0.0, 0.0, -1.0}, up{0.0, 1.0, 0.0};  // world coordinates
   double yfov_deg = 45.0;
+  double ymag = 0.0;  // > 0: orthographic half height (Camera::ymag)
 };
 
 struct Extras {

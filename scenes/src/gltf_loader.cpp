@@ -13,8 +13,10 @@
 #include "giq/scenes/scene.h"
 #include "gltf_accessors.h"
 #include "gltf_document.h"
+#include "gltf_draco.h"
 #include "gltf_extras.h"
 #include "gltf_materials.h"
+#include "gltf_meshopt.h"
 #include "scene_source.h"
 
 namespace giq::scenes {
@@ -192,6 +194,9 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
     out.dropped = true;
     return out;
   }
+  decode_draco_primitive(ctx, p, w);
+  if (!ctx.decoded_accessors.empty() && mode != TINYGLTF_MODE_TRIANGLES)
+    ctx.fail(w + ".mode", "is " + std::to_string(mode) + " on a Draco-compressed primitive; KHR_draco_mesh_compression holds points or TRIANGLES (4)");
   if (p.material >= 0) {
     if (size_t(p.material) >= ctx.model.materials.size())
       ctx.fail(w + ".material", "is " + std::to_string(p.material) + "; the file has " + std::to_string(ctx.model.materials.size()) + " materials");
@@ -278,6 +283,7 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
     return collapsed;
   });
   if (out.triangles.empty()) out.positions.clear(), out.normals.clear(), out.tangents.clear(), out.uvs.clear(), out.colors.clear();
+  ctx.decoded_accessors.clear();
   return out;
 }
 
@@ -285,13 +291,29 @@ void load_cameras(const Context& ctx, SceneSource& src) {
   for (size_t i = 0; i < ctx.model.cameras.size(); ++i) {
     const auto& c = ctx.model.cameras[i];
     const std::string w = index_path("cameras", i);
-    if (c.type == "orthographic") ctx.fail(w + ".type", "orthographic cameras are not supported yet; use a perspective camera");
-    if (c.type != "perspective") ctx.fail(w + ".type", "is \"" + c.type + "\"; expected \"perspective\"");
+    if (c.type == "orthographic") {
+      // glTF 2.0 spec, 5.14: xmag and ymag must not be zero and should not be negative;
+      // zfar is required and beyond znear. The image's aspect ratio sets the width, as it
+      // does for a perspective camera (xmag, like aspectRatio, is not used).
+      const auto& o = c.orthographic;
+      if (!(o.ymag != 0.0 && std::isfinite(o.ymag) && std::abs(o.ymag) < 1e30))
+        ctx.fail(w + ".orthographic.ymag", "is " + std::to_string(o.ymag) + "; expected a finite non-zero half height");
+      if (!(o.xmag != 0.0 && std::isfinite(o.xmag)))
+        ctx.fail(w + ".orthographic.xmag", "is " + std::to_string(o.xmag) + "; expected a finite non-zero half width");
+      if (o.ymag < 0.0)
+        ctx.warn("negative ymag", w + ".orthographic.ymag is negative; its magnitude is used (a mirrored view is not rendered)");
+      if (!(o.znear >= 0.0 && std::isfinite(o.znear))) ctx.fail(w + ".orthographic.znear", "is " + std::to_string(o.znear) + "; expected a distance >= 0");
+      if (!(o.zfar > o.znear && std::isfinite(o.zfar))) ctx.fail(w + ".orthographic.zfar", "is " + std::to_string(o.zfar) + "; expected a distance beyond znear");
+      CameraSource cs{c.name, 0.0f, float(std::abs(o.ymag)), float(o.znear), float(o.zfar)};
+      src.cameras.push_back(cs);
+      continue;
+    }
+    if (c.type != "perspective") ctx.fail(w + ".type", "is \"" + c.type + "\"; expected \"perspective\" or \"orthographic\"");
     const auto& p = c.perspective;
     if (!(p.yfov > 0.0 && p.yfov < std::numbers::pi)) ctx.fail(w + ".perspective.yfov", "is " + std::to_string(p.yfov) + "; expected radians in (0, pi)");
     if (!(p.znear > 0.0 && std::isfinite(p.znear))) ctx.fail(w + ".perspective.znear", "is " + std::to_string(p.znear) + "; expected a positive distance");
     if (p.zfar != 0.0 && !(p.zfar > p.znear && std::isfinite(p.zfar))) ctx.fail(w + ".perspective.zfar", "is " + std::to_string(p.zfar) + "; expected a distance beyond znear");
-    src.cameras.push_back({c.name, float(p.yfov), float(p.znear), float(p.zfar)});
+    src.cameras.push_back({c.name, float(p.yfov), 0.0f, float(p.znear), float(p.zfar)});
   }
 }
 
@@ -385,7 +407,9 @@ void load_animations(const Context& ctx, SceneSource& src) {
 Scene load(const std::filesystem::path& path) {
   gltf::Document doc = gltf::read_document(path);
   const tinygltf::Model model = gltf::parse_model(doc);
-  const gltf::Context ctx{doc.file, model};
+  gltf::Context decoding{doc.file, model};
+  gltf::decode_meshopt_views(doc, decoding);
+  const gltf::Context& ctx = decoding;
   auto src = std::make_shared<SceneSource>();
   src->file = doc.file;
 
@@ -428,6 +452,7 @@ Scene load(const std::filesystem::path& path) {
     view.name = v.name;
     try {
       view.camera = Camera::look_at(glm::vec3(v.eye - s.origin), glm::vec3(v.target - s.origin), glm::vec3(v.up), float(v.yfov_deg * std::numbers::pi / 180.0));
+      view.camera.ymag = float(v.ymag);
     } catch (const std::invalid_argument& e) {
       throw InputError(doc.file, v.field, e.what());
     }

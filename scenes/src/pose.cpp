@@ -221,6 +221,11 @@ void pose(const SceneSource& src, const std::vector<glm::dmat4>& world, Scene& o
       v.camera.right = glm::vec3(r / rl);
       v.camera.up = glm::vec3(glm::cross(r / rl, f / fl));
       v.camera.yfov = c.yfov;
+      // An orthographic window is in the camera node's units: it scales with the node.
+      const double ul = glm::length(u);
+      v.camera.ymag = float(double(c.ymag) * ul);
+      if (c.ymag > 0.0f && !(v.camera.ymag > 0.0f && std::isfinite(v.camera.ymag)))
+        throw InputError(src.file, "nodes[" + std::to_string(i) + "]", "the node's transform collapses the orthographic camera's window; expected an invertible transform");
       v.camera.znear = c.znear;
       v.camera.zfar = c.zfar;
       out.views.push_back(std::move(v));

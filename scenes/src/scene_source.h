@@ -65,6 +65,7 @@ struct AnimationSource {
 struct CameraSource {
   std::string name;
   float yfov = 0.0f;
+  float ymag = 0.0f;  // > 0: orthographic (Camera::ymag), in the camera node's units
   float znear = 0.01f;
   float zfar = 0.0f;
 };

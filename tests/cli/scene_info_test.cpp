@@ -54,11 +54,17 @@ TEST(CliSceneInfo, ValidSceneAsJson) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_EQ(j["views"].size(), 4u);
+  EXPECT_EQ(j["views"].size(), 6u);
   EXPECT_EQ(j["counts"]["punctual_lights"], 3);
   EXPECT_EQ(j["leak_regions"], nlohmann::json::array({"floor"}));
   // Positions are reported in world coordinates (origin + local).
-  EXPECT_DOUBLE_EQ(j["views"][2]["position"][0].get<double>(), 104.0);
+  EXPECT_DOUBLE_EQ(j["views"][3]["position"][0].get<double>(), 104.0);
+  EXPECT_EQ(j["views"][2]["projection"], "orthographic");
+  EXPECT_DOUBLE_EQ(j["views"][2]["ymag"].get<double>(), 3.0);
+  EXPECT_FALSE(j["views"][2].contains("yfov_deg"));
+  EXPECT_EQ(j["views"][3]["projection"], "perspective");
+  ASSERT_EQ(j["warnings"].size(), 1u);  // the negative ymag
+  EXPECT_NE(j["warnings"][0].get<std::string>().find("ymag is negative"), std::string::npos);
 }
 
 TEST(CliSceneInfo, ValidSceneAsTable) {

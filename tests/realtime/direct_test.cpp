@@ -27,7 +27,8 @@ class DirectTest : public test::VulkanTest {
 // The point of the plane y = 0 seen through pixel (x, y)'s centre.
 glm::vec3 plane_point(const scenes::Camera& cam, int x, int y, int size) {
   const glm::vec3 d = cam.ray_direction(x + 0.5f, y + 0.5f, size, size);
-  return cam.position + (-cam.position.y / d.y) * d;
+  const glm::vec3 o = cam.ray_origin(x + 0.5f, y + 0.5f, size, size);
+  return o + (-o.y / d.y) * d;
 }
 
 TEST_F(DirectTest, PunctualLightsOnAPlaneMatchTheClosedForm) {
@@ -53,33 +54,39 @@ TEST_F(DirectTest, PunctualLightsOnAPlaneMatchTheClosedForm) {
   s.lights = {point, spot, sun};
   s.derive();
   const int size = 48;
-  const image::Image img = render(s, "direct", size, {"shadow_map_size=512"});
-  const auto& cam = s.views[0].camera;
-  for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x) {
-      const glm::vec3 p = plane_point(cam, x, y, size);
-      glm::vec3 expected(0.0f);
-      for (const auto& l : s.lights) {
-        if (l.type == scenes::LightType::Directional) {
-          expected += l.radiant() * std::max(0.0f, -l.direction.y);
-          continue;
+  // The same through an orthographic camera (a window of 5 m, inside the 8 m plane): the
+  // rasteriser's orthographic projection must put each point on its pixel's ray.
+  for (const bool orthographic : {false, true}) {
+    SCOPED_TRACE(orthographic ? "orthographic" : "perspective");
+    s.views[0].camera.ymag = orthographic ? 2.5f : 0.0f;
+    const image::Image img = render(s, "direct", size, {"shadow_map_size=512"});
+    const auto& cam = s.views[0].camera;
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        const glm::vec3 p = plane_point(cam, x, y, size);
+        glm::vec3 expected(0.0f);
+        for (const auto& l : s.lights) {
+          if (l.type == scenes::LightType::Directional) {
+            expected += l.radiant() * std::max(0.0f, -l.direction.y);
+            continue;
+          }
+          const glm::vec3 to = l.position - p;
+          const float d = glm::length(to);
+          float f = scenes::range_window(d, l.range) / (d * d) * std::max(0.0f, to.y / d);
+          if (l.type == scenes::LightType::Spot)
+            f *= scenes::spot_attenuation(glm::dot(l.direction, -to / d), l.inner_cone, l.outer_cone);
+          expected += l.radiant() * f;
         }
-        const glm::vec3 to = l.position - p;
-        const float d = glm::length(to);
-        float f = scenes::range_window(d, l.range) / (d * d) * std::max(0.0f, to.y / d);
-        if (l.type == scenes::LightType::Spot)
-          f *= scenes::spot_attenuation(glm::dot(l.direction, -to / d), l.inner_cone, l.outer_cone);
-        expected += l.radiant() * f;
+        expected *= rho / float(M_PI);
+        const char* ch[3] = {"R", "G", "B"};
+        for (int c = 0; c < 3; ++c) {
+          // float32 evaluation of the same formulas: a few ulps of relative error.
+          EXPECT_NEAR(img.at(ch[c], x, y), expected[c], 1e-4f * expected[c] + 1e-7f) << x << "," << y << " " << ch[c];
+          EXPECT_EQ(img.at(std::string("indirect.") + ch[c], x, y), 0.0f);
+          EXPECT_EQ(img.at(std::string("direct.") + ch[c], x, y), img.at(ch[c], x, y));
+        }
       }
-      expected *= rho / float(M_PI);
-      const char* ch[3] = {"R", "G", "B"};
-      for (int c = 0; c < 3; ++c) {
-        // float32 evaluation of the same formulas: a few ulps of relative error.
-        EXPECT_NEAR(img.at(ch[c], x, y), expected[c], 1e-4f * expected[c] + 1e-7f) << x << "," << y << " " << ch[c];
-        EXPECT_EQ(img.at(std::string("indirect.") + ch[c], x, y), 0.0f);
-        EXPECT_EQ(img.at(std::string("direct.") + ch[c], x, y), img.at(ch[c], x, y));
-      }
-    }
+  }
 }
 
 TEST_F(DirectTest, UnoccludedAreaLightAgreesWithThePathTracer) {
@@ -186,14 +193,18 @@ TEST_F(DirectTest, RayTracedGBufferMatchesTheRasterisedOne) {
   s.lights.push_back(l);
   s.derive();
   const int size = 48;
-  const image::Image a = render(s, "direct", size, {"shadow_map_size=256"});
-  const image::Image b = render(s, "direct", size, {"shadow_map_size=256", "gbuffer_ray_traced=1"});
-  int differ = 0;
-  for (size_t i = 0; i < a.pixel_count(); ++i) {
-    const float x = a.channel("G")[i], y = b.channel("G")[i];
-    differ += std::abs(x - y) > 1e-4f * std::max(x, y) + 1e-7f;
+  for (const bool orthographic : {false, true}) {
+    SCOPED_TRACE(orthographic ? "orthographic" : "perspective");
+    s.views[0].camera.ymag = orthographic ? 0.8f : 0.0f;
+    const image::Image a = render(s, "direct", size, {"shadow_map_size=256"});
+    const image::Image b = render(s, "direct", size, {"shadow_map_size=256", "gbuffer_ray_traced=1"});
+    int differ = 0;
+    for (size_t i = 0; i < a.pixel_count(); ++i) {
+      const float x = a.channel("G")[i], y = b.channel("G")[i];
+      differ += std::abs(x - y) > 1e-4f * std::max(x, y) + 1e-7f;
+    }
+    EXPECT_LE(differ, int(a.pixel_count() / 100)) << differ << " of " << a.pixel_count() << " pixels differ";
   }
-  EXPECT_LE(differ, int(a.pixel_count() / 100)) << differ << " of " << a.pixel_count() << " pixels differ";
 }
 
 TEST_F(DirectTest, CachedShadowMapsGiveTheSameFrames) {

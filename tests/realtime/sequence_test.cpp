@@ -59,8 +59,9 @@ void expect_motion(const Frame& f, const scenes::Camera& previous, uint32_t size
       const float* m = &f.motion[4 * i];
       if (p[3] == 0.0f || m[3] == 0.0f) continue;
       const glm::vec3 was = previous_point(glm::vec3(p[0], p[1], p[2]), i);
-      const glm::vec3 want = glm::normalize(was - previous.position);
-      const glm::vec3 got = previous.ray_direction(x + 0.5f + m[0], y + 0.5f + m[1], size, size);
+      const float px = x + 0.5f + m[0], py = y + 0.5f + m[1];
+      const glm::vec3 want = glm::normalize(was - previous.ray_origin(px, py, size, size));
+      const glm::vec3 got = previous.ray_direction(px, py, size, size);
       ASSERT_LT(glm::length(got - want), 1e-4f) << "pixel " << x << "," << y;
       ++checked;
     }
@@ -75,6 +76,14 @@ TEST_F(SequenceTest, MotionVectorsFollowTheCamera) {
   for (bool ray_traced : {false, true}) {
     const Frame f = gbuffer_sequence(*ctx, *compiler, {box, box}, {a, b}, 64, ray_traced);
     expect_motion(f, a, 64, [](glm::vec3 p, size_t) { return p; });
+  }
+  // Orthographic cameras: every ray starts on the camera's plane.
+  scenes::Camera oa = a, ob = b;
+  oa.ymag = 0.9f, ob.ymag = 0.8f;
+  for (bool ray_traced : {false, true}) {
+    SCOPED_TRACE(ray_traced ? "orthographic, ray traced" : "orthographic, rasterised");
+    const Frame f = gbuffer_sequence(*ctx, *compiler, {box, box}, {oa, ob}, 64, ray_traced);
+    expect_motion(f, oa, 64, [](glm::vec3 p, size_t) { return p; });
   }
 }
 

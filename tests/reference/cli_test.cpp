@@ -221,6 +221,13 @@ TEST(ReferenceCli, BadInputExitsWithTwo) {
   EXPECT_EQ(giq({"reference", "--scene", scene.string(), "--spp", "4", "--camera", "eye=1,2", "target=0,0,0", "--out",
                  out.string()}),
             2);
+  // An orthographic half height must be positive, and excludes a field of view.
+  for (const std::vector<std::string>& camera : std::vector<std::vector<std::string>>{{"ymag=0"}, {"ymag=-1"}, {"ymag=nan"}, {"fov=30", "ymag=1"}}) {
+    std::vector<std::string> a = {"reference", "--scene", scene.string(), "--spp", "4", "--camera", "eye=1,2,3", "target=0,0,0"};
+    a.insert(a.end(), camera.begin(), camera.end());
+    a.insert(a.end(), {"--out", out.string()});
+    EXPECT_EQ(giq(a), 2) << camera.back();
+  }
   EXPECT_EQ(giq({"reference", "--scene", scene.string(), "--spp", "4", "--width", "0", "--out", out.string()}), 2);
   EXPECT_EQ(giq({"reference", "--scene", (work_dir() / "missing.gltf").string(), "--spp", "4", "--out", out.string()}), 2);
   // Seeds outside uint64 were once wrapped (-1) or clamped (2^64) to 2^64 - 1 without a word.

@@ -65,5 +65,20 @@ TEST(Camera, RaysThroughEdgesAndCornersSpanTheFieldOfView) {
   expect_vec(c.ray_direction(float(w), float(h), w, h), {-expected.x, -expected.y, expected.z});
 }
 
+TEST(Camera, OrthographicRaysAreParallelAndSpanTheWindow) {
+  Camera c = Camera::look_at({1, 2, 3}, {1, 2, -5}, {0, 1, 0}, 1.0f);
+  c.ymag = 1.5f;
+  const int w = 400, h = 200;  // aspect 2: the window is 6 x 3
+  for (const glm::vec2 p : {glm::vec2(0, 0), glm::vec2(200, 100), glm::vec2(400, 200), glm::vec2(17.5f, 150.25f)})
+    expect_vec(c.ray_direction(p.x, p.y, w, h), c.forward, 0.0f);
+  expect_vec(c.ray_origin(200.0f, 100.0f, w, h), c.position, 0.0f);  // the centre: the camera
+  expect_vec(c.ray_origin(0.0f, 0.0f, w, h), c.position + glm::vec3(-3.0f, 1.5f, 0.0f));  // top left
+  expect_vec(c.ray_origin(400.0f, 200.0f, w, h), c.position + glm::vec3(3.0f, -1.5f, 0.0f));
+  expect_vec(c.ray_origin(300.0f, 100.0f, w, h), c.position + glm::vec3(1.5f, 0.0f, 0.0f));
+  // A pinhole's rays all start at its position.
+  c.ymag = 0.0f;
+  expect_vec(c.ray_origin(0.0f, 0.0f, w, h), c.position, 0.0f);
+}
+
 }  // namespace
 }  // namespace giq::scenes

@@ -398,7 +398,7 @@ TEST(Loader, LightsCamerasAndExtras) {
   EXPECT_FLOAT_EQ(spot.outer_cone, 0.5f);
   EXPECT_TRUE(s.features.directional_lights && s.features.point_lights && s.features.spot_lights);
 
-  ASSERT_EQ(s.views.size(), 4u);
+  ASSERT_EQ(s.views.size(), 6u);
   const View& cam = s.views[0];
   EXPECT_EQ(cam.name, "cam");
   EXPECT_EQ(cam.node, 5);
@@ -413,17 +413,30 @@ TEST(Loader, LightsCamerasAndExtras) {
   EXPECT_EQ(overview.name, "overview");  // unnamed node: the camera's name
   expect_vec(overview.camera.forward, {0, -1, 0});
   expect_vec(overview.camera.up, {0, 0, -1});
-  const View& corner = s.views[2];
+  EXPECT_FALSE(overview.camera.orthographic());
+  // Orthographic: |ymag| = 1.5 scaled by the node's 2; looking along the node's -Z.
+  const View& plan = s.views[2];
+  EXPECT_EQ(plan.name, "plan");
+  EXPECT_TRUE(plan.camera.orthographic());
+  EXPECT_FLOAT_EQ(plan.camera.ymag, 3.0f);
+  expect_world(s, plan.camera.position, {100, 0, 8});
+  expect_vec(plan.camera.forward, {0, 0, -1});
+  EXPECT_EQ(std::count_if(s.warnings.begin(), s.warnings.end(),
+                          [](const std::string& w) { return w.find("cameras[2].orthographic.ymag is negative") != std::string::npos; }),
+            1);
+  const View& corner = s.views[3];
   EXPECT_EQ(corner.name, "corner");
   EXPECT_EQ(corner.node, -1);
   expect_world(s, corner.camera.position, {104, 1, 4});
   expect_vec(corner.camera.forward, {-std::sqrt(0.5f), 0, -std::sqrt(0.5f)});
   EXPECT_NEAR(corner.camera.yfov, std::numbers::pi / 3, 1e-6);
-  const View& top = s.views[3];
+  const View& top = s.views[4];
   expect_vec(top.camera.forward, {0, -1, 0});
   expect_vec(top.camera.up, {0, 0, -1});
   EXPECT_NEAR(top.camera.yfov, std::numbers::pi / 4, 1e-6);  // default 45 degrees
-  EXPECT_EQ(&s.view("corner"), &s.views[2]);
+  EXPECT_FALSE(top.camera.orthographic());
+  EXPECT_FLOAT_EQ(s.views[5].camera.ymag, 2.5f);  // an orthographic view from extras
+  EXPECT_EQ(&s.view("corner"), &s.views[3]);
   EXPECT_EQ(&s.view("3"), &s.views[3]);
   EXPECT_THROW(s.view("kitchen"), InputError);
 

@@ -71,12 +71,15 @@ json describe(const sc::Scene& s) {
 
   json views = json::array();
   for (const auto& v : s.views) {
-    views.push_back({{"name", v.name},
-                     {"source", v.node >= 0 ? "gltf_camera" : "extras"},
-                     {"position", vec(s.origin + glm::dvec3(v.camera.position))},
-                     {"forward", vec(v.camera.forward)},
-                     {"up", vec(v.camera.up)},
-                     {"yfov_deg", glm::degrees(v.camera.yfov)}});
+    json view = {{"name", v.name},
+                 {"source", v.node >= 0 ? "gltf_camera" : "extras"},
+                 {"projection", v.camera.orthographic() ? "orthographic" : "perspective"},
+                 {"position", vec(s.origin + glm::dvec3(v.camera.position))},
+                 {"forward", vec(v.camera.forward)},
+                 {"up", vec(v.camera.up)}};
+    if (v.camera.orthographic()) view["ymag"] = v.camera.ymag;
+    else view["yfov_deg"] = glm::degrees(v.camera.yfov);
+    views.push_back(std::move(view));
   }
   j["views"] = views;
   j["sequence"] = {{"frames", s.sequence.frames},
@@ -118,7 +121,8 @@ void print_table(const json& j) {
   std::printf("  views\n");
   for (const auto& v : j["views"]) {
     char b[64];
-    std::snprintf(b, sizeof b, "  fov %.2f deg  ", v["yfov_deg"].get<double>());
+    if (v.contains("ymag")) std::snprintf(b, sizeof b, "  orthographic, half height %.4g m  ", v["ymag"].get<double>());
+    else std::snprintf(b, sizeof b, "  fov %.2f deg  ", v["yfov_deg"].get<double>());
     row("  " + v["name"].get<std::string>(), v["source"].get<std::string>() + b + "from " + v3(v["position"]));
   }
   const auto& sq = j["sequence"];

@@ -78,18 +78,24 @@ sc::Camera auto_camera(const std::vector<std::string>& args, const sc::Scene& sc
 sc::Camera parse_camera(const std::vector<std::string>& args, const sc::Scene& scene) {
   if (args.front() == "auto") return auto_camera(args, scene);
   glm::dvec3 eye, target, up(0.0, 1.0, 0.0);
-  double fov = 45.0;
-  bool has_eye = false, has_target = false;
+  double fov = 45.0, ymag = 0.0;
+  bool has_eye = false, has_target = false, has_fov = false;
   for (const std::string& a : args) {
     const KeyValue kv = split(a);
     if (kv.key == "eye") eye = parse_vec3("--camera", kv.key, kv.value), has_eye = true;
     else if (kv.key == "target") target = parse_vec3("--camera", kv.key, kv.value), has_target = true;
     else if (kv.key == "up") up = parse_vec3("--camera", kv.key, kv.value);
-    else if (kv.key == "fov") fov = parse_fov(kv.value);
-    else throw InputError("", "--camera", "'" + a + "' is not one of eye=x,y,z target=x,y,z up=x,y,z fov=deg, or auto");
+    else if (kv.key == "fov") fov = parse_fov(kv.value), has_fov = true;
+    else if (kv.key == "ymag") {
+      ymag = parse_number("--camera", "ymag", kv.value, 0.0, 1e30, "an orthographic half height in metres, > 0");
+      if (!(ymag > 0.0)) throw InputError("", "--camera", "ymag=" + kv.value + " must be an orthographic half height in metres, > 0");
+    } else throw InputError("", "--camera", "'" + a + "' is not one of eye=x,y,z target=x,y,z up=x,y,z fov=deg ymag=m, or auto");
   }
   if (!has_eye || !has_target) throw InputError("", "--camera", "needs both eye=x,y,z and target=x,y,z, or auto");
-  return look_at(eye, target, up, fov, scene);
+  if (has_fov && ymag > 0.0) throw InputError("", "--camera", "fov= (perspective) and ymag= (orthographic) exclude each other; give one");
+  sc::Camera c = look_at(eye, target, up, fov, scene);
+  c.ymag = float(ymag);
+  return c;
 }
 
 sc::Light parse_sun(const std::vector<std::string>& args) {
@@ -132,7 +138,7 @@ glm::vec3 parse_env(const std::string& text) {
 }  // namespace
 
 void SceneSetup::add_options(CLI::App& cmd) {
-  cmd.add_option("--camera", camera, "Camera in world coordinates: eye=x,y,z target=x,y,z [up=x,y,z] [fov=deg], or auto [fov=deg]")
+  cmd.add_option("--camera", camera, "Camera in world coordinates: eye=x,y,z target=x,y,z [up=x,y,z] [fov=deg | ymag=m (orthographic, half height)], or auto [fov=deg]")
       ->expected(1, 4);
   cmd.add_option("--sun", sun, "Add a directional light: dir=x,y,z (the way it travels) illuminance=E [color=r,g,b]")->expected(2, 3);
   cmd.add_option("--env", env, "Constant environment radiance r,g,b (or one number), replacing the scene's");

@@ -221,7 +221,7 @@ class Ddgi : public IndirectLight {
                        Descriptor::storage_image(target)});
     shade_.push_descriptors(cmd, d);
     gpu::DdgiShadePush sp{};
-    sp.eye = glm::vec4(in.camera.position, 1.0f);
+    sp.eye = gpu::gpu_eye(in.camera);
     sp.size = glm::uvec2(frame.width(), frame.height());
     shade_.push_constants(cmd, sp);
     shade_.dispatch_2d(cmd, frame.width(), frame.height());

@@ -7,6 +7,7 @@
 
 #include "shaders/scene.glsl"
 #include "shaders/surface.glsl"
+#include "shaders/camera.glsl"
 #include "shaders/sampling.glsl"
 #include "passes/rsm_albedo.glsl"
 #include "techniques/ddgi/ddgi_shared.h"
@@ -30,7 +31,7 @@ void main() {
   Receiver r = load_receiver(px);
   vec3 radiance = vec3(0.0);
   if (r.lit) {
-    vec3 view = normalize(r.x - pc.eye.xyz);
+    vec3 view = -camera_to_eye(pc.eye, r.x);
     radiance = diffuse_albedo(receiver_surface(r)) / PI * ddgi_irradiance_at(r.x, r.n, view);
   }
   imageStore(out_indirect, px, vec4(radiance, 1.0));

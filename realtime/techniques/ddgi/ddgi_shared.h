@@ -61,7 +61,7 @@ struct DdgiProbePush {  // ddgi_probes.comp
 };
 
 struct DdgiShadePush {  // ddgi_shade.comp
-  vec4 eye;    // xyz camera position
+  vec4 eye;    // the viewer: gpu_eye() (camera_shared.h)
   uvec2 size;  // the image's width and height
   uint pad0, pad1;
 };

@@ -188,7 +188,7 @@ void main() {
     // A uniformly jittered position in the pixel: the box filter of the reference.
     vec2 pixel = vec2(px) + vec2(rng_next(rng), rng_next(rng));
     vec3 dir = camera_ray_direction(pc.camera, pixel, size);
-    PathResult r = trace_path(pc.camera.position.xyz, dir, rng);
+    PathResult r = trace_path(camera_ray_origin(pc.camera, pixel, size), dir, rng);
     // A non-finite sample would poison the running mean forever; it can only come from a
     // degenerate configuration, and is dropped (counted as black).
     if (!all(lessThan(abs(r.direct + r.indirect), vec3(3.0e38)))) { r.direct = vec3(0.0); r.indirect = vec3(0.0); }

@@ -39,7 +39,8 @@ class PathTracer : public Technique {
     // Samples of a scene that has since moved belong to another image: start again, with new
     // random numbers so that consecutive restarts do not repeat the same noise.
     if (in.frame == 0 || in.change != SceneChange::None || in.camera.position != camera_.position ||
-        in.camera.forward != camera_.forward || in.camera.up != camera_.up || in.camera.yfov != camera_.yfov) {
+        in.camera.forward != camera_.forward || in.camera.up != camera_.up || in.camera.yfov != camera_.yfov ||
+        in.camera.ymag != camera_.ymag) {
       accumulated_ = 0;
       ++restarts_;
     }

@@ -19,6 +19,7 @@
 #include "shaders/scene.glsl"
 #include "shaders/brdf.glsl"
 #include "shaders/surface.glsl"
+#include "shaders/camera.glsl"
 #include "techniques/vct/vct_shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -50,7 +51,7 @@ void main() {
   if (r.lit) {  // the back of a one-sided material is black
     vec3 p = r.x;
     vec3 n = r.n;
-    vec3 wo = normalize(pc.eye.xyz - p);
+    vec3 wo = camera_to_eye(pc.eye, p);
     Surface s = receiver_surface(r);
     vec3 start = p + n * (pc.cone.start_offset * pc.grid.origin.w);
 

@@ -256,7 +256,7 @@ class Vct : public IndirectLight {
     d.push_back(Descriptor::storage_image(ao_ ? *ao_ : target));
     cone_.push_descriptors(cmd, d);
     gpu::VctConePush pc{};
-    pc.eye = glm::vec4(in.camera.position, 1.0f);
+    pc.eye = gpu::gpu_eye(in.camera);
     pc.grid = grid_;
     const float side = grid_.origin.w * float(resolution_);
     pc.cone = cone(max_distance_ * side);

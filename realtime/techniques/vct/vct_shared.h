@@ -70,7 +70,7 @@ struct VctEmitter {
 };
 
 struct VctConePush {  // cone_trace.comp
-  vec4 eye;            // xyz camera position
+  vec4 eye;            // the viewer: gpu_eye() (camera_shared.h)
   VctGrid grid;
   VctCone cone;
   uvec2 size;          // full resolution

@@ -278,17 +278,21 @@ def lights_cameras():
         {"name": "spot", "type": "spot", "intensity": 20.0, "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}}]}}
     g.add("cameras", {"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1, "zfar": 100.0}})
     g.add("cameras", {"name": "overview", "type": "perspective", "perspective": {"yfov": 1.0, "znear": 0.1}})
-    g.node(name="room", children=[1, 2, 3, 4, 5, 6], translation=[100, 0, 0])
+    # A negative ymag is taken by its magnitude (with a warning); the node's scale scales it.
+    g.add("cameras", {"name": "plan", "type": "orthographic", "orthographic": {"xmag": 3.0, "ymag": -1.5, "znear": 0.0, "zfar": 20.0}})
+    g.node(name="room", children=[1, 2, 3, 4, 5, 6, 7], translation=[100, 0, 0])
     g.node(name="floor", mesh=quad)
     g.node(name="sun", rotation=[-S45, 0, 0, S45], extensions={"KHR_lights_punctual": {"light": 0}})  # -90 deg about X
     g.node(name="bulb", translation=[0, 2, 0], extensions={"KHR_lights_punctual": {"light": 1}})
     g.node(name="spot", translation=[0, 3, 0], rotation=[-S45, 0, 0, S45], extensions={"KHR_lights_punctual": {"light": 2}})
     g.node(name="cam", translation=[0, 1, 5], camera=0)
     g.node(translation=[0, 10, 0], rotation=[-S45, 0, 0, S45], camera=1)
+    g.node(translation=[0, 0, 8], scale=[2, 2, 2], camera=2)
     d = g.finish()
     d["extras"] = {"giq": {
         "views": [{"name": "corner", "eye": [104, 1, 4], "target": [100, 1, 0], "yfov_deg": 60},
-                  {"name": "top", "eye": [100, 5, 0], "target": [100, 0, 0], "up": [0, 0, -1]}],
+                  {"name": "top", "eye": [100, 5, 0], "target": [100, 0, 0], "up": [0, 0, -1]},
+                  {"name": "side", "eye": [100, 1, 9], "target": [100, 1, 0], "ymag": 2.5}],
         "sequence": {"frames": 1, "fps": 24},
         "leak_regions": ["floor"],
         "environment": {"radiance": [0.1, 0.2, 0.3]}}}
@@ -478,6 +482,11 @@ def hostile():
     case("symlink_escape.gltf", "buffers[0].uri", minimal(a=setp(("buffers", 0, "uri"), "outside.bin")))
     case("http_uri.gltf", "buffers[0].uri", minimal(a=setp(("buffers", 0, "uri"), "http://example.com/a.bin")))
     case("bad_data_uri.gltf", "buffers[0].uri", minimal(a=setp(("buffers", 0, "uri"), "data:application/octet-stream;base64,AAA*AAAA")))
+    # A buffer without data may only stand behind compressed views (EXT_meshopt_compression).
+    case("placeholder_buffer.gltf", "bufferViews[0].buffer", minimal(a=lambda d, g: d["buffers"][0].pop("uri")))
+    case("meshopt_mode.gltf", "bufferViews[0].extensions.EXT_meshopt_compression.mode",
+         minimal(a=setp(("bufferViews", 0, "extensions"), {"EXT_meshopt_compression": {
+             "buffer": 0, "byteLength": 4, "byteStride": 12, "count": 3, "mode": "POINTS"}})))
     case("absurd_size.gltf", "buffers[0].byteLength", minimal(a=setp(("buffers", 0, "byteLength"), 1000000000)))
     case("view_exceeds_buffer.gltf", "bufferViews[0]", minimal(a=setp(("bufferViews", 0, "byteLength"), 4096)))
     case("accessor_exceeds_view.gltf", "accessors[0]", minimal(a=setp(("accessors", 0, "count"), 40)))
@@ -565,10 +574,10 @@ def hostile():
     def camera(kind):
         def f(d, g):
             if kind == "orthographic":
-                d["cameras"] = [{"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}]
+                d["cameras"] = [{"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 0.1}}]
             d["nodes"][0]["camera"] = 0
         return f
-    case("orthographic.gltf", "cameras[0].type", minimal(a=camera("orthographic")))
+    case("orthographic_depth.gltf", "cameras[0].orthographic.zfar", minimal(a=camera("orthographic")))
     case("blend.gltf", "materials[0].alphaMode",
          minimal(a=setp(("materials",), [{"alphaMode": "BLEND"}]), b=setp(tri_mesh_prim + ("material",), 0)))
     case("skin.gltf", "nodes[0].skin", minimal(a=setp(("skins",), [{"joints": [0]}]), b=setp(("nodes", 0, "skin"), 0)))

@@ -53,6 +53,7 @@ class SceneGpu {
   // motion vectors.
   const Buffer& previous_vertices() const { return previous_vertices_; }
   const FlatGeometry& geometry() const { return geometry_; }
+  const scenes::Bounds& bounds() const { return bounds_; }  // of the geometry now uploaded
   // The FeatureSet the scene was uploaded for; passes compile their shaders with its defines.
   const scenes::FeatureSet& features() const { return features_; }
   uint32_t texture_count() const { return texture_count_; }
@@ -65,6 +66,7 @@ class SceneGpu {
 
   Context* ctx_;
   FlatGeometry geometry_;
+  scenes::Bounds bounds_;
   scenes::FeatureSet features_;
   Bvh bvh_;
   // What the vertex and light buffers hold (gpu::GpuVertex, gpu::GpuLight as vec4 rows).
