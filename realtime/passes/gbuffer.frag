@@ -26,10 +26,12 @@ void main() {
   // edge-on falls back to the rasteriser's own depth.
   float tp = abs(denom) > 1e-12 ? dot(a - o, ng) / denom : 0.0;
   vec3 p = o + tp * d;
+  // glTF 2.0, 3.9.5: the back of a single-sided surface is culled (what is behind shows).
+  if (denom > 0.0 && scene_materials[t.v.w].params.w == 0.0) discard;
   vec2 bary = plane_barycentrics(p, a, b, c);
 #ifdef GIQ_ALPHA_MASK
   // Cut-outs are no surface: the triangles behind them show through (glTF 2.0, 3.9.4).
-  if (alpha_cut(tri, bary.x, bary.y)) discard;
+  if (alpha_cut(tri, bary.x, bary.y, alpha_pixel_number(gl_FragCoord.xy, tri))) discard;
 #endif
   HitNormals hn = hit_normals(tri, bary.x, bary.y, d);
   out_position = vec4(p, 1.0);

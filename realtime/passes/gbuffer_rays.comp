@@ -25,7 +25,7 @@ void main() {
   vec3 d = camera_ray_direction(pc.camera, vec2(px) + 0.5, pc.size);
   // The rasteriser clips at the near plane along the view axis; so does this.
   float tmin = pc.znear / max(dot(d, pc.camera.forward.xyz), 1e-6);
-  RayHit hit = trace_ray(o + tmin * d, d, 1e30, false);
+  RayHit hit = trace_ray(o + tmin * d, d, 1e30, false, true);
   if (hit.triangle == 0xffffffffu) {
     imageStore(out_position, px, vec4(0.0));
     imageStore(out_normal, px, vec4(0.0));

@@ -54,7 +54,7 @@ void main() {
   // direct-lighting pass) and the material with its textures at this point.
   vec2 bary = plane_barycentrics(p, a, b, c);
 #ifdef GIQ_ALPHA_MASK
-  if (alpha_cut(tri, bary.x, bary.y)) discard;  // cut-out texels stop no light
+  if (alpha_cut(tri, bary.x, bary.y, alpha_pixel_number(gl_FragCoord.xy, tri))) discard;  // cut-out texels stop no light
 #endif
   HitNormals h = hit_normals(tri, bary.x, bary.y, -wi);
   vec3 ns = h.ns;

@@ -77,8 +77,10 @@ vec3 safe_inverse(vec3 d) {
   return 1.0 / mix(d, s * tiny, lessThan(abs(d), vec3(tiny)));
 }
 
-// any_hit: stop at the first hit (shadow rays); else the closest hit in (0, tmax).
-RayHit trace_ray(vec3 org, vec3 dir, float tmax, bool any_hit) {
+// any_hit: stop at the first hit (shadow rays); else the closest hit in (0, tmax). camera:
+// a camera ray, which passes the backs of single-sided surfaces (glTF 2.0, 3.9.5: back-face
+// culling; the reference's EmbreeScene::intersect_camera).
+RayHit trace_ray(vec3 org, vec3 dir, float tmax, bool any_hit, bool camera) {
   RayHit hit;
   hit.triangle = 0xffffffffu;
   hit.t = tmax;
@@ -101,10 +103,11 @@ RayHit trace_ray(vec3 org, vec3 dir, float tmax, bool any_hit) {
         triangle_vertices(tri, a, b, c);
         float t, u, v;
         if (intersect_watertight(sr, a, b, c, hit.t, t, u, v)) {
+          if (camera && scene_materials[scene_triangles[tri].v.w].params.w == 0.0 && dot(cross(b - a, c - a), dir) > 0.0) continue;
 #ifdef GIQ_ALPHA_MASK
           // A cut-out texel is no surface, for closest and any hits alike (the reference's
           // Embree intersect and occluded filters).
-          if (alpha_cut(tri, u, v)) continue;
+          if (alpha_cut(tri, u, v, alpha_ray_number(org, dir, tri))) continue;
 #endif
           hit.triangle = tri;
           hit.t = t;
@@ -133,6 +136,8 @@ RayHit trace_ray(vec3 org, vec3 dir, float tmax, bool any_hit) {
   }
   return hit;
 }
+
+RayHit trace_ray(vec3 org, vec3 dir, float tmax, bool any_hit) { return trace_ray(org, dir, tmax, any_hit, false); }
 
 bool occluded(vec3 org, vec3 dir, float tmax) { return trace_ray(org, dir, tmax, true).triangle != 0xffffffffu; }
 

@@ -80,7 +80,7 @@ struct GpuMaterial {
   ivec4 textures;       // texture indices, -1 = none: x base colour, y metallic-roughness,
                         // z emissive, w normal
   ivec4 textures2;      // x specular (A channel), y specular colour (RGB)
-  vec4 mask;            // x: 1 = alpha mode MASK, y: alpha cutoff, z: normal scale
+  vec4 mask;            // x: alpha mode (0 OPAQUE, 1 MASK, 2 BLEND), y: alpha cutoff, z: normal scale
 };
 
 // A texture: its words from `first`, row-major, first row = v 0, exactly as scenes::Texture

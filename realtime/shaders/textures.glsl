@@ -10,6 +10,7 @@
 #define GIQ_TEXTURES_GLSL
 
 #include "scene.glsl"
+#include "sampling.glsl"
 
 #if defined(GIQ_TEXTURES) || defined(GIQ_NORMAL_MAPS) || defined(GIQ_ALPHA_MASK) || defined(GIQ_VERTEX_COLORS)
 
@@ -102,21 +103,41 @@ vec4 triangle_color(uint tri, float b1, float b2) {
 #endif
 
 #ifdef GIQ_ALPHA_MASK
-// glTF 2.0, 3.9.4 "Alpha Coverage": a MASK material is absent where baseColorFactor.a times
-// the base colour texture's alpha times COLOR_0's alpha (`vertex_alpha`) is below alphaCutoff
-// (the texture only when the mesh has texture coordinates, as the reference's Embree filter).
-bool alpha_cut(GpuMaterial m, uint tri, vec2 uv, float vertex_alpha) {
-  if (m.mask.x == 0.0) return false;
+// glTF 2.0, 3.9.4 "Alpha Coverage", as scenes::Scene::coverage: alpha is baseColorFactor.a
+// times the base colour texture's alpha (when the mesh has texture coordinates) times
+// COLOR_0's alpha (`vertex_alpha`); a MASK surface is there (1) or not (0) by alphaCutoff, a
+// BLEND surface is there with probability alpha (stochastic transparency).
+float alpha_coverage(GpuMaterial m, uint tri, vec2 uv, float vertex_alpha) {
+  if (m.mask.x == 0.0) return 1.0;
   float alpha = m.base_color.a;
   if (m.textures.x >= 0 && (scene_triangles[tri].extra.z & GIQ_TRIANGLE_HAS_UVS) != 0u) alpha *= texture_sample(m.textures.x, uv).a;
   alpha *= vertex_alpha;
-  return alpha < m.mask.y;
+  if (m.mask.x == 1.0) return alpha < m.mask.y ? 0.0 : 1.0;
+  return clamp(alpha, 0.0, 1.0);
 }
 
-bool alpha_cut(uint tri, float b1, float b2) {
+float alpha_coverage(uint tri, float b1, float b2) {
   GpuMaterial m = scene_materials[scene_triangles[tri].v.w];
-  if (m.mask.x == 0.0) return false;
-  return alpha_cut(m, tri, triangle_uv(tri, b1, b2), triangle_color(tri, b1, b2).a);
+  if (m.mask.x == 0.0) return 1.0;
+  return alpha_coverage(m, tri, triangle_uv(tri, b1, b2), triangle_color(tri, b1, b2).a);
+}
+
+// Whether a point is absent, given xi uniform in [0, 1) from the caller: a hash of the ray
+// for ray casts (alpha_ray_number), of the pixel for rasterised passes (alpha_pixel_number,
+// an ordered screen-door dither of BLEND). MASK ignores xi.
+bool alpha_cut(uint tri, float b1, float b2, float xi) { return xi >= alpha_coverage(tri, b1, b2); }
+
+float alpha_hash_number(uint h) {
+  h = pcg_hash(h);
+  return float(h >> 8u) * (1.0 / 16777216.0);
+}
+float alpha_ray_number(vec3 org, vec3 dir, uint tri) {
+  uvec3 o = floatBitsToUint(org), d = floatBitsToUint(dir);
+  return alpha_hash_number(o.x ^ pcg_hash(o.y ^ pcg_hash(o.z ^ pcg_hash(d.x ^ pcg_hash(d.y ^ pcg_hash(d.z ^ pcg_hash(tri)))))));
+}
+float alpha_pixel_number(vec2 frag, uint tri) {
+  uvec2 p = uvec2(frag);
+  return alpha_hash_number(p.x ^ pcg_hash(p.y ^ pcg_hash(tri)));
 }
 #endif
 

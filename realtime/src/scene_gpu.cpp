@@ -193,7 +193,8 @@ void SceneGpu::upload_materials(const scenes::Scene& scene) {
     g.textures = tex ? glm::ivec4(m.base_color_texture, m.metallic_roughness_texture, m.emissive_texture, m.normal_texture)
                      : glm::ivec4(-1);
     g.textures2 = tex ? glm::ivec4(m.specular_texture, m.specular_color_texture, -1, -1) : glm::ivec4(-1);
-    g.mask = glm::vec4(m.alpha_mode == scenes::AlphaMode::Mask ? 1.0f : 0.0f, m.alpha_cutoff, m.normal_scale, 0.0f);
+    const float mode = m.alpha_mode == scenes::AlphaMode::Mask ? 1.0f : m.alpha_mode == scenes::AlphaMode::Blend ? 2.0f : 0.0f;
+    g.mask = glm::vec4(mode, m.alpha_cutoff, m.normal_scale, 0.0f);
     materials.push_back(g);
   }
 

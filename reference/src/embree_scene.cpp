@@ -1,40 +1,56 @@
 #include "embree_scene.h"
 
+#include <cmath>
+#include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 namespace giq::reference {
 
 struct EmbreeScene::AlphaMask {
+  const scenes::Scene* scene;
   const scenes::Mesh* mesh;
-  const scenes::Material* material;
-  const scenes::Texture* texture;  // base colour texture, or null
-
-  // glTF 2.0, "Alpha Coverage": MASK renders a fragment when alpha >= alphaCutoff, alpha being
-  // baseColorFactor.a times the base colour texture's alpha times COLOR_0's.
-  bool transparent(uint32_t triangle, float b1, float b2) const {
-    float alpha = material->base_color.a;
-    const glm::uvec3 t = mesh->triangles[triangle];
-    if (texture != nullptr && !mesh->uvs.empty()) {
-      const glm::vec2 uv = (1.0f - b1 - b2) * mesh->uvs[t.x] + b1 * mesh->uvs[t.y] + b2 * mesh->uvs[t.z];
-      alpha *= texture->sample(uv).a;
-    }
-    alpha *= mesh->color_at(t, b1, b2).a;
-    return alpha < material->alpha_cutoff;
-  }
 };
 
 namespace {
 
-// Rejects hits on cut-out texels; serves both intersection and occlusion queries
-// (Embree 3 API, "rtcSetGeometryIntersectFilterFunction").
+// A number in [0, 1) that is a function of the ray and the triangle only: BLEND's stochastic
+// transparency decides with it (a ray passes a surface of coverage c when it is >= c). Rays of
+// different samples differ, so the decisions are independent across samples, and the same
+// ray gives the same decision in every integrator and thread. splitmix64's finaliser
+// (Steele, Lea and Flood 2014) over the ray's float bits.
+float ray_number(const RTCFilterFunctionNArguments* args, unsigned i, uint32_t prim) {
+  auto bits = [](float f) {
+    uint32_t b;
+    std::memcpy(&b, &f, 4);
+    return uint64_t(b);
+  };
+  auto mix = [](uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  };
+  const unsigned n = args->N;
+  uint64_t h = mix(bits(RTCRayN_org_x(args->ray, n, i)) | bits(RTCRayN_org_y(args->ray, n, i)) << 32);
+  h = mix(h ^ (bits(RTCRayN_org_z(args->ray, n, i)) | bits(RTCRayN_dir_x(args->ray, n, i)) << 32));
+  h = mix(h ^ (bits(RTCRayN_dir_y(args->ray, n, i)) | bits(RTCRayN_dir_z(args->ray, n, i)) << 32));
+  h = mix(h ^ prim);
+  return float(h >> 40) * 0x1p-24f;
+}
+
+// Rejects hits where the surface is not (alpha coverage): cut-out texels of MASK, and BLEND
+// with probability 1 - alpha; serves both intersection and occlusion queries (Embree 3 API,
+// "rtcSetGeometryIntersectFilterFunction").
 void alpha_filter(const RTCFilterFunctionNArguments* args) {
   const auto* mask = static_cast<const EmbreeScene::AlphaMask*>(args->geometryUserPtr);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
     const uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
     const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
-    if (mask->transparent(prim, u, v)) args->valid[i] = 0;
+    const float c = mask->scene->coverage(*mask->mesh, mask->mesh->triangles[prim], u, v);
+    if (c >= 1.0f) continue;
+    if (c <= 0.0f || ray_number(args, i, prim) >= c) args->valid[i] = 0;
   }
 }
 
@@ -51,6 +67,9 @@ EmbreeScene::EmbreeScene(const scenes::Scene& scene, glm::vec3 centre, bool alph
   scene_ = rtcNewScene(device_);
   // Robust mode: watertight triangle tests, so rays cannot slip through shared edges.
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  single_sided_.assign(scene.meshes.size(), 0);
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    single_sided_[m] = !scene.materials.at(size_t(scene.meshes[m].material)).double_sided;
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
   positions_.resize(scene.meshes.size());
   shapes_.resize(scene.meshes.size());
@@ -73,9 +92,8 @@ EmbreeScene::EmbreeScene(const scenes::Scene& scene, glm::vec3 centre, bool alph
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.triangles.data(), 0, sizeof(glm::uvec3),
                                mesh.triangles.size());
     const scenes::Material& mat = scene.materials.at(size_t(mesh.material));
-    if (alpha_mask && mat.alpha_mode == scenes::AlphaMode::Mask) {
-      const scenes::Texture* tex = mat.base_color_texture >= 0 ? &scene.textures.at(size_t(mat.base_color_texture)) : nullptr;
-      masks_.push_back(new AlphaMask{&mesh, &mat, tex});
+    if (alpha_mask && mat.alpha_mode != scenes::AlphaMode::Opaque) {
+      masks_.push_back(new AlphaMask{&scene, &mesh});
       rtcSetGeometryUserData(g, masks_.back());
       rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
       rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
@@ -95,9 +113,9 @@ EmbreeScene::~EmbreeScene() {
   for (AlphaMask* m : masks_) delete m;
 }
 
-Hit EmbreeScene::intersect(glm::vec3 o, glm::vec3 d, float tfar) const {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
+namespace {
+
+RTCRayHit make_ray(glm::vec3 o, glm::vec3 d, float tfar, unsigned id) {
   RTCRayHit rh;
   rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
   rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
@@ -105,11 +123,14 @@ Hit EmbreeScene::intersect(glm::vec3 o, glm::vec3 d, float tfar) const {
   rh.ray.tfar = tfar;
   rh.ray.time = 0.0f;
   rh.ray.mask = 0xffffffffu;
-  rh.ray.id = 0;
+  rh.ray.id = id;
   rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_, &ctx, &rh);
+  return rh;
+}
+
+Hit to_hit(const RTCRayHit& rh) {
   Hit h;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
   h.t = rh.ray.tfar;
@@ -117,6 +138,37 @@ Hit EmbreeScene::intersect(glm::vec3 o, glm::vec3 d, float tfar) const {
   h.triangle = rh.hit.primID;
   h.b1 = rh.hit.u, h.b2 = rh.hit.v;
   return h;
+}
+
+}  // namespace
+
+Hit EmbreeScene::intersect(glm::vec3 o, glm::vec3 d, float tfar) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh = make_ray(o, d, tfar, 0);
+  rtcIntersect1(scene_, &ctx, &rh);
+  return to_hit(rh);
+}
+
+bool EmbreeScene::culled(uint32_t mesh, uint32_t triangle, glm::vec3 d) const {
+  return single_sided_[mesh] && glm::dot(shapes_[mesh][triangle].normal, d) > 0.0f;
+}
+
+// A culled hit is skipped by tracing the ray again from just beyond it (tnear is inclusive,
+// and the same triangle gives the same t again), rather than by a filter function: Embree
+// would check every hit of every ray for a context filter, a few per cent of the reference's
+// time, to cull only the camera's.
+Hit EmbreeScene::intersect_camera(glm::vec3 o, glm::vec3 d) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh = make_ray(o, d, std::numeric_limits<float>::infinity(), kCameraRay);
+  for (;;) {
+    rtcIntersect1(scene_, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || !culled(rh.hit.geomID, rh.hit.primID, d)) return to_hit(rh);
+    rh.ray.tnear = std::nextafter(rh.ray.tfar, std::numeric_limits<float>::infinity());
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  }
 }
 
 bool EmbreeScene::occluded(glm::vec3 o, glm::vec3 d, float tfar) const {
@@ -135,10 +187,33 @@ bool EmbreeScene::occluded(glm::vec3 o, glm::vec3 d, float tfar) const {
   return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
-void EmbreeScene::intersect(const int* valid, RTCRayHit8& rays) const {
+void EmbreeScene::intersect(const int* valid, RTCRayHit8& rays, bool camera) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   rtcIntersect8(valid, scene_, &ctx, &rays);
+  if (!camera) return;
+  // Camera rays that met a culled back go on from just beyond it (intersect_camera), in
+  // packets of those lanes; tnear is given back its 0 afterwards.
+  bool retraced = false;
+  for (;;) {
+    alignas(32) int again[8];
+    bool any = false;
+    for (int l = 0; l < 8; ++l) {
+      again[l] = 0;
+      if (valid[l] == 0 || (rays.ray.id[l] & kCameraRay) == 0 || rays.hit.geomID[l] == RTC_INVALID_GEOMETRY_ID) continue;
+      const glm::vec3 d(rays.ray.dir_x[l], rays.ray.dir_y[l], rays.ray.dir_z[l]);
+      if (!culled(rays.hit.geomID[l], rays.hit.primID[l], d)) continue;
+      again[l] = -1, any = true;
+      rays.ray.tnear[l] = std::nextafter(rays.ray.tfar[l], std::numeric_limits<float>::infinity());
+      rays.ray.tfar[l] = std::numeric_limits<float>::infinity();
+      rays.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
+    }
+    if (!any) break;
+    retraced = true;
+    rtcIntersect8(again, scene_, &ctx, &rays);
+  }
+  if (retraced)
+    for (int l = 0; l < 8; ++l) rays.ray.tnear[l] = 0.0f;
 }
 
 void EmbreeScene::occluded(const int* valid, RTCRay8& rays) const {

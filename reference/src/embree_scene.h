@@ -43,17 +43,25 @@ class EmbreeScene {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
   Hit intersect(glm::vec3 origin, glm::vec3 dir, float tfar = std::numeric_limits<float>::infinity()) const;
+  // A camera ray: glTF 2.0, 3.9.5 "Double Sided": a single-sided surface is not rendered from
+  // behind (back-face culling), so a camera ray passes through the back of one. Rays of light
+  // transport still meet it there (black, reflecting and emitting nothing), so that
+  // visibility stays the same in both directions.
+  Hit intersect_camera(glm::vec3 origin, glm::vec3 dir) const;
   bool occluded(glm::vec3 origin, glm::vec3 dir, float tfar) const;
   // The same for eight rays at once (Embree's packet queries, "rtcIntersect8"), the rays of
   // lane_integrator.h's eight paths; lanes whose `valid` is 0 are skipped. The hit is in
-  // `rays.hit`, and an occluded ray's tfar becomes -inf.
-  void intersect(const int* valid, RTCRayHit8& rays) const;
+  // `rays.hit`, and an occluded ray's tfar becomes -inf. `camera`: some ray has kCameraRay
+  // set in its id, and those are camera rays (intersect_camera).
+  void intersect(const int* valid, RTCRayHit8& rays, bool camera) const;
   void occluded(const int* valid, RTCRay8& rays) const;
 
   // Per mesh, vertex positions in the renderer's frame.
   const std::vector<std::vector<glm::vec3>>& positions() const { return positions_; }
   // Per mesh, per triangle, from those positions.
   const std::vector<std::vector<TriangleShape>>& shapes() const { return shapes_; }
+
+  static constexpr unsigned kCameraRay = 1u << 31;
 
   struct AlphaMask;  // what a filter function needs to look up a texel's coverage
 
@@ -63,6 +71,11 @@ class EmbreeScene {
   std::vector<std::vector<glm::vec3>> positions_;
   std::vector<std::vector<TriangleShape>> shapes_;
   std::vector<AlphaMask*> masks_;
+  std::vector<char> single_sided_;  // per mesh: its material is single-sided
+
+  // Whether a camera ray along d culls its hit on that triangle: the back of a single-sided
+  // surface.
+  bool culled(uint32_t mesh, uint32_t triangle, glm::vec3 d) const;
 };
 
 }  // namespace giq::reference

@@ -145,15 +145,19 @@ class LaneIntegrator {
     }
     while (any(s.live)) {
       // Trace every live lane's ray.
+      bool camera = false;
       for (int l = 0; l < kWidth; ++l) {
         valid[l] = s.live[l];
         rh.ray.org_x[l] = s.origin.x[l], rh.ray.org_y[l] = s.origin.y[l], rh.ray.org_z[l] = s.origin.z[l];
         rh.ray.dir_x[l] = s.dir.x[l], rh.ray.dir_y[l] = s.dir.y[l], rh.ray.dir_z[l] = s.dir.z[l];
         rh.ray.tfar[l] = std::numeric_limits<float>::infinity();
+        // The camera's rays pass the backs of single-sided surfaces (intersect_camera).
+        rh.ray.id[l] = unsigned(l) | (s.depth[l] == 0 ? EmbreeScene::kCameraRay : 0u);
+        camera |= s.live[l] != 0 && s.depth[l] == 0;
         rh.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
       }
-      c_.bvh.intersect(valid, rh);
+      c_.bvh.intersect(valid, rh, camera);
       for (int l = 0; l < kWidth; ++l) s.rays[l] += s.live[l] != 0;
 
       LI hit{};
@@ -419,7 +423,11 @@ class LaneIntegrator {
           const LightSampler::Emitter& e = *pick.emitter;
           em.on[l] = -1;
           set(em.p0, l, e.p0), set(em.p1, l, e.p1), set(em.p2, l, e.p2), set(em.n, l, e.n);
-          set(em.radiance, l, emitted_radiance<F>(c_.scene, *e.material, glm::vec2(0.0f)));
+          glm::vec3 radiance = emitted_radiance<F>(c_.scene, *e.material, glm::vec2(0.0f));
+          // LightSampler::sample's coverage; without textures and vertex colours (no lanes
+          // otherwise) it is the material's.
+          if (e.material->alpha_mode != scenes::AlphaMode::Opaque) radiance *= e.material->coverage(e.material->base_color.a);
+          set(em.radiance, l, radiance);
           em.area[l] = e.area, em.pmf[l] = pick.pmf;
           em.double_sided[l] = e.material->double_sided ? -1 : 0;
           continue;

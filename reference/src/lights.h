@@ -133,6 +133,9 @@ LightSample LightSampler::sample(glm::vec3 p, float u_pick, float u_alias, glm::
       s.normal = n;
       s.area = true;
       s.radiance = emitted_radiance<F>(scene_, mat, interpolate_uv(*em.mesh, em.triangle, b.x, b.y));
+      // A ray that found this point would have met the surface with probability equal to
+      // its coverage (MASK cut-outs, BLEND): the light found here carries it too.
+      if (mat.alpha_mode != scenes::AlphaMode::Opaque) s.radiance *= scene_.coverage(*em.mesh, em.triangle, b.x, b.y);
       // Area measure to solid angle: dA = d^2 / cos(theta_l) dw (pbrt-v4, eq. 4.9). At grazing
       // angles the density can overflow; such a sample carries no light, so it is dropped.
       s.pdf = pick.pmf * d2 / (area * cos_l);

@@ -84,7 +84,7 @@ class PathIntegrator {
     for (int depth = 0;; ++depth) {
       // Emission found at hit `depth` is direct for the camera's hit and the first bounce's.
       glm::vec3& emitted_to = depth <= 1 ? direct : indirect;
-      const Hit hit = c_.bvh.intersect(o, d);
+      const Hit hit = depth == 0 ? c_.bvh.intersect_camera(o, d) : c_.bvh.intersect(o, d);
       ++rays;
       if (!hit.valid()) {
         if constexpr (has(F, kEnvironment)) {
@@ -157,7 +157,7 @@ class PathIntegrator {
   PixelAux aux(int x, int y) const {
     PixelAux a;
     const glm::vec3 d = c_.rays.direction(float(x) + 0.5f, float(y) + 0.5f);
-    const Hit hit = c_.bvh.intersect(c_.eye + c_.rays.origin_offset(float(x) + 0.5f, float(y) + 0.5f), d);
+    const Hit hit = c_.bvh.intersect_camera(c_.eye + c_.rays.origin_offset(float(x) + 0.5f, float(y) + 0.5f), d);
     if (!hit.valid()) return a;
     const Surface sf = make_surface<F>(c_, hit, d);
     const glm::vec3 albedo = sf.black ? glm::vec3(0.0f) : sf.bsdf.base;

@@ -311,9 +311,9 @@ void load_materials(const Context& ctx, const Document& doc, std::vector<Materia
     if (g.alphaMode == "MASK") {
       mat.alpha_mode = AlphaMode::Mask;
     } else if (g.alphaMode == "BLEND") {
-      ctx.fail(where + ".alphaMode", "BLEND is not supported (transparency would render differently in every technique); use MASK with an alphaCutoff");
+      mat.alpha_mode = AlphaMode::Blend;  // stochastic transparency (AlphaMode)
     } else if (g.alphaMode != "OPAQUE") {
-      ctx.fail(where + ".alphaMode", "is \"" + g.alphaMode + "\"; expected OPAQUE or MASK");
+      ctx.fail(where + ".alphaMode", "is \"" + g.alphaMode + "\"; expected OPAQUE, MASK or BLEND");
     }
     mat.alpha_cutoff = float(number(ctx, tinygltf::Value(g.alphaCutoff), where + ".alphaCutoff", 0.0, 1e6));
     mat.double_sided = g.doubleSided;

@@ -78,6 +78,18 @@ void Scene::derive_area_lights() {
   }
 }
 
+float Scene::coverage(const Mesh& m, const glm::uvec3& t, float b1, float b2) const {
+  const Material& mat = materials[size_t(m.material)];
+  if (mat.alpha_mode == AlphaMode::Opaque) return 1.0f;
+  float alpha = mat.base_color.a;
+  if (mat.base_color_texture >= 0 && !m.uvs.empty()) {
+    const glm::vec2 uv = (1.0f - b1 - b2) * m.uvs[t.x] + b1 * m.uvs[t.y] + b2 * m.uvs[t.z];
+    alpha *= textures[size_t(mat.base_color_texture)].sample(uv).a;
+  }
+  alpha *= m.color_at(t, b1, b2).a;
+  return mat.coverage(alpha);
+}
+
 void Scene::derive() {
   features = FeatureSet{};
   emissive_triangles.clear();
@@ -106,7 +118,7 @@ void Scene::derive() {
     features.textures |= mat.has_textures();
     features.normal_maps |= mat.normal_texture >= 0;
     features.vertex_colors |= m.colors.size() == m.positions.size() && !m.colors.empty();
-    features.alpha_mask |= mat.alpha_mode == AlphaMode::Mask;
+    features.alpha_mask |= mat.alpha_mode != AlphaMode::Opaque;
     features.double_sided |= mat.double_sided;
     features.one_sided |= !mat.double_sided;
     if (!mat.is_emissive()) continue;

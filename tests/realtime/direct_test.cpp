@@ -207,6 +207,39 @@ TEST_F(DirectTest, RayTracedGBufferMatchesTheRasterisedOne) {
   }
 }
 
+// glTF 2.0, 3.9.5: the camera does not see the back of a single-sided surface. A black card
+// above a lit plane, its back to the camera and its shadow out of view: both G-buffer builders
+// show the plane through it, as if it were not there; a double-sided card is seen (black).
+TEST_F(DirectTest, TheBackOfASingleSidedSurfaceIsCulled) {
+  for (const int card : {1, 2}) {  // single-sided, double-sided
+    scenes::Scene plain = test::lambert_plane(0.6f);
+    scenes::Light sun;
+    sun.type = scenes::LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(-1.0f, -0.3f, 0.0f));  // the card's shadow falls at x < -2.7
+    sun.intensity = 2.0f;
+    plain.lights = {sun};
+    plain.derive();
+    scenes::Scene s = plain;
+    const int m = test::add_material(s, glm::vec3(0.0f));
+    s.materials[size_t(m)].double_sided = card == 2;
+    test::add_quad(s, {-0.6f, 1, -0.6f}, {0.6f, 1, -0.6f}, {0.6f, 1, 0.6f}, {-0.6f, 1, 0.6f}, m);  // faces down
+    s.derive();
+    for (const char* builder : {"gbuffer_ray_traced=0", "gbuffer_ray_traced=1"}) {
+      const int size = 32;
+      const image::Image a = render(plain, "direct", size, {"shadow_map_size=256", builder});
+      const image::Image b = render(s, "direct", size, {"shadow_map_size=256", builder});
+      const size_t centre = size_t(size / 2) * size + size / 2;
+      ASSERT_GT(a.channel("G")[centre], 0.0f);
+      if (card == 2) {
+        EXPECT_EQ(b.channel("G")[centre], 0.0f) << builder;
+        continue;
+      }
+      for (size_t i = 0; i < a.pixel_count(); ++i)
+        ASSERT_NEAR(b.channel("G")[i], a.channel("G")[i], 1e-6f * a.channel("G")[i]) << builder << " pixel " << i;
+    }
+  }
+}
+
 TEST_F(DirectTest, CachedShadowMapsGiveTheSameFrames) {
   scenes::Scene s = test::cornell_box();
   scenes::Light l;

@@ -50,7 +50,7 @@ void expect_pt_agrees(Context& ctx, ShaderCompiler& compiler, const scenes::Scen
 }
 
 class PtReferenceTest : public test::VulkanTest, public ::testing::WithParamInterface<std::string> {};
-class PtReferenceOrthographicTest : public test::VulkanTest {};
+class PtReferenceCases : public test::VulkanTest {};
 
 TEST_P(PtReferenceTest, AgreesWithinNoise) {
   const scenes::Scene loaded = scenes::load(std::filesystem::path(GIQ_SCENES_DIR) / (GetParam() + ".gltf"));
@@ -62,13 +62,27 @@ TEST_P(PtReferenceTest, AgreesWithinNoise) {
 }
 
 // An orthographic view of the Cornell box: both sides start every ray on the camera's plane.
-TEST_F(PtReferenceOrthographicTest, AgreesWithinNoise) {
+TEST_F(PtReferenceCases, OrthographicCameraAgreesWithinNoise) {
   scenes::Scene scene = scenes::load(std::filesystem::path(GIQ_SCENES_DIR) / "cornell.gltf");
   scenes::View view = scene.view("0");
   view.name = "ortho";
   view.camera.ymag = 0.3f;  // the box's opening is 0.56 m on a side
   scene.add_view(view);
   expect_pt_agrees(*ctx, *compiler, scene, "ortho", 64, 32, "cornell, orthographic");
+}
+
+// A BLEND card in the Cornell box: both sides pass it with probability 1 - alpha (stochastic
+// transparency, each deciding per ray by its own hash), so they agree within noise.
+TEST_F(PtReferenceCases, BlendCardAgreesWithinNoise) {
+  scenes::Scene scene = test::cornell_box();
+  const int card = test::add_material(scene, glm::vec3(0.2f, 0.5f, 0.9f));
+  scene.materials[size_t(card)].alpha_mode = scenes::AlphaMode::Blend;
+  scene.materials[size_t(card)].base_color.a = 0.45f;
+  scene.materials[size_t(card)].double_sided = true;
+  test::add_quad(scene, {-0.5f, -0.6f, 0.2f}, {0.3f, -0.6f, 0.2f}, {0.3f, 0.4f, 0.2f}, {-0.5f, 0.4f, 0.2f}, card);
+  scene.derive();
+  ASSERT_TRUE(scene.features.alpha_mask);
+  expect_pt_agrees(*ctx, *compiler, scene, "0", 64, 64, "cornell, BLEND card");
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltinScenes, PtReferenceTest,

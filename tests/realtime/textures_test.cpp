@@ -221,6 +221,65 @@ TEST_F(TexturesTest, BvhSkipsCutOutsInClosestAndAnyHitQueries) {
   }
 }
 
+// BLEND in the BVH: a ray meets a square of alpha 0.3 with probability 0.3, decided by a hash
+// of the ray, so the closest and any-hit queries of one ray decide alike, and over 4000
+// random rays the fraction that stop at the square is 0.3 within 4 binomial standard errors.
+TEST_F(TexturesTest, BvhPassesBlendSurfacesWithProbabilityOneMinusAlpha) {
+  scenes::Scene s;
+  const int card = test::add_material(s, glm::vec3(0.8f));
+  s.materials[card].alpha_mode = scenes::AlphaMode::Blend;
+  s.materials[card].base_color.a = 0.3f;
+  test::add_quad(s, {-4, 4, 0}, {4, 4, 0}, {4, -4, 0}, {-4, -4, 0}, card);
+  const int wall = test::add_material(s, glm::vec3(0.5f));
+  test::add_quad(s, {-4, -4, -1}, {4, -4, -1}, {4, 4, -1}, {-4, 4, -1}, wall);
+  s.derive();
+  ASSERT_TRUE(s.features.alpha_mask);
+  SceneGpu gpu(*ctx, s);
+  RayQuery query(*ctx, *compiler, gpu);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<QueryRay> rays;
+  const int n = 4000;
+  for (int i = 0; i < n; ++i) {
+    const glm::vec3 o(u(rng), u(rng), 1.0f);
+    const glm::vec3 d = glm::normalize(glm::vec3(0.3f * u(rng), 0.3f * u(rng), -1.0f));
+    rays.push_back({glm::vec4(o, 1e30f), glm::vec4(d, 0.0f)});
+    rays.push_back({glm::vec4(o, 1.5f / -d.z), glm::vec4(d, 1.0f)});  // any hit, ending before the wall
+  }
+  const auto hits = query.trace(rays);
+  int on_card = 0;
+  for (int i = 0; i < n; ++i) {
+    ASSERT_NE(hits[2 * i].triangle, 0xffffffffu) << i;  // the wall is opaque
+    const bool card_hit = hits[2 * i].triangle < 2u;
+    EXPECT_EQ(hits[2 * i + 1].triangle != 0xffffffffu, card_hit) << "ray " << i;
+    on_card += card_hit;
+  }
+  EXPECT_NEAR(double(on_card) / n, 0.3, 4.0 * std::sqrt(0.3 * 0.7 / n));
+}
+
+// BLEND in the G-buffer, from either builder: an emissive square of alpha 0.3 over a black
+// wall covers a fraction 0.3 of the pixels that see it (a screen-door dither for the
+// rasteriser, the ray hash for the ray caster), within 4 binomial standard errors.
+TEST_F(TexturesTest, BlendSurfacesAreDitheredInTheGBuffer) {
+  scenes::Scene s;
+  const int card = test::add_material(s, glm::vec3(0.0f), glm::vec3(1.0f));
+  s.materials[card].alpha_mode = scenes::AlphaMode::Blend;
+  s.materials[card].base_color.a = 0.3f;
+  test::add_quad(s, {-4, -4, 0}, {4, -4, 0}, {4, 4, 0}, {-4, 4, 0}, card);  // facing the camera
+  const int wall = test::add_material(s, glm::vec3(0.0f));
+  test::add_quad(s, {-4, -4, -1}, {4, -4, -1}, {4, 4, -1}, {-4, 4, -1}, wall);
+  s.views.push_back({"front", scenes::Camera::look_at({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, 1.0f), -1});
+  s.derive();
+  const uint32_t size = 64;
+  for (const char* builder : {"gbuffer_ray_traced=0", "gbuffer_ray_traced=1"}) {
+    const image::Image img = render(s, "direct", size, {builder});
+    int lit = 0;
+    for (size_t i = 0; i < img.pixel_count(); ++i) lit += img.channel("G")[i] > 0.5f;
+    const double n = double(img.pixel_count());
+    EXPECT_NEAR(lit / n, 0.3, 4.0 * std::sqrt(0.3 * 0.7 / n)) << builder;
+  }
+}
+
 // A masked grating between a point light and a Lambertian plane: under its cut-outs the plane
 // is lit exactly as the closed form says, under its bars it is black. `direct` sees the plane
 // through the cut-outs (G-buffer discard) and its shadow maps let light through them (shadow

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -71,11 +72,124 @@ TEST(Materials, AlphaMaskCutOutIsTransparentToEveryRay) {
   EXPECT_NE(total(opaque), total(without));
 }
 
+// BLEND is stochastic transparency: a ray meets the surface with probability alpha. A black
+// card of alpha a between a floor, the sun straight above and a camera straight above: where
+// the camera looks through the card at its shadow, light passed the card twice, so the
+// pixel's expected value is (1 - a)^2 (rho / pi) E, compared within 4 standard errors of the
+// mean over those pixels.
+TEST(Materials, BlendIsStochasticTransparencyWithTheMaterialsAlpha) {
+  const scenes::Camera top = scenes::Camera::look_at({0.0f, 3.0f, 0.0f}, {0, 0, 0}, {0, 0, -1}, 0.9f);
+  for (const float a : {0.0f, 0.4f, 1.0f}) {
+    scenes::Scene s;
+    const int floor = test::add_material(s, test::diffuse(glm::vec3(0.6f)));
+    test::add_quad(s, floor, {-4, 0, 4}, {4, 0, 4}, {4, 0, -4}, {-4, 0, -4}, 1);
+    scenes::Material card = test::diffuse(glm::vec3(0.0f), glm::vec3(0.0f), true);
+    card.base_color.a = a;
+    card.alpha_mode = scenes::AlphaMode::Blend;
+    const int c = test::add_material(s, card);
+    test::add_quad(s, c, {-0.6f, 1, 0.6f}, {0.6f, 1, 0.6f}, {0.6f, 1, -0.6f}, {-0.6f, 1, -0.6f}, 2);
+    s.lights.push_back(sun({0.0f, -1.0f, 0.0f}));
+    s.derive();
+    ASSERT_TRUE(s.features.alpha_mask);
+    const Film f = render(s, top, 256);
+    // The central 4 x 4 pixels see the floor within 0.75 tan(0.45) x 3 = 0.36 m of the axis
+    // through the card (which spans 0.6 m): in its shadow, through it.
+    double mean = 0.0, var = 0.0;
+    for (int y = kSize / 2 - 2; y < kSize / 2 + 2; ++y)
+      for (int x = kSize / 2 - 2; x < kSize / 2 + 2; ++x) {
+        const PixelAccumulator& p = f.pixels[size_t(y) * kSize + size_t(x)];
+        mean += p.mean[0] / 16.0, var += p.variance_of_mean(0) / 256.0;
+      }
+    const double expected = (1.0 - a) * (1.0 - a) * 0.6 / 3.14159265358979 * 2.0;
+    EXPECT_NEAR(mean, expected, 4.0 * std::sqrt(var) + 1e-6) << "alpha " << a;
+  }
+}
+
+// Light found by sampling a BLEND emitter carries its coverage, as light found by a BSDF ray
+// that meets it with probability alpha does: the two estimators converge to the same image.
+TEST(Materials, BlendEmitterIsLitAlikeByLightAndBsdfSampling) {
+  scenes::Scene s;
+  const int floor = test::add_material(s, test::diffuse(glm::vec3(0.6f)));
+  test::add_quad(s, floor, {-4, 0, 4}, {4, 0, 4}, {4, 0, -4}, {-4, 0, -4}, 1);
+  scenes::Material lamp = test::diffuse(glm::vec3(0.0f), glm::vec3(3.0f));
+  lamp.base_color.a = 0.35f;
+  lamp.alpha_mode = scenes::AlphaMode::Blend;
+  const int l = test::add_material(s, lamp);
+  test::add_quad(s, l, {-0.5f, 1, -0.5f}, {0.5f, 1, -0.5f}, {0.5f, 1, 0.5f}, {-0.5f, 1, 0.5f}, 2);  // faces down
+  s.derive();
+  // Both integrators: the eight-lane one (this scene is Lambertian and untextured) and the
+  // one-path one.
+  for (const bool lanes : {true, false}) {
+    double means[2] = {0.0, 0.0}, vars[2] = {0.0, 0.0};
+    int k = 0;
+    for (Estimator e : {Estimator::LightOnly, Estimator::BsdfOnly}) {
+      RenderSettings rs;
+      rs.width = rs.height = kSize;
+      rs.estimator = e;
+      rs.lanes = lanes;
+      Renderer r(s, kCam, rs);
+      EXPECT_EQ(r.lanes(), lanes);
+      Film f = r.make_film();
+      r.render(f, 128);
+      const double n = double(f.pixels.size());
+      for (const PixelAccumulator& p : f.pixels) means[k] += p.mean[0] / n, vars[k] += p.variance_of_mean(0) / (n * n);
+      ++k;
+    }
+    EXPECT_GT(means[0], 0.0);
+    EXPECT_NEAR(means[0], means[1], 4.0 * std::sqrt(vars[0] + vars[1]))
+        << (lanes ? "lanes" : "one path") << ": light " << means[0] << " bsdf " << means[1];
+  }
+}
+
+// glTF 2.0, 3.9.5: a single-sided surface is culled from behind. A black card between the
+// camera and a lit floor, its back to the camera and its shadow out of view: camera rays pass
+// it, and light transport meets only its black front (paths end there as they would have
+// escaped), so the image is the one without the card, bit for bit, with both integrators. A
+// double-sided card is seen: black pixels.
+TEST(Materials, CameraRaysPassTheBackOfSingleSidedSurfaces) {
+  const scenes::Camera top = scenes::Camera::look_at({0.0f, 3.0f, 0.0f}, {0, 0, 0}, {0, 0, -1}, 0.9f);
+  auto scene = [](int card) {  // 0: none, 1: single-sided, 2: double-sided
+    scenes::Scene s;
+    const int floor = test::add_material(s, test::diffuse(glm::vec3(0.6f)));
+    test::add_quad(s, floor, {-4, 0, 4}, {4, 0, 4}, {4, 0, -4}, {-4, 0, -4}, 1);
+    const int c = test::add_material(s, test::diffuse(glm::vec3(0.0f), glm::vec3(0.0f), card == 2));
+    // Faces down: its back is to the camera above.
+    if (card) test::add_quad(s, c, {-0.6f, 1, -0.6f}, {0.6f, 1, -0.6f}, {0.6f, 1, 0.6f}, {-0.6f, 1, 0.6f}, 2);
+    s.lights.push_back(sun({-1.0f, -0.3f, 0.0f}));  // the card's shadow falls at x < -2.7
+    s.derive();
+    return s;
+  };
+  for (const bool lanes : {true, false}) {
+    RenderSettings rs;
+    rs.width = rs.height = kSize;
+    rs.lanes = lanes;
+    auto image = [&](int card) {
+      const scenes::Scene s = scene(card);
+      Renderer r(s, top, rs);
+      Film f = r.make_film();
+      r.render(f, 8);
+      r.render_aux(f);
+      return f;
+    };
+    const Film none = image(0), single = image(1), both = image(2);
+    for (size_t i = 0; i < none.pixels.size(); ++i)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(single.pixels[i].mean[c], none.pixels[i].mean[c]) << "pixel " << i << (lanes ? " lanes" : "");
+    for (size_t i = 0; i < none.aux.size(); ++i) {  // the first-hit layers see the floor too
+      ASSERT_EQ(single.aux[i].object_id, none.aux[i].object_id) << "pixel " << i;
+      ASSERT_EQ(single.aux[i].depth, none.aux[i].depth) << "pixel " << i;
+    }
+    const size_t centre = size_t(kSize / 2) * kSize + kSize / 2;
+    EXPECT_GT(none.pixels[centre].mean[0], 0.0);
+    EXPECT_EQ(both.pixels[centre].mean[0], 0.0);
+  }
+}
+
 TEST(Materials, BackOfOneSidedSurfaceIsBlackDoubleSidedIsShaded) {
   for (bool double_sided : {false, true}) {
     scenes::Scene s;
     const int m = test::add_material(s, test::diffuse(glm::vec3(0.5f), glm::vec3(0.25f), double_sided));
-    // Faces down (-y); camera and sun above it see and light its back.
+    // Faces down (-y); the sun above lights its back, and the camera above sees that back
+    // (double-sided) or, through it, nothing (single-sided: culled).
     test::add_quad(s, m, {-4, 0, -4}, {4, 0, -4}, {4, 0, 4}, {-4, 0, 4}, 1);
     s.lights.push_back(sun({0.0f, -1.0f, 0.0f}));
     s.derive();

@@ -247,6 +247,8 @@ TEST(Loader, MaterialsAndExtensions) {
   EXPECT_NEAR(c.b, 1.0f, 1e-6f);
 
   EXPECT_EQ(s.materials[2].emissive, glm::vec3(8.0f, 4.0f, 2.0f));  // factor x strength 8
+  EXPECT_EQ(s.materials[2].alpha_mode, AlphaMode::Blend);
+  EXPECT_EQ(s.materials[2].coverage(s.materials[2].base_color.a), 0.5f);
   EXPECT_TRUE(s.features.alpha_mask && s.features.double_sided && s.features.one_sided);
   EXPECT_TRUE(s.features.normal_maps && s.features.textures && s.features.specular && s.features.emissive_meshes);
 }

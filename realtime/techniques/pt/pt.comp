@@ -79,7 +79,7 @@ PathResult trace_path(vec3 org, vec3 dir, inout Rng rng) {
   for (uint depth = 0u; depth <= pc.max_bounces; ++depth) {
     // `depth` surfaces were hit before this ray; light found now belongs to `direct` when it
     // reaches the camera directly (depth 0) or after one reflection (depth 1).
-    RayHit hit = trace_ray(org, dir, 1e30, false);
+    RayHit hit = trace_ray(org, dir, 1e30, false, depth == 0u);
     if (hit.triangle == 0xffffffffu) {
 #ifdef GIQ_ENVIRONMENT
       vec3 env = throughput * pc.environment.rgb;
@@ -139,6 +139,11 @@ PathResult trace_path(vec3 org, vec3 dir, inout Rng rng) {
       vec3 lng = normalize(cross(lb - la, lc - la));
       float cos_l = abs(dot(lng, wi));
       vec3 le2 = emitted(em.triangle.x, bc.x, bc.y, wi);
+#ifdef GIQ_ALPHA_MASK
+      // A ray that found this point would have met it with probability equal to its
+      // coverage (the reference's LightSampler::sample).
+      le2 *= alpha_coverage(em.triangle.x, bc.x, bc.y);
+#endif
       if (dot(wi, ng) > 0.0 && cos_l > 0.0 && any(greaterThan(le2, vec3(0.0)))) {
         vec3 f = brdf_eval(s, wo, wi);
         if (any(greaterThan(f, vec3(0.0))) && !occluded(p_off, wi, dist * (1.0 - 1e-4))) {

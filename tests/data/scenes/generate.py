@@ -314,8 +314,9 @@ def materials():
         "normalTexture": {"index": 0, "scale": 0.5},
         "extensions": {"KHR_materials_specular": {"specularFactor": 0.5, "specularColorFactor": [1.0, 0.5, 0.25],
                                                   "specularColorTexture": {"index": 0}}}})
-    g.add("materials", {  # emitter: factor x strength
-        "name": "lamp", "emissiveFactor": [1.0, 0.5, 0.25],
+    g.add("materials", {  # emitter: factor x strength; BLEND, half transparent
+        "name": "lamp", "emissiveFactor": [1.0, 0.5, 0.25], "alphaMode": "BLEND",
+        "pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 0.5]},
         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 8.0}}})
     uvs = [(0, 0), (1, 0), (1, 1), (0, 1)]
     tangents = [(1, 0, 0, 1)] * 4
@@ -578,8 +579,8 @@ def hostile():
             d["nodes"][0]["camera"] = 0
         return f
     case("orthographic_depth.gltf", "cameras[0].orthographic.zfar", minimal(a=camera("orthographic")))
-    case("blend.gltf", "materials[0].alphaMode",
-         minimal(a=setp(("materials",), [{"alphaMode": "BLEND"}]), b=setp(tri_mesh_prim + ("material",), 0)))
+    case("alpha_mode.gltf", "materials[0].alphaMode",
+         minimal(a=setp(("materials",), [{"alphaMode": "ADD"}]), b=setp(tri_mesh_prim + ("material",), 0)))
     case("skin.gltf", "nodes[0].skin", minimal(a=setp(("skins",), [{"joints": [0]}]), b=setp(("nodes", 0, "skin"), 0)))
     case("morph.gltf", "meshes[0].primitives[0].targets", minimal(a=setp(tri_mesh_prim + ("targets",), [{"POSITION": 0}])))
     case("unknown_mode.gltf", "meshes[0].primitives[0].mode", minimal(a=setp(tri_mesh_prim + ("mode",), 7)))

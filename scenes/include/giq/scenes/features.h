@@ -17,7 +17,7 @@ struct FeatureSet {
   bool textures = false;     // some material samples a texture
   bool normal_maps = false;
   bool vertex_colors = false;  // some mesh has COLOR_0
-  bool alpha_mask = false;
+  bool alpha_mask = false;  // some material is MASK or BLEND: renderers test alpha coverage
   bool double_sided = false;  // some material is double-sided
   bool one_sided = false;     // some material is not (its back faces are black)
   bool animation = false;     // the sequence moves something

@@ -4,12 +4,16 @@
 // KHR_materials_unlit are mapped onto these fields when loaded). Texture members index
 // Scene::textures; -1 means "no texture". Every texture reads Mesh::uvs.
 
+#include <algorithm>
 #include <glm/glm.hpp>
 #include <string>
 
 namespace giq::scenes {
 
-enum class AlphaMode { Opaque, Mask };  // BLEND is rejected at load time
+// glTF 2.0, 3.9.4 "Alpha Coverage". giq renders BLEND as stochastic transparency: a ray meets
+// the surface with probability alpha and passes it otherwise, so the reference converges to
+// the surface's alpha-weighted average, whatever order the surfaces are in.
+enum class AlphaMode { Opaque, Mask, Blend };
 
 struct Material {
   std::string name;
@@ -33,6 +37,14 @@ struct Material {
   bool double_sided = false;
 
   bool is_emissive() const { return emissive != glm::vec3(0.0f); }
+  // How much of a point with this `alpha` (baseColorFactor.a x texture alpha x COLOR_0 alpha)
+  // is there: 1 (OPAQUE), 1 or 0 by alphaCutoff (MASK), alpha (BLEND). The GPU's
+  // alpha_coverage (realtime/shaders/textures.glsl) says the same.
+  float coverage(float alpha) const {
+    if (alpha_mode == AlphaMode::Opaque) return 1.0f;
+    if (alpha_mode == AlphaMode::Mask) return alpha < alpha_cutoff ? 0.0f : 1.0f;
+    return std::clamp(alpha, 0.0f, 1.0f);
+  }
   // True when the material has a GGX lobe that can reflect light: metals always, dielectrics
   // unless KHR_materials_specular turns the layer off. Renderers use it to skip GGX entirely.
   bool has_specular_lobe() const {

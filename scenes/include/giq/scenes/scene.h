@@ -125,6 +125,11 @@ class Scene {
   Scene at_frame(int frame) const { return at(frame / sequence.fps); }
   double duration() const;  // of the playing animation; 0 when static
 
+  // Coverage (Material::coverage) of mesh m's triangle t at barycentrics (b1, b2): its
+  // material's baseColorFactor.a times the base colour texture's alpha (with UVs) times
+  // COLOR_0's alpha, through the alpha mode.
+  float coverage(const Mesh& m, const glm::uvec3& t, float b1, float b2) const;
+
   // A view by name, or by index when `name_or_index` is a number; throws InputError naming
   // the available views when there is no such view.
   const View& view(std::string_view name_or_index) const;
