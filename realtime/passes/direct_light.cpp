@@ -32,7 +32,13 @@ DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
     light_layer_.push_back(l.type == scenes::LightType::Directional ? shadows_.add_cascades(l.direction)
                                                                      : shadows_.add_cube(l.position));
   build_area_lights(ci.scene);
-  for (auto& a : area_lights_) a.position.w = float(shadows_.add_cube(glm::vec3(a.position)));
+  // Each area light's cube leaves out the emitter itself: from the centre of a closed emitter
+  // its own faces would shadow everything.
+  for (size_t i = 0; i < area_lights_.size(); ++i) {
+    const uint32_t mesh = ci.scene.area_lights[i].mesh;
+    const glm::uvec2 skip(ci.scene_gpu.geometry().mesh_first_vertex[mesh], uint32_t(ci.scene.meshes[mesh].positions.size()));
+    area_lights_[i].position.w = float(shadows_.add_cube(glm::vec3(area_lights_[i].position), skip));
+  }
 
   direct_ = Image(ci.ctx, {width_, height_, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
   light_layer_buffer_ = Buffer::storage(ci.ctx, light_layer_);
@@ -120,6 +126,10 @@ void DirectLightPass::build_area_lights(const scenes::Scene& scene) {
                                  glm::vec4(e.radiance, 0.0f)});
     }
     l.position = glm::vec4(a.representative, 0.0f);
+    float extent = 0.0f;
+    if (!a.flat)
+      for (const glm::vec3& v : mesh.positions) extent = std::max(extent, glm::length(v - a.representative));
+    l.extent = glm::vec4(extent, 0.0f, 0.0f, 0.0f);
     area_lights_.push_back(l);
   }
 }

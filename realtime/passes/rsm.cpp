@@ -22,7 +22,14 @@ float max3(glm::vec3 v) {
 
 // The layers and emitters the scene's lights need, in a fixed order: the scene's lights, then
 // one area light per emissive mesh (as passes/direct_light.cpp builds them).
-void build(const scenes::Scene& scene, uint32_t ortho_size, uint32_t cube_size,
+// An area light's emission lobe for rsm.frag: its mean normal, w 1 when double-sided; or, for
+// a closed emitter, w 2: isotropic.
+glm::vec4 area_emitter_normal(const scenes::AreaLight& a) {
+  if (!a.flat) return glm::vec4(0.0f, 0.0f, 0.0f, 2.0f);
+  return glm::vec4(a.normal, a.two_sided ? 1.0f : 0.0f);
+}
+
+void build(const scenes::Scene& scene, const FlatGeometry& geometry, uint32_t ortho_size, uint32_t cube_size,
            std::vector<gpu::GpuRsmEmitter>& emitters, std::vector<gpu::GpuRsmLayer>& layers) {
   emitters.clear();
   layers.clear();
@@ -59,8 +66,12 @@ void build(const scenes::Scene& scene, uint32_t ortho_size, uint32_t cube_size,
     emitters.push_back(e);
   }
   for (const scenes::AreaLight& a : scene.area_lights) {
-    gpu::GpuRsmEmitter e{glm::vec4(a.representative, GIQ_RSM_AREA), glm::vec4(a.normal, a.two_sided ? 1.0f : 0.0f),
-                         glm::vec4(a.intensity, 0.0f), glm::uvec4(uint32_t(layers.size()), 6, 0, 0)};
+    // The emitter's own triangles are left out of its cube (rsm.frag): from the centre of a
+    // closed emitter they would be all it sees.
+    const uint32_t first = geometry.mesh_first_triangle[a.mesh];
+    gpu::GpuRsmEmitter e{glm::vec4(a.representative, GIQ_RSM_AREA), area_emitter_normal(a),
+                         glm::vec4(a.intensity, 0.0f),
+                         glm::uvec4(uint32_t(layers.size()), 6, first, uint32_t(scene.meshes[a.mesh].triangles.size()))};
     add_cube(a.representative, a.intensity);
     emitters.push_back(e);
   }
@@ -79,7 +90,7 @@ ReflectiveShadowMaps::ReflectiveShadowMaps(const TechniqueCreateInfo& ci)
     : scene_gpu_(ci.scene_gpu),
       ortho_size_(uint32_t(ci.parameters.get_int("rsm_size"))),
       cube_size_(uint32_t(ci.parameters.get_int("rsm_cube_size"))) {
-  build(ci.scene, ortho_size_, cube_size_, emitters_, layers_);
+  build(ci.scene, scene_gpu_.geometry(), ortho_size_, cube_size_, emitters_, layers_);
   extent_ = 1;
   for (const auto& l : layers_) extent_ = std::max(extent_, uint32_t(l.params.y));
   const uint32_t n = std::max<uint32_t>(1, layer_count());
@@ -108,7 +119,7 @@ ReflectiveShadowMaps::ReflectiveShadowMaps(const TechniqueCreateInfo& ci)
 
 void ReflectiveShadowMaps::update(const scenes::Scene& scene) {
   const size_t n_layers = layers_.size(), n_emitters = emitters_.size();
-  build(scene, ortho_size_, cube_size_, emitters_, layers_);
+  build(scene, scene_gpu_.geometry(), ortho_size_, cube_size_, emitters_, layers_);
   if (layers_.size() != n_layers || emitters_.size() != n_emitters)
     throw std::logic_error(
         "reflective shadow maps: the scene's lights changed in number during a sequence");

@@ -35,6 +35,7 @@ void main() {
   vec3 ng = normalize(cross(b - a, c - a));
   vec3 p = in_position;
   GpuRsmEmitter e = emitters[pc.emitter];
+  if (e.position.w == GIQ_RSM_AREA && tri - e.layers.z < e.layers.w) discard;
   vec3 wi;       // towards the light
   vec3 density;  // intensity towards p (W/sr) or irradiance (W/m^2, directional)
   if (e.position.w == GIQ_RSM_AREA) {
@@ -42,7 +43,7 @@ void main() {
     float dist = length(d);
     wi = dist > 0.0 ? -d / dist : ng;
     float ce = dot(e.normal.xyz, -wi);
-    density = e.intensity.rgb * (e.normal.w != 0.0 ? abs(ce) : max(ce, 0.0));
+    density = e.intensity.rgb * (e.normal.w == 2.0 ? 0.25 : e.normal.w != 0.0 ? abs(ce) : max(ce, 0.0));
   } else {
     GpuLight l = scene_lights[uint(e.intensity.w)];
     float dist;

@@ -31,10 +31,13 @@ struct GpuRsmLayer {
 // cosine-weighted (Lambertian) emitter at its representative point.
 struct GpuRsmEmitter {
   vec4 position;   // xyz: light position / representative point; w: kind (GIQ_RSM_PUNCTUAL / _AREA)
-  vec4 normal;     // area: xyz unit mean normal of the mesh, w 1 when double-sided
+  vec4 normal;     // area: xyz unit mean normal of the mesh, w 1 when double-sided; w 2 for a
+                   // closed mesh: isotropic, a quarter of `intensity` every way (Cauchy: a
+                   // convex body's mean projected area is a quarter of its surface)
   vec4 intensity;  // area: rgb radiant intensity along the normal, sum of radiance x area (W/sr);
                    // punctual: w = index into the scene's lights
-  uvec4 layers;    // x: first layer, y: layer count (6 for a cube, 1 for an ortho window)
+  uvec4 layers;    // x: first layer, y: layer count (6 for a cube, 1 for an ortho window);
+                   // area: z, w: the emitter's own triangles [z, z + w), not in its maps
 };
 
 // Push constants of rsm.vert / rsm.frag.

@@ -23,14 +23,15 @@ ShadowMaps::ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& s
   if (scene.features().alpha_mask) g.fragment_spirv = compiler.compile("passes/shadow_maps.frag", defines);
   g.depth_format = VK_FORMAT_D32_SFLOAT;
   g.depth_bias = true;
-  pipeline_ = Pipeline::graphics(ctx, g, SceneGpu::binding_types(), sizeof(glm::mat4));
+  pipeline_ = Pipeline::graphics(ctx, g, SceneGpu::binding_types(), sizeof(gpu::ShadowPush));
 }
 
-uint32_t ShadowMaps::add_cube(glm::vec3 position) {
+uint32_t ShadowMaps::add_cube(glm::vec3 position, glm::uvec2 skip) {
   const uint32_t first = uint32_t(layers_.size());
   sources_.push_back({true, position, first});
   layers_.resize(first + 6);
   params_.resize(first + 6);
+  skip_.resize(first + 6, skip);
   place_cube(sources_.back());
   return first;
 }
@@ -77,6 +78,7 @@ uint32_t ShadowMaps::add_cascades(glm::vec3 direction) {
   for (int c = 0; c < kCascades; ++c) {
     layers_.emplace_back(1.0f);
     params_.emplace_back(GIQ_SHADOW_CASCADE, 0.0f, 0.0f, 0.0f);
+    skip_.emplace_back(0u);
   }
   return first;
 }
@@ -155,7 +157,7 @@ void ShadowMaps::record(VkCommandBuffer cmd, const scenes::Camera& camera, float
     begin_rendering(cmd, size_, size_, {{}, depth_.layer_view(l), true});
     // Slope-scaled bias: surfaces at grazing angles to the light need the most.
     vkCmdSetDepthBias(cmd, 0.0f, 0.0f, 1.5f);
-    pipeline_.push_constants(cmd, layers_[l]);
+    pipeline_.push_constants(cmd, gpu::ShadowPush{layers_[l], glm::uvec4(skip_[l], 0u, 0u)});
     draw_scene(cmd, scene_);
     vkCmdEndRendering(cmd);
   }

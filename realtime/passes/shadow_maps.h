@@ -34,8 +34,10 @@ class ShadowMaps {
   // near and far planes covering `bounds`; shared with the reflective shadow maps (passes/rsm.h).
   static glm::mat4 cube_face_view_proj(glm::vec3 position, const scenes::Bounds& bounds, int face);
 
-  // Declare the maps before the first record(); each returns its first layer.
-  uint32_t add_cube(glm::vec3 position);
+  // Declare the maps before the first record(); each returns its first layer. A cube may leave
+  // out the vertices [skip.x, skip.x + skip.y) (an emissive mesh's own, so that a closed
+  // emitter does not shadow its light from its centre: Scene::AreaLight::representative).
+  uint32_t add_cube(glm::vec3 position, glm::uvec2 skip = glm::uvec2(0u));
   uint32_t add_cascades(glm::vec3 direction);
   // The fraction between logarithmic (1) and uniform (0) cascade splits (Zhang et al. 2006,
   // "Parallel-Split Shadow Maps", practical split scheme).
@@ -64,6 +66,7 @@ class ShadowMaps {
     glm::vec3 v;  // position (cube) or direction (cascades)
     uint32_t first_layer;
   };
+  std::vector<glm::uvec2> skip_;  // per layer: vertices left out (add_cube)
   void create_resources();
   void place_cube(const Source& s);
   void update_cascades(const Source& s, const scenes::Camera& camera, float aspect);

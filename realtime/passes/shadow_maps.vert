@@ -4,7 +4,9 @@
 
 #include "shaders/scene.glsl"
 
-layout(push_constant) uniform Push { mat4 view_proj; } pc;
+#include "passes/shadow_maps_shared.h"
+
+layout(push_constant) uniform Push { ShadowPush pc; };
 
 #ifdef GIQ_ALPHA_MASK
 // Texture coordinates and COLOR_0's alpha for the cut-out test of shadow_maps.frag;
@@ -15,6 +17,9 @@ layout(location = 1) out float out_alpha;
 
 void main() {
   gl_Position = pc.view_proj * vec4(scene_vertices[gl_VertexIndex].position.xyz, 1.0);
+  // A left-out vertex goes beyond the right clip plane, and so does its whole triangle (a
+  // mesh's triangles use only its own vertices).
+  if (uint(gl_VertexIndex) - pc.skip.x < pc.skip.y) gl_Position = vec4(2.0, 0.0, 0.5, 1.0);
 #ifdef GIQ_ALPHA_MASK
   out_uv = scene_vertex_extra[gl_VertexIndex].uv.xy;
   out_alpha = scene_vertex_extra[gl_VertexIndex].color.a;

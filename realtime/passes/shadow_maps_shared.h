@@ -7,10 +7,18 @@
 namespace giq::realtime::gpu {
 using vec4 = glm::vec4;
 using mat4 = glm::mat4;
+using uvec4 = glm::uvec4;
 #endif
 
 #define GIQ_SHADOW_CUBE_FACE 0.0
 #define GIQ_SHADOW_CASCADE 1.0
+
+// Push constants of shadow_maps.vert: the layer's view-projection, and the vertices it leaves
+// out ([skip.x, skip.x + skip.y): ShadowMaps::add_cube).
+struct ShadowPush {
+  mat4 view_proj;
+  uvec4 skip;
+};
 
 struct GpuShadowLayer {
   mat4 view_proj;  // local frame -> clip, depth in [0, 1]

@@ -16,6 +16,7 @@ FlatGeometry flatten(const scenes::Scene& scene) {
   for (const auto& m : scene.meshes) {
     const uint32_t base = uint32_t(g.positions.size());
     g.mesh_first_triangle.push_back(uint32_t(g.triangles.size()));
+    g.mesh_first_vertex.push_back(base);
     for (size_t i = 0; i < m.positions.size(); ++i) {
       g.positions.push_back(m.positions[i]);
       g.normals.push_back(i < m.normals.size() ? m.normals[i] : glm::vec3(0.0f));

@@ -70,7 +70,9 @@ void Scene::derive_area_lights() {
     }
     l.centroid /= l.area;
     const float nl = glm::length(normal);
-    l.flat = nl > 0.0f;
+    // Closed (the area vectors cancel) up to their float rounding: |sum| is twice the area
+    // of the mean-normal projection, a few ulps of the area for a closed mesh.
+    l.flat = nl > 1e-4f * l.area;
     if (l.flat) l.normal = normal / nl;
     l.representative = l.centroid;
     if (!l.two_sided && l.flat) l.representative += l.normal * offset;

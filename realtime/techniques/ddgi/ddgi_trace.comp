@@ -71,8 +71,10 @@ vec3 direct_irradiance(vec3 p, vec3 ng, vec3 ns) {
     if (all(equal(el, vec3(0.0)))) continue;
     vec3 to = l.position.xyz - p;
     float dist = length(to);
-    // Stop short of the emitter so that its own triangles do not shadow it.
-    if (dist > 0.0 && occluded(origin, to / dist, dist * 0.999)) continue;
+    // Stop short of the emitter so that its own triangles do not shadow it (of a closed
+    // emitter, whose representative point is inside it, at the sphere that holds it).
+    float reach = (dist - l.extent.x) * 0.999;
+    if (reach > 0.0 && occluded(origin, to / dist, reach)) continue;
     e += el;
   }
   return e;

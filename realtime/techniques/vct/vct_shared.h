@@ -64,8 +64,10 @@ struct VctMipPush {  // voxel_mip.comp
 // the point every real-time pass shades and shadows the mesh from) with Lambertian intensity
 // I(w) = sum over triangles of L A max(n.w, 0).
 struct VctEmitter {
-  vec4 position;  // xyz representative point; w: first shadow layer (unused: voxels trace shadow rays)
-  vec4 normal;    // xyz unit mean normal; w: 1 when double-sided
+  vec4 position;  // xyz representative point; w: how far from it shadow rays stop (a closed
+                  // emitter's own extent, which holds that point; 0 otherwise)
+  vec4 normal;    // xyz unit mean normal; w: 1 when double-sided; 2 for a closed emitter:
+                  // isotropic, a quarter of `power` every way (rsm_shared.h)
   vec4 power;     // rgb: sum of radiance x area (W/sr along the normal); w: total area
 };
 

@@ -98,12 +98,15 @@ void main() {
     float dist = sqrt(d2);
     vec3 wi = to / dist;
     float cos_e = dot(em.normal.xyz, -wi);
-    if (em.normal.w != 0.0) cos_e = abs(cos_e);
+    if (em.normal.w == 1.0) cos_e = abs(cos_e);
+    if (em.normal.w == 2.0) cos_e = 0.25;
     float cos_r = dot(ng, wi);
     if (two_sided) cos_r = abs(cos_r);
     if (cos_e <= 0.0 || cos_r <= 0.0) continue;
     // Stop short of the emitter so that its own triangles do not shadow it.
-    e += em.power.rgb * (cos_e * cos_r / (d2 + em.power.w / PI)) * visible(p, ng, wi, dist * 0.999);
+    float reach = (dist - em.position.w) * 0.999;
+    if (reach <= 0.0) continue;  // inside a closed emitter's extent
+    e += em.power.rgb * (cos_e * cos_r / (d2 + em.power.w / PI)) * visible(p, ng, wi, reach);
   }
   vec3 stored = fd * e * pc.scale;
   if (pc.add_bounce != 0u) {

@@ -42,8 +42,13 @@ std::vector<gpu::VctEmitter> voxel_emitters(const scenes::Scene& scene) {
   std::vector<gpu::VctEmitter> out;
   for (const scenes::AreaLight& a : scene.area_lights) {
     gpu::VctEmitter em;
-    em.position = glm::vec4(a.representative, 0.0f);
-    em.normal = glm::vec4(a.normal, a.two_sided ? 1.0f : 0.0f);
+    // A closed emitter's centre is inside it: shadow rays stop at the sphere around it that
+    // holds the mesh.
+    float extent = 0.0f;
+    if (!a.flat)
+      for (const glm::vec3& v : scene.meshes[a.mesh].positions) extent = std::max(extent, glm::length(v - a.representative));
+    em.position = glm::vec4(a.representative, extent);
+    em.normal = a.flat ? glm::vec4(a.normal, a.two_sided ? 1.0f : 0.0f) : glm::vec4(0.0f, 0.0f, 0.0f, 2.0f);
     em.power = glm::vec4(a.intensity, a.area);
     out.push_back(em);
   }

@@ -30,6 +30,7 @@ struct FlatGeometry {
   std::vector<uint32_t> material;     // per triangle
   std::vector<uint32_t> object_id;    // per triangle
   std::vector<uint32_t> mesh_first_triangle;
+  std::vector<uint32_t> mesh_first_vertex;
 };
 FlatGeometry flatten(const scenes::Scene& scene);
 
