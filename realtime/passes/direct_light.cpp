@@ -126,10 +126,7 @@ void DirectLightPass::build_area_lights(const scenes::Scene& scene) {
                                  glm::vec4(e.radiance, 0.0f)});
     }
     l.position = glm::vec4(a.representative, 0.0f);
-    float extent = 0.0f;
-    if (!a.flat)
-      for (const glm::vec3& v : mesh.positions) extent = std::max(extent, glm::length(v - a.representative));
-    l.extent = glm::vec4(extent, 0.0f, 0.0f, 0.0f);
+    l.extent = glm::vec4(a.extent, 0.0f, 0.0f, 0.0f);
     area_lights_.push_back(l);
   }
 }

@@ -26,9 +26,7 @@ struct DirectPush {
 struct GpuAreaLight {
   vec4 position;  // xyz representative point; w: first shadow layer
   uvec4 range;    // x: first GpuAreaTriangle, y: count
-  vec4 extent;    // x: how far from `position` shadow rays towards it stop (a closed emitter
-                  // holds that point: the radius of the sphere around it that holds the mesh;
-                  // 0 otherwise)
+  vec4 extent;    // x: how far from `position` shadow rays towards it stop (AreaLight::extent)
 };
 
 struct GpuAreaTriangle {

@@ -76,6 +76,8 @@ void Scene::derive_area_lights() {
     if (l.flat) l.normal = normal / nl;
     l.representative = l.centroid;
     if (!l.two_sided && l.flat) l.representative += l.normal * offset;
+    if (!l.flat)
+      for (const glm::vec3& v : mesh.positions) l.extent = std::max(l.extent, glm::length(v - l.representative));
     area_lights.push_back(std::move(l));
   }
 }

@@ -62,6 +62,7 @@ TEST(Scene, EachEmissiveMeshIsOneAreaLight) {
     EXPECT_NEAR(a.centroid.y, 0.5f, 1e-6f);
     EXPECT_EQ(a.centroid.z, 0.0f);
     EXPECT_TRUE(a.flat);
+    EXPECT_EQ(a.extent, 0.0f);
     EXPECT_EQ(a.normal, glm::vec3(0, 0, 1));            // counter-clockwise seen from +z
     EXPECT_EQ(a.intensity, glm::vec3(2.0f, 4.0f, 6.0f));  // radiance x area
     // A one-sided emitter's point sits 1e-4 of the scene's diagonal (sqrt 5) in front of it.
@@ -91,6 +92,7 @@ TEST(Scene, ClosedEmitterHasNoMeanNormalAndStaysAtItsCentroid) {
   EXPECT_FLOAT_EQ(a.area, 6.0f);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.centroid[c], 0.5f, 1e-6f);
   EXPECT_EQ(a.representative, a.centroid);
+  EXPECT_NEAR(a.extent, std::sqrt(0.75f), 1e-6f);  // from the centre to a corner
 }
 
 TEST(Scene, LightPowerIsPhi) {

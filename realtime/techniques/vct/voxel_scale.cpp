@@ -44,10 +44,7 @@ std::vector<gpu::VctEmitter> voxel_emitters(const scenes::Scene& scene) {
     gpu::VctEmitter em;
     // A closed emitter's centre is inside it: shadow rays stop at the sphere around it that
     // holds the mesh.
-    float extent = 0.0f;
-    if (!a.flat)
-      for (const glm::vec3& v : scene.meshes[a.mesh].positions) extent = std::max(extent, glm::length(v - a.representative));
-    em.position = glm::vec4(a.representative, extent);
+    em.position = glm::vec4(a.representative, a.extent);
     em.normal = a.flat ? glm::vec4(a.normal, a.two_sided ? 1.0f : 0.0f) : glm::vec4(0.0f, 0.0f, 0.0f, 2.0f);
     em.power = glm::vec4(a.intensity, a.area);
     out.push_back(em);

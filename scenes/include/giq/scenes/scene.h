@@ -72,6 +72,10 @@ struct AreaLight {
   // scene's diagonal in front of a one-sided flat emitter so that the emitter does not
   // shadow itself.
   glm::vec3 representative{0.0f};
+  // For a closed emitter (not flat: its centroid is inside it), the radius of the sphere
+  // around `representative` that holds the mesh, where rays towards that point must stop so
+  // that the emitter does not shadow itself; 0 for a flat one.
+  float extent = 0.0f;
 };
 
 struct SceneStats {
