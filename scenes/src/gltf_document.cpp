@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <system_error>
 
 #include "giq/base/error.h"
@@ -455,36 +456,35 @@ std::vector<unsigned char> with_json(const Document& d, std::string text) {
 //    chunk: it gets three zero bytes;
 //  - an indices accessor without a buffer view (a Draco-compressed primitive's) would be
 //    refused: it gets a one-byte view of such a buffer.
-// Returns whether anything was patched.
-bool patch_for_tinygltf(const Document& d, json& j) {
-  const json kEmpty = {{"uri", "data:application/octet-stream;base64,AAAA"}, {"byteLength", 3}};
-  bool patched = false;
-  for (size_t i = 0; i < d.placeholder_buffers.size(); ++i)
-    if (d.placeholder_buffers[i]) {
-      j["buffers"][i]["uri"] = kEmpty["uri"];
-      j["buffers"][i]["byteLength"] = 3;
-      patched = true;
-    }
-  const json* meshes = member(j, "meshes");
-  const json* accessors = member(j, "accessors");
-  if (!meshes || !accessors) return patched;
+// The patched JSON, or nothing when the document needs no patch (the usual case: no copy).
+std::optional<json> patch_for_tinygltf(const Document& d) {
   std::vector<size_t> viewless;
-  for (const json& mesh : *meshes) {
-    const json* prims = member(mesh, "primitives");
-    if (!prims) continue;
-    for (const json& prim : *prims) {
-      const json* ext = member(prim, "extensions");
-      const json* idx = member(prim, "indices");
-      if (!ext || !member(*ext, "KHR_draco_mesh_compression") || !idx || !idx->is_number_unsigned()) continue;
-      const size_t a = idx->get<size_t>();
-      if (a < accessors->size() && !member((*accessors)[a], "bufferView")) viewless.push_back(a);
+  const json* meshes = member(d.json, "meshes");
+  const json* accessors = member(d.json, "accessors");
+  if (meshes && accessors)
+    for (const json& mesh : *meshes) {
+      const json* prims = member(mesh, "primitives");
+      if (!prims) continue;
+      for (const json& prim : *prims) {
+        const json* ext = member(prim, "extensions");
+        const json* idx = member(prim, "indices");
+        if (!ext || !member(*ext, "KHR_draco_mesh_compression") || !idx || !idx->is_number_unsigned()) continue;
+        const size_t a = idx->get<size_t>();
+        if (a < accessors->size() && !member((*accessors)[a], "bufferView")) viewless.push_back(a);
+      }
     }
+  const bool placeholders = std::find(d.placeholder_buffers.begin(), d.placeholder_buffers.end(), true) != d.placeholder_buffers.end();
+  if (!placeholders && viewless.empty()) return std::nullopt;
+  const json kEmpty = {{"uri", "data:application/octet-stream;base64,AAAA"}, {"byteLength", 3}};
+  json j = d.json;
+  for (size_t i = 0; i < d.placeholder_buffers.size(); ++i)
+    if (d.placeholder_buffers[i]) j["buffers"][i] = kEmpty;
+  if (!viewless.empty()) {
+    j["buffers"].push_back(kEmpty);
+    j["bufferViews"].push_back({{"buffer", j["buffers"].size() - 1}, {"byteLength", 1}});
+    for (size_t a : viewless) j["accessors"][a]["bufferView"] = j["bufferViews"].size() - 1;
   }
-  if (viewless.empty()) return patched;
-  j["buffers"].push_back(kEmpty);
-  j["bufferViews"].push_back({{"buffer", j["buffers"].size() - 1}, {"byteLength", 1}});
-  for (size_t a : viewless) j["accessors"][a]["bufferView"] = j["bufferViews"].size() - 1;
-  return true;
+  return j;
 }
 
 }  // namespace
@@ -529,9 +529,8 @@ tinygltf::Model parse_model(Document& d) {
   const std::string base = d.folder.string();
   const std::vector<unsigned char>* bytes = &d.bytes;
   std::vector<unsigned char> rewritten;
-  nlohmann::json patched = d.json;
-  if (patch_for_tinygltf(d, patched)) {
-    rewritten = with_json(d, patched.dump());
+  if (const std::optional<json> patched = patch_for_tinygltf(d)) {
+    rewritten = with_json(d, patched->dump());
     bytes = &rewritten;
   }
   const bool ok =
