@@ -13,7 +13,7 @@ layout(std430, binding = GIQ_BINDING_LIGHTS) readonly buffer SceneLights { GpuLi
 layout(std430, binding = GIQ_BINDING_EMISSIVE) readonly buffer SceneEmissive { GpuEmissive scene_emissive[]; };
 layout(std430, binding = GIQ_BINDING_VERTEX_EXTRA) readonly buffer SceneVertexExtra { GpuVertexExtra scene_vertex_extra[]; };
 layout(std430, binding = GIQ_BINDING_TEXTURES) readonly buffer SceneTextures { GpuTexture scene_textures[]; };
-layout(std430, binding = GIQ_BINDING_TEXELS) readonly buffer SceneTexels { uint scene_texels[]; };
+layout(std430, binding = GIQ_BINDING_DECODE) readonly buffer SceneDecode { float scene_decode[]; };
 
 void triangle_vertices(uint tri, out vec3 a, out vec3 b, out vec3 c) {
   uvec4 v = scene_triangles[tri].v;

@@ -23,11 +23,12 @@ using uint = uint32_t;
 #define GIQ_BINDING_BVH_PRIMS 4
 #define GIQ_BINDING_LIGHTS 5
 #define GIQ_BINDING_EMISSIVE 6
-// Texture coordinates and tangents, texture descriptors and texels: filled only for scenes
-// whose FeatureSet has textures, normal maps or alpha masks (an empty 16-byte buffer otherwise).
+// Texture coordinates and tangents, texture descriptors and the texel decode table: filled
+// only for scenes whose FeatureSet has textures, normal maps or alpha masks (an empty 16-byte
+// buffer otherwise). Texels are read through device addresses (GpuTexture::texels).
 #define GIQ_BINDING_VERTEX_EXTRA 7
 #define GIQ_BINDING_TEXTURES 8
-#define GIQ_BINDING_TEXELS 9
+#define GIQ_BINDING_DECODE 9
 #define GIQ_SCENE_BINDING_COUNT 10
 
 #define GIQ_LIGHT_DIRECTIONAL 0
@@ -50,8 +51,8 @@ using uint = uint32_t;
 #define GIQ_TEXELS_RGBA8_SRGB 0u
 #define GIQ_TEXELS_RGBA8_UNORM 1u
 #define GIQ_TEXELS_RGBA32F 2u
-// The texel buffer opens with scenes::decode_table: word c (c < 256) is the float c / 255,
-// word 256 + c the sRGB decoding of c / 255.
+// The decode table is scenes::decode_table: entry c (c < 256) is the float c / 255, entry
+// 256 + c the sRGB decoding of c / 255.
 #define GIQ_DECODE_SRGB 256u
 
 struct GpuVertex {
@@ -86,7 +87,8 @@ struct GpuMaterial {
 // A texture: its words from `first`, row-major, first row = v 0, exactly as scenes::Texture
 // holds them: one word a texel (8-bit RGBA, R in the low byte) or four (float RGBA bits).
 struct GpuTexture {
-  uvec4 info;  // x first word, y width, z height, w wrap, filter and format (GIQ_WRAP_*, GIQ_FILTER_*, GIQ_TEXELS_*)
+  uvec4 info;    // x unused, y width, z height, w wrap, filter and format (GIQ_WRAP_*, GIQ_FILTER_*, GIQ_TEXELS_*)
+  uvec4 texels;  // xy the device address of the first texel word (low, high), zw unused
 };
 
 // Flattened BVH node (32 bytes). count == 0: interior, `index` = right child (the left child

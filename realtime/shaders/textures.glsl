@@ -1,10 +1,10 @@
 // Texture lookups, texture coordinates and the alpha-mask test, with the arithmetic of the
 // scene library (scenes/src/texture.cpp, Texture::sample) and of the reference
 // (reference/src/surface.h, reference/src/embree_scene.cpp). Textures are 8-bit (or float)
-// RGBA texels in one storage buffer (scene.glsl, GIQ_BINDING_TEXELS) decoded and filtered here
-// by hand: the same floats as the reference (one decode table), the same wrap modes and the same
-// bilinear weights (the same bits for power-of-two sizes), on every Vulkan device without
-// samplers or descriptor indexing.
+// RGBA texels read through buffer device addresses (GpuTexture::texels, SceneGpu) and decoded
+// and filtered here by hand: the same floats as the reference (one decode table, scene.glsl's
+// GIQ_BINDING_DECODE), the same wrap modes and the same bilinear weights (the same bits for
+// power-of-two sizes), on every Vulkan device without samplers or descriptor indexing.
 // Needs scene.glsl.
 #ifndef GIQ_TEXTURES_GLSL
 #define GIQ_TEXTURES_GLSL
@@ -13,6 +13,11 @@
 #include "sampling.glsl"
 
 #if defined(GIQ_TEXTURES) || defined(GIQ_NORMAL_MAPS) || defined(GIQ_ALPHA_MASK) || defined(GIQ_VERTEX_COLORS)
+
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer TexelWords { uint words[]; };
 
 // An integer texel coordinate i (held in a float) mapped onto [0, n) by a glTF wrap mode
 // (glTF 2.0, 5.26 "Sampler": OpenGL REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT).
@@ -34,13 +39,14 @@ int texture_wrap(float i, float n, uint mode) {
 // table at the start of the buffer (the same floats as the reference's), float texels as stored.
 vec4 texel_at(GpuTexture t, int x, int y) {
   uint i = uint(y) * t.info.y + uint(x), format = (t.info.w >> 5) & 3u;
+  TexelWords texels = TexelWords(t.texels.xy);
   if (format == GIQ_TEXELS_RGBA32F) {
-    uint w = t.info.x + 4u * i;
-    return uintBitsToFloat(uvec4(scene_texels[w], scene_texels[w + 1u], scene_texels[w + 2u], scene_texels[w + 3u]));
+    uint w = 4u * i;
+    return uintBitsToFloat(uvec4(texels.words[w], texels.words[w + 1u], texels.words[w + 2u], texels.words[w + 3u]));
   }
-  uint p = scene_texels[t.info.x + i], colour = format == GIQ_TEXELS_RGBA8_SRGB ? GIQ_DECODE_SRGB : 0u;
-  return vec4(uintBitsToFloat(scene_texels[colour + (p & 255u)]), uintBitsToFloat(scene_texels[colour + ((p >> 8) & 255u)]),
-              uintBitsToFloat(scene_texels[colour + ((p >> 16) & 255u)]), uintBitsToFloat(scene_texels[p >> 24]));
+  uint p = texels.words[i], colour = format == GIQ_TEXELS_RGBA8_SRGB ? GIQ_DECODE_SRGB : 0u;
+  return vec4(scene_decode[colour + (p & 255u)], scene_decode[colour + ((p >> 8) & 255u)],
+              scene_decode[colour + ((p >> 16) & 255u)], scene_decode[p >> 24]);
 }
 
 // Texture `index` at uv: nearest or bilinear between the four nearest texel centres, which

@@ -120,6 +120,10 @@ Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsag
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   ai.allocationSize = size;
   ai.memoryTypeIndex = type;
+  // Buffer memory may back buffers read through device addresses (Buffer::address).
+  VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+  flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+  if (linear) ai.pNext = &flags;
   // Running out of GPU memory is the size of the request (resolution, technique parameters,
   // scene), not a fault of giq: an input error that says what was asked for.
   const uint64_t heap = props_.memoryHeaps[props_.memoryTypes[type].heapIndex].size;

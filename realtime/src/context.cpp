@@ -263,6 +263,9 @@ Context::Context(const ContextOptions& options) : validation_(options.validation
     f13.synchronization2 = VK_TRUE;
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
     f12.hostQueryReset = VK_TRUE;  // core in 1.2 and required by it
+    // Required by Vulkan 1.3: textures are read through buffer device addresses (SceneGpu),
+    // past maxStorageBufferRange (128 MiB on lavapipe).
+    f12.bufferDeviceAddress = VK_TRUE;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
     features.features.geometryShader = VK_TRUE;
     const char* extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};

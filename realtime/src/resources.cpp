@@ -58,6 +58,12 @@ Buffer Buffer::storage(Context& ctx, const void* data, uint64_t bytes, VkBufferU
   return b;
 }
 
+VkDeviceAddress Buffer::address() const {
+  VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+  info.buffer = buffer_;
+  return vkGetBufferDeviceAddress(ctx_->device(), &info);
+}
+
 void Buffer::upload(const void* data, uint64_t bytes, uint64_t offset) {
   if (offset + bytes > size_) throw std::logic_error("Buffer::upload past the end of the buffer");
   if (alloc_.mapped) {

@@ -47,6 +47,24 @@ bool needs_textures(const scenes::FeatureSet& f) { return f.textures || f.normal
 
 }  // namespace
 
+TexelPacking pack_texels(const std::vector<uint64_t>& words, uint64_t chunk_words) {
+  TexelPacking p;
+  for (uint64_t n : words) {
+    if (n == 0 || n > chunk_words) {
+      p.chunk.push_back(n == 0 ? 0 : -1);
+      p.first_word.push_back(0);
+      if (p.chunk_words.empty()) p.chunk_words.push_back(0);
+      continue;
+    }
+    // Next fit: textures stay in scene order, a new chunk opens when one is full.
+    if (p.chunk_words.empty() || p.chunk_words.back() + n > chunk_words) p.chunk_words.push_back(0);
+    p.chunk.push_back(int(p.chunk_words.size() - 1));
+    p.first_word.push_back(p.chunk_words.back());
+    p.chunk_words.back() += n;
+  }
+  return p;
+}
+
 SceneGpu::SceneGpu(Context& ctx, const scenes::Scene& scene) : ctx_(&ctx), features_(scene.features) {
   upload_materials(scene);
   upload_geometry(scene, flatten(scene));
@@ -149,37 +167,56 @@ void SceneGpu::upload_materials(const scenes::Scene& scene) {
   using namespace gpu;
   Context& ctx = *ctx_;
   std::vector<GpuTexture> textures;
-  std::vector<uint32_t> words;
+  std::vector<float> table(1, 0.0f);
   if (needs_textures(scene.features)) {
-    // One storage buffer of texel words, decoded and filtered in the shader
-    // (shaders/textures.glsl) with scenes::Texture::sample's arithmetic: no sampler or image
-    // array to bind, no descriptor indexing (lavapipe has none), and the reference's floats to
-    // the bit. It opens with scenes::decode_table (512 floats), through which 8-bit texels
-    // become floats on both sides.
-    const auto& table = scenes::decode_table();
-    const uint64_t limit = ctx.properties().limits.maxStorageBufferRange;
-    uint64_t total = table.size();
+    // Texel words decoded and filtered in the shader (shaders/textures.glsl) with
+    // scenes::Texture::sample's arithmetic: no sampler or image array to bind, no descriptor
+    // indexing, and the reference's floats to the bit. 8-bit texels become floats through
+    // scenes::decode_table on both sides (bound as GIQ_BINDING_DECODE). Texels are read
+    // through buffer device addresses, so their total is not bounded by maxStorageBufferRange
+    // (128 MiB on lavapipe: eight 2048² textures): they are packed into as few buffers as
+    // the device's largest allocation allows (pack_texels).
+    table.assign(scenes::decode_table().begin(), scenes::decode_table().end());
+    VkPhysicalDeviceMaintenance3Properties m3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+    VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &m3};
+    vkGetPhysicalDeviceProperties2(ctx.physical_device(), &p2);
+    const uint64_t chunk_bytes = std::min<uint64_t>(kTexelChunkBytes, m3.maxMemoryAllocationSize);
+    std::vector<uint64_t> sizes;
     for (const auto& t : scene.textures)
-      if (t.valid()) total += uint64_t(t.width) * uint64_t(t.height) * scenes::Texture::words_per_texel(t.format);
-    if (total * sizeof(uint32_t) > limit)
-      throw InputError(scene.path.string(), "textures",
-                       "the scene's textures take " + std::to_string(total * sizeof(uint32_t)) + " bytes (8-bit RGBA, float for 16-bit images); expected at most " +
-                           std::to_string(limit) + " bytes, this device's largest storage buffer");
-    words.reserve(size_t(total));
-    for (float f : table) words.push_back(std::bit_cast<uint32_t>(f));
-    for (const auto& t : scene.textures) {
+      sizes.push_back(t.valid() ? uint64_t(t.width) * uint64_t(t.height) * scenes::Texture::words_per_texel(t.format) : 0);
+    const TexelPacking packing = pack_texels(sizes, chunk_bytes / sizeof(uint32_t));
+    for (size_t i = 0; i < sizes.size(); ++i)
+      if (packing.chunk[i] < 0)
+        throw InputError(scene.path.string(), "textures[" + std::to_string(i) + "]",
+                         scene.textures[i].name + " takes " + std::to_string(sizes[i] * sizeof(uint32_t)) +
+                             " bytes on the GPU; expected at most " + std::to_string(chunk_bytes) +
+                             " bytes, this device's largest allocation");
+    texture_bytes_ = 0;
+    for (uint64_t words : packing.chunk_words) {
+      texel_chunks_.emplace_back(ctx, std::max<uint64_t>(words, 1) * sizeof(uint32_t),
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT);
+      texture_bytes_ += words * sizeof(uint32_t);
+    }
+    for (size_t i = 0; i < sizes.size(); ++i) {
+      const auto& t = scene.textures[i];
       GpuTexture g;
-      const bool valid = t.valid();
-      const size_t n = valid ? size_t(t.width) * size_t(t.height) * scenes::Texture::words_per_texel(t.format) : 0;
+      const bool valid = sizes[i] > 0;
       // A texture without texels samples as 0, like scenes::Texture::sample.
-      g.info = glm::uvec4(uint32_t(words.size()), valid ? uint32_t(t.width) : 0u, valid ? uint32_t(t.height) : 0u,
+      g.info = glm::uvec4(0u, valid ? uint32_t(t.width) : 0u, valid ? uint32_t(t.height) : 0u,
                           wrap_code(t.wrap_s) | wrap_code(t.wrap_t) << 2 |
                               (t.filter == scenes::Filter::Linear ? GIQ_FILTER_LINEAR : GIQ_FILTER_NEAREST) << 4 |
                               format_code(t.format) << 5);
-      if (valid) words.insert(words.end(), t.words->begin(), t.words->begin() + std::ptrdiff_t(n));
+      if (valid) {
+        Buffer& chunk = texel_chunks_[size_t(packing.chunk[i])];
+        const uint64_t offset = packing.first_word[i] * sizeof(uint32_t);
+        chunk.upload(t.words->data(), sizes[i] * sizeof(uint32_t), offset);
+        const VkDeviceAddress a = chunk.address() + offset;
+        g.texels = glm::uvec4(uint32_t(a), uint32_t(a >> 32), 0u, 0u);
+      }
       textures.push_back(g);
     }
   }
+  texture_bytes_ += table.size() * sizeof(float);
   texture_count_ = uint32_t(textures.size());
 
   std::vector<GpuMaterial> materials;
@@ -201,8 +238,7 @@ void SceneGpu::upload_materials(const scenes::Scene& scene) {
 
   materials_ = Buffer::storage(ctx, materials);
   textures_ = Buffer::storage(ctx, textures);
-  texels_ = Buffer::storage(ctx, words);
-  texture_bytes_ = words.size() * sizeof(uint32_t);
+  decode_ = Buffer::storage(ctx, table);
 }
 
 bool SceneGpu::upload_lights(const scenes::Scene& scene) {
@@ -244,7 +280,7 @@ std::vector<Descriptor> SceneGpu::descriptors() const {
   return {Descriptor::storage(vertices_), Descriptor::storage(triangles_), Descriptor::storage(materials_),
           Descriptor::storage(nodes_),    Descriptor::storage(prims_),     Descriptor::storage(lights_),
           Descriptor::storage(emissive_), Descriptor::storage(vertex_extra_), Descriptor::storage(textures_),
-          Descriptor::storage(texels_)};
+          Descriptor::storage(decode_)};
 }
 
 }  // namespace giq::realtime

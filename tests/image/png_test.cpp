@@ -71,6 +71,34 @@ TEST(Png, RoundTripThroughOiioWithKnownSrgbCodes) {
   EXPECT_EQ(back.metadata["Comment"], "caf\xc3\xa9");
 }
 
+// OpenImageIO (some 250 shared libraries) is loaded with the first image that is not OpenEXR,
+// not when giq starts (oiio_module.cpp). Checked in a fresh process (a re-executed death
+// test), whose mapped files say what is loaded.
+bool oiio_mapped() {
+  std::ifstream maps("/proc/self/maps");
+  std::stringstream all;
+  all << maps.rdbuf();
+  return all.str().find("libOpenImageIO") != std::string::npos;
+}
+
+TEST(Png, OpenImageIoLoadsWithTheFirstNonExrImage) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  const fs::path d = fresh_dir("lazy");
+  Image img(2, 2);
+  for (const char* c : {"R", "G", "B"}) img.add_channel(c);
+  giq::image::write_png(img, d / "a.png");
+  giq::image::write_exr(img, d / "a.exr");
+  EXPECT_EXIT(
+      {
+        if (oiio_mapped()) std::exit(1);
+        giq::image::read_image(d / "a.exr");
+        if (oiio_mapped()) std::exit(2);
+        giq::image::read_image(d / "a.png");
+        std::exit(oiio_mapped() ? 0 : 3);
+      },
+      ::testing::ExitedWithCode(0), "");
+}
+
 TEST(Png, ExposureLinearModeAndNonFiniteAsMagenta) {
   fs::path d = fresh_dir("exposure");
   Image img(3, 1);

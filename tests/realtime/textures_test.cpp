@@ -144,6 +144,47 @@ TEST_F(TexturesTest, LookupsAreTheSceneLibrarysTextureSample) {
   EXPECT_GT(exact, 15000);
 }
 
+// Texel packing: scene order kept, no chunk over its size, every texture in one chunk, a new
+// chunk only when the next texture does not fit, too large textures marked.
+TEST(TexelPacking, NextFitInSceneOrder) {
+  const TexelPacking p = pack_texels({6, 0, 3, 2, 9, 5, 11, 4}, 10);
+  EXPECT_EQ(p.chunk, (std::vector<int>{0, 0, 0, 1, 2, 3, -1, 3}));
+  EXPECT_EQ(p.first_word, (std::vector<uint64_t>{0, 0, 6, 0, 0, 0, 0, 5}));
+  EXPECT_EQ(p.chunk_words, (std::vector<uint64_t>{9, 2, 9, 9}));
+  const TexelPacking empty = pack_texels({0, 0}, 10);
+  EXPECT_EQ(empty.chunk, (std::vector<int>{0, 0}));
+  EXPECT_EQ(empty.chunk_words, (std::vector<uint64_t>{0}));
+}
+
+// Ten 2048² 8-bit textures (160 MiB, beyond lavapipe's 128 MiB maxStorageBufferRange, which
+// used to bound a scene's texels) sampled on the GPU: the same bits as the scene library's
+// lookup in every texture, the last ones included (read past 128 MiB).
+TEST_F(TexturesTest, TexturesBeyondTheLargestStorageBufferAreSampled) {
+  scenes::Scene s = test::lambert_plane(0.5f);
+  std::mt19937 rng(17);
+  const int kCount = 10, kSize = 2048;
+  for (int i = 0; i < kCount; ++i) {
+    scenes::Texture t;
+    t.width = t.height = kSize, t.format = i % 2 ? scenes::TexelFormat::Rgba8Srgb : scenes::TexelFormat::Rgba8Unorm;
+    auto words = std::make_shared<std::vector<uint32_t>>(size_t(kSize) * kSize);
+    for (auto& w : *words) w = uint32_t(rng());
+    t.words = words;
+    s.textures.push_back(t);
+  }
+  s.materials[0].base_color_texture = 0;
+  s.derive();
+  ASSERT_GT(uint64_t(kCount) * kSize * kSize * 4, uint64_t(128) << 20);
+  std::uniform_real_distribution<float> uv(0.0f, 1.0f);
+  std::vector<glm::vec4> queries;
+  for (int t = 0; t < kCount; ++t)
+    for (int i = 0; i < 500; ++i) queries.emplace_back(uv(rng), uv(rng), float(t), 0.0f);
+  const std::vector<glm::vec4> gpu = sample_on_gpu(*ctx, *compiler, s, queries);
+  for (size_t i = 0; i < queries.size(); ++i) {
+    const glm::vec4 ref = s.textures[size_t(queries[i].z)].sample(glm::vec2(queries[i]));
+    for (int c = 0; c < 4; ++c) ASSERT_EQ(gpu[i][c], ref[c]) << "query " << i << " texture " << queries[i].z;
+  }
+}
+
 // An alpha-masked square [-h, h]^2 in the plane z = 0 facing +z (TEXCOORD_0 u along x, v
 // along -y, `uv_scale` repeats) in front of an opaque wall at z = -1.
 scenes::Scene masked_square(scenes::Filter filter, float uv_scale, float h) {

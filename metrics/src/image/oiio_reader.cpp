@@ -1,4 +1,5 @@
-// The one place OpenImageIO is used: reading formats other than OpenEXR. Integer formats
+// The one place OpenImageIO is used, built as a module of its own (oiio_reader.h): reading
+// formats other than OpenEXR. Integer formats
 // (8/16-bit PNG, JPEG, TIFF...) are display-referred sRGB unless the file says it is linear;
 // they are decoded to linear float so every metric sees radiance-like values.
 
@@ -13,8 +14,9 @@
 #include "oiio_reader.h"
 
 namespace giq::image {
+namespace {
 
-Image read_with_oiio(const std::filesystem::path& path) {
+Image read(const std::filesystem::path& path) {
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) throw InputError(path.string(), "", "cannot read image: " + OIIO::geterror());
   const OIIO::ImageSpec spec = in->spec();
@@ -64,6 +66,21 @@ Image read_with_oiio(const std::filesystem::path& path) {
   for (const auto& a : spec.extra_attribs)
     if (a.type() == OIIO::TypeDesc::STRING) image.metadata[a.name().string()] = a.get_string();
   return image;
+}
+
+}  // namespace
+
+extern "C" int giq_image_oiio_read(const char* path, Image* out, std::string* file, std::string* field, std::string* message) {
+  try {
+    *out = read(path);
+    return 0;
+  } catch (const InputError& e) {
+    *file = e.file(), *field = e.field(), *message = e.message();
+    return 1;
+  } catch (const std::exception& e) {
+    *message = e.what();
+    return 2;
+  }
 }
 
 }  // namespace giq::image

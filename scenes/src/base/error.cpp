@@ -19,6 +19,7 @@ std::string compose(const std::string& file, const std::string& field, const std
 InputError::InputError(std::string file, std::string field, const std::string& message)
     : std::runtime_error(compose(file, field, message)),
       file_(std::move(file)),
-      field_(std::move(field)) {}
+      field_(std::move(field)),
+      message_(message) {}
 
 }  // namespace giq

@@ -36,6 +36,9 @@ class Buffer {
   uint64_t size() const { return size_; }
   void* mapped() const { return alloc_.mapped; }
   explicit operator bool() const { return buffer_ != VK_NULL_HANDLE; }
+  // The buffer's device address, for shaders that read it through GL_EXT_buffer_reference;
+  // the buffer needs VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT.
+  VkDeviceAddress address() const;
 
   // Copies host data in: directly when mapped, else through a staging buffer (blocking).
   void upload(const void* data, uint64_t bytes, uint64_t offset = 0);

@@ -34,6 +34,16 @@ struct FlatGeometry {
 };
 FlatGeometry flatten(const scenes::Scene& scene);
 
+// Where each texture's texel words go: textures of `words` words each, in scene order, packed
+// into chunks of at most `chunk_words` (next fit). chunk[i] is -1 for a texture larger than a
+// chunk (the caller refuses it); an empty texture gets chunk 0, offset 0 and no words.
+struct TexelPacking {
+  std::vector<int> chunk;
+  std::vector<uint64_t> first_word;
+  std::vector<uint64_t> chunk_words;  // the words each chunk holds
+};
+TexelPacking pack_texels(const std::vector<uint64_t>& words, uint64_t chunk_words);
+
 class SceneGpu {
  public:
   SceneGpu(Context& ctx, const scenes::Scene& scene);
@@ -58,7 +68,9 @@ class SceneGpu {
   // The FeatureSet the scene was uploaded for; passes compile their shaders with its defines.
   const scenes::FeatureSet& features() const { return features_; }
   uint32_t texture_count() const { return texture_count_; }
-  uint64_t texture_bytes() const { return texture_bytes_; }  // the texel buffer, decode table included
+  uint64_t texture_bytes() const { return texture_bytes_; }  // texel buffers and decode table
+  // The largest texel buffer SceneGpu makes (smaller where the device's largest allocation is).
+  static constexpr uint64_t kTexelChunkBytes = 1ull << 30;
 
  private:
   void upload_materials(const scenes::Scene& scene);
@@ -73,7 +85,8 @@ class SceneGpu {
   // What the vertex and light buffers hold (gpu::GpuVertex, gpu::GpuLight as vec4 rows).
   std::vector<glm::vec4> vertices_host_, lights_host_;
   Buffer vertices_, triangles_, materials_, nodes_, prims_, lights_, emissive_, indices_, previous_vertices_;
-  Buffer vertex_extra_, textures_, texels_;
+  Buffer vertex_extra_, textures_, decode_;
+  std::vector<Buffer> texel_chunks_;  // read through device addresses (GpuTexture::texels)
   uint32_t triangle_count_ = 0, light_count_ = 0, emissive_count_ = 0, texture_count_ = 0;
   uint64_t texture_bytes_ = 0;
 };

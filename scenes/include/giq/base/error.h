@@ -16,10 +16,12 @@ class InputError : public std::runtime_error {
 
   const std::string& file() const { return file_; }
   const std::string& field() const { return field_; }
+  const std::string& message() const { return message_; }  // what() without file and field
 
  private:
   std::string file_;
   std::string field_;
+  std::string message_;
 };
 
 }  // namespace giq
