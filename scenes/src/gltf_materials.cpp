@@ -6,9 +6,15 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <atomic>
+#include <functional>
 #include <map>
 #include <memory>
+#include <set>
+#include <thread>
 #include <tuple>
+
+#include "png_texels.h"
 
 namespace giq::scenes::gltf {
 namespace {
@@ -57,41 +63,87 @@ class TextureTable {
       else if (s.magFilter == -1 || s.magFilter == TINYGLTF_TEXTURE_FILTER_LINEAR) tex.filter = Filter::Linear;
       else ctx_.fail(sw + ".magFilter", "is " + std::to_string(s.magFilter) + "; expected 9728 (NEAREST) or 9729 (LINEAR)");
     }
-    decode(t.source, srgb, tex);
+    requests_.push_back({out_.size(), t.source, srgb});
     out_.push_back(std::move(tex));
     return index_[key] = int(out_.size()) - 1;
   }
 
   // A metallic-roughness texture made from a specular-glossiness one (glTF texture `index`):
   // G = roughness = 1 - glossiness_factor x A, B = metallic 1 (the material's metallic factor
-  // is 0). 8-bit texels stay 8-bit when the factor is 1 (G = 255 - A exactly); otherwise the
-  // texels are float.
+  // is 0). Made in finish(), once the source's texels are decoded.
   int roughness_from_glossiness(int index, const std::string& field, double glossiness_factor) {
     const int source = use(index, field, false);
     const auto key = std::make_pair(source, glossiness_factor);
     if (auto it = derived_.find(key); it != derived_.end()) return it->second;
-    Texture tex = out_[size_t(source)];  // name and sampler
-    const size_t texels = size_t(tex.width) * size_t(tex.height);
-    auto words = std::make_shared<std::vector<uint32_t>>();
-    if (tex.format == TexelFormat::Rgba8Unorm && glossiness_factor == 1.0) {
-      words->reserve(texels);
-      for (uint32_t w : *tex.words) words->push_back((255u - (w >> 24)) << 8 | 255u << 16 | 255u << 24);
-    } else {
-      words->reserve(4 * texels);
-      for (int y = 0; y < tex.height; ++y)
-        for (int x = 0; x < tex.width; ++x) {
-          const float roughness = std::clamp(1.0f - float(glossiness_factor) * tex.texel(x, y).a, 0.0f, 1.0f);
-          for (float c : {0.0f, roughness, 1.0f, 1.0f}) words->push_back(std::bit_cast<uint32_t>(c));
-        }
-      tex.format = TexelFormat::Rgba32F;
-    }
-    count_bytes(int64_t(words->size() * sizeof(uint32_t)), field);
-    tex.words = std::move(words);
-    out_.push_back(std::move(tex));
+    derived_jobs_.push_back({out_.size(), size_t(source), glossiness_factor, field});
+    out_.push_back(out_[size_t(source)]);  // name and sampler
     return derived_[key] = int(out_.size()) - 1;
   }
 
+  // Decodes every image the materials use, in parallel, each once, and fills the textures'
+  // texels. Checks and errors come in the order the materials asked for the images, so the
+  // first bad image is reported as a sequential load would.
+  void finish() {
+    std::vector<int> images;  // first-use order
+    std::map<int, Header> headers;
+    for (const auto& r : requests_) {
+      if (!headers.count(r.image)) headers[r.image] = header(r.image), images.push_back(r.image);
+      const Header& h = headers[r.image];
+      // 8-bit texels serve both colour spaces; 16-bit ones become floats once per colour space.
+      if (h.sixteen ? counted_.insert({r.image, r.srgb}).second : counted_.insert({r.image, false}).second)
+        count_bytes(int64_t(h.width) * h.height * (h.sixteen ? 16 : 4), index_path("images", size_t(r.image)));
+    }
+    std::vector<Raw> raw(images.size());
+    parallel_for(images.size(), [&](size_t i) { raw[i] = decode(images[i], headers[images[i]]); });
+    std::map<int, size_t> slot;
+    for (size_t i = 0; i < images.size(); ++i) {
+      if (!raw[i].error.empty()) ctx_.fail(index_path("images", size_t(images[i])), raw[i].error);
+      slot[images[i]] = i;
+    }
+    std::map<std::pair<int, bool>, std::shared_ptr<const std::vector<uint32_t>>> floats;
+    for (const auto& r : requests_) {
+      Raw& d = raw[slot[r.image]];
+      Texture& tex = out_[r.texture];
+      tex.width = d.width, tex.height = d.height;
+      if (!d.sixteen) {
+        tex.words = d.words;
+        tex.format = r.srgb ? TexelFormat::Rgba8Srgb : TexelFormat::Rgba8Unorm;
+        continue;
+      }
+      auto& f = floats[{r.image, r.srgb}];
+      if (!f) {
+        auto words = std::make_shared<std::vector<uint32_t>>(d.sixteen_bit.size());
+        for (size_t i = 0; i < words->size(); ++i) {
+          const float c = d.sixteen_bit[i] / 65535.0f;
+          (*words)[i] = std::bit_cast<uint32_t>(r.srgb && i % 4 != 3 ? srgb_to_linear(c) : c);
+        }
+        f = std::move(words);
+      }
+      tex.words = f, tex.format = TexelFormat::Rgba32F;
+    }
+    for (const auto& j : derived_jobs_) make_roughness(j);
+  }
+
  private:
+  struct Header {
+    int width = 0, height = 0;
+    bool sixteen = false;
+  };
+  // An image decoded by one worker: 8-bit texels as words (R in the low byte), or 16-bit
+  // channels as they are; `error` says why not.
+  struct Raw {
+    int width = 0, height = 0;
+    bool sixteen = false;
+    std::shared_ptr<const std::vector<uint32_t>> words;
+    std::vector<uint16_t> sixteen_bit;
+    std::string error;
+  };
+  struct DerivedJob {
+    size_t texture, source;
+    double glossiness_factor;
+    std::string field;
+  };
+
   // Adds a texture's bytes to the scene's, which may hold at most kMaxTextureBytes.
   void count_bytes(int64_t bytes, const std::string& field) {
     total_bytes_ += bytes;
@@ -108,74 +160,113 @@ class TextureTable {
     }
   }
 
-  // Decodes an image once. 8-bit images stay 8-bit, one word a texel (R in the low byte), and
-  // are read as colour or as data by their format (Texture, decode_table): colour textures are
-  // sRGB-encoded by the glTF spec (2.0, 3.9.2: "MUST be ... sRGB"); alpha and data textures
-  // are linear already. 16-bit images become float RGBA, once per colour space.
-  void decode(int image, bool srgb, Texture& tex) {
-    const auto key = std::make_pair(image, srgb);
-    if (auto it = texels_.find(std::make_pair(image, false)); it != texels_.end() && it->second.format != TexelFormat::Rgba32F) {
-      tex.width = it->second.width, tex.height = it->second.height, tex.words = it->second.words;
-      tex.format = srgb ? TexelFormat::Rgba8Srgb : TexelFormat::Rgba8Unorm;
+  // Runs f(0..n-1) on up to one thread per core.
+  static void parallel_for(size_t n, const std::function<void(size_t)>& f) {
+    const size_t threads = std::min<size_t>(n, std::max(1u, std::thread::hardware_concurrency()));
+    if (threads <= 1) {
+      for (size_t i = 0; i < n; ++i) f(i);
       return;
     }
-    if (auto it = texels_.find(key); it != texels_.end()) {
-      tex.width = it->second.width, tex.height = it->second.height, tex.words = it->second.words, tex.format = it->second.format;
-      return;
-    }
+    std::atomic<size_t> next{0};
+    std::vector<std::thread> pool;
+    for (size_t t = 0; t < threads; ++t)
+      pool.emplace_back([&] {
+        for (size_t i; (i = next.fetch_add(1)) < n;) f(i);
+      });
+    for (auto& t : pool) t.join();
+  }
+
+  // The image's size and depth from its header, refused before decoding when too large.
+  Header header(int image) const {
     const std::string where = index_path("images", size_t(image));
     const auto& bytes = doc_.encoded_images.at(size_t(image));
     if (bytes.empty()) ctx_.fail(where, "no image data (missing file, empty data or unreadable buffer view)");
     if (bytes.size() > size_t(INT32_MAX)) ctx_.fail(where, "image data over 2 GiB");
     const int n = int(bytes.size());
-    int w = 0, h = 0, comp = 0;
-    if (!stbi_info_from_memory(bytes.data(), n, &w, &h, &comp))
+    Header h;
+    int comp = 0;
+    if (!stbi_info_from_memory(bytes.data(), n, &h.width, &h.height, &comp))
       ctx_.fail(where, "cannot decode the image (" + decode_failure() + "); expected a PNG or JPEG file");
-    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide || int64_t(w) * h > kMaxImageTexels)
-      ctx_.fail(where, std::to_string(w) + "x" + std::to_string(h) + " image; expected sides of 1 to " + std::to_string(kMaxImageSide) +
+    if (h.width < 1 || h.height < 1 || h.width > kMaxImageSide || h.height > kMaxImageSide || int64_t(h.width) * h.height > kMaxImageTexels)
+      ctx_.fail(where, std::to_string(h.width) + "x" + std::to_string(h.height) + " image; expected sides of 1 to " + std::to_string(kMaxImageSide) +
                            " pixels and at most " + std::to_string(kMaxImageTexels) + " pixels in all");
-    const bool sixteen = stbi_is_16_bit_from_memory(bytes.data(), n) != 0;
-    // Small compressed files can decode to gigabytes; the whole scene's textures are bounded
-    // like each one.
-    count_bytes(int64_t(w) * h * (sixteen ? 16 : 4), where);
-    const size_t texels = size_t(w) * size_t(h);
-    auto words = std::make_shared<std::vector<uint32_t>>();
-    int dw = 0, dh = 0;
-    TexelFormat format = TexelFormat::Rgba8Unorm;
-    if (sixteen) {
-      std::unique_ptr<stbi_us, void (*)(void*)> px(stbi_load_16_from_memory(bytes.data(), n, &dw, &dh, &comp, 4), stbi_image_free);
-      if (!px || dw != w || dh != h) ctx_.fail(where, "cannot decode the image (" + decode_failure() + ")");
-      words->resize(4 * texels);
-      for (size_t i = 0; i < 4 * texels; ++i) {
-        const float c = px.get()[i] / 65535.0f;
-        (*words)[i] = std::bit_cast<uint32_t>(srgb && i % 4 != 3 ? srgb_to_linear(c) : c);
+    h.sixteen = stbi_is_16_bit_from_memory(bytes.data(), n) != 0;
+    return h;
+  }
+
+  // Decodes one image (on a worker thread: no throwing, stb_image's failure reason is
+  // thread-local).
+  Raw decode(int image, const Header& h) const {
+    const auto& bytes = doc_.encoded_images[size_t(image)];
+    const int n = int(bytes.size());
+    Raw r;
+    r.width = h.width, r.height = h.height, r.sixteen = h.sixteen;
+    const size_t texels = size_t(h.width) * size_t(h.height);
+    if (is_png(bytes)) {
+      std::vector<uint16_t> sixteen_bit;
+      auto words = std::make_shared<std::vector<uint32_t>>();
+      if (decode_png(bytes, h.width, h.height, words.get(), h.sixteen ? &sixteen_bit : nullptr).empty()) {
+        if (h.sixteen) r.sixteen_bit = std::move(sixteen_bit);
+        else r.words = std::move(words);
+        return r;
       }
-      format = TexelFormat::Rgba32F;
+      // Else stb_image, which accepts some damaged files that libpng refuses.
+    }
+    int dw = 0, dh = 0, comp = 0;
+    if (h.sixteen) {
+      std::unique_ptr<stbi_us, void (*)(void*)> px(stbi_load_16_from_memory(bytes.data(), n, &dw, &dh, &comp, 4), stbi_image_free);
+      if (!px || dw != h.width || dh != h.height) return r.error = "cannot decode the image (" + decode_failure() + ")", r;
+      r.sixteen_bit.assign(px.get(), px.get() + 4 * texels);
     } else {
       std::unique_ptr<stbi_uc, void (*)(void*)> px(stbi_load_from_memory(bytes.data(), n, &dw, &dh, &comp, 4), stbi_image_free);
-      if (!px || dw != w || dh != h) ctx_.fail(where, "cannot decode the image (" + decode_failure() + ")");
-      words->resize(texels);
+      if (!px || dw != h.width || dh != h.height) return r.error = "cannot decode the image (" + decode_failure() + ")", r;
+      auto words = std::make_shared<std::vector<uint32_t>>(texels);
       const stbi_uc* p = px.get();
       for (size_t i = 0; i < texels; ++i)
         (*words)[i] = uint32_t(p[4 * i]) | uint32_t(p[4 * i + 1]) << 8 | uint32_t(p[4 * i + 2]) << 16 | uint32_t(p[4 * i + 3]) << 24;
+      r.words = std::move(words);
     }
-    tex.width = w, tex.height = h, tex.words = words;
-    tex.format = format == TexelFormat::Rgba32F ? format : srgb ? TexelFormat::Rgba8Srgb : TexelFormat::Rgba8Unorm;
-    // 8-bit texels serve both colour spaces and are kept under (image, false).
-    texels_[format == TexelFormat::Rgba32F ? key : std::make_pair(image, false)] = {w, h, format, words};
+    return r;
   }
 
-  struct Decoded {
-    int width, height;
-    TexelFormat format;  // Rgba32F, or Rgba8Unorm for 8-bit texels read either way
-    std::shared_ptr<const std::vector<uint32_t>> words;
-  };
+  // G = roughness = 1 - glossiness_factor x A (roughness_from_glossiness). 8-bit texels stay
+  // 8-bit when the factor is 1 (G = 255 - A exactly); otherwise the texels are float.
+  void make_roughness(const DerivedJob& j) {
+    const Texture& source = out_[j.source];
+    Texture& tex = out_[j.texture];
+    tex.width = source.width, tex.height = source.height;
+    const size_t texels = size_t(tex.width) * size_t(tex.height);
+    auto words = std::make_shared<std::vector<uint32_t>>();
+    if (source.format == TexelFormat::Rgba8Unorm && j.glossiness_factor == 1.0) {
+      words->reserve(texels);
+      for (uint32_t w : *source.words) words->push_back((255u - (w >> 24)) << 8 | 255u << 16 | 255u << 24);
+      tex.format = TexelFormat::Rgba8Unorm;
+    } else {
+      words->reserve(4 * texels);
+      for (int y = 0; y < source.height; ++y)
+        for (int x = 0; x < source.width; ++x) {
+          const float roughness = std::clamp(1.0f - float(j.glossiness_factor) * source.texel(x, y).a, 0.0f, 1.0f);
+          for (float c : {0.0f, roughness, 1.0f, 1.0f}) words->push_back(std::bit_cast<uint32_t>(c));
+        }
+      tex.format = TexelFormat::Rgba32F;
+    }
+    count_bytes(int64_t(words->size() * sizeof(uint32_t)), j.field);
+    tex.words = std::move(words);
+  }
+
   const Context& ctx_;
   const Document& doc_;
   std::vector<Texture>& out_;
   std::map<std::tuple<int, int, bool>, int> index_;
   std::map<std::pair<int, double>, int> derived_;  // (source texture, glossiness factor) -> texture
-  std::map<std::pair<int, bool>, Decoded> texels_;
+  struct Request {
+    size_t texture;
+    int image;
+    bool srgb;
+  };
+  std::vector<Request> requests_;  // textures whose texels finish() decodes
+  std::vector<DerivedJob> derived_jobs_;
+  std::set<std::pair<int, bool>> counted_;  // (image, colour space) whose bytes are counted
   int64_t total_bytes_ = 0;
 };
 
@@ -386,6 +477,7 @@ void load_materials(const Context& ctx, const Document& doc, std::vector<Materia
     materials.push_back(std::move(mat));
     uv_mappings.push_back(std::move(mapping));
   }
+  table.finish();
 }
 
 }  // namespace giq::scenes::gltf
