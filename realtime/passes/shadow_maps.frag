@@ -7,11 +7,13 @@
 #include "shaders/scene.glsl"
 #include "shaders/textures.glsl"
 
-layout(location = 0) in vec2 in_uv;
+layout(location = 0) in vec4 in_uv;
 layout(location = 1) in float in_alpha;
 
 void main() {
   // One draw covers every triangle in SceneGpu order, so gl_PrimitiveID is the global index.
   uint tri = uint(gl_PrimitiveID);
-  if (alpha_pixel_number(gl_FragCoord.xy, tri) >= alpha_coverage(scene_materials[scene_triangles[tri].v.w], tri, in_uv, in_alpha)) discard;
+  GpuMaterial m = scene_materials[scene_triangles[tri].v.w];
+  vec2 uv = (uint(m.textures2.z) & GIQ_SLOT_BASE_COLOR) != 0u ? in_uv.zw : in_uv.xy;
+  if (alpha_pixel_number(gl_FragCoord.xy, tri) >= alpha_coverage(m, tri, uv, in_alpha)) discard;
 }

@@ -11,7 +11,7 @@ layout(push_constant) uniform Push { ShadowPush pc; };
 #ifdef GIQ_ALPHA_MASK
 // Texture coordinates and COLOR_0's alpha for the cut-out test of shadow_maps.frag;
 // perspective-correct interpolation gives the surface point's own values.
-layout(location = 0) out vec2 out_uv;
+layout(location = 0) out vec4 out_uv;  // both mappings (GpuVertexExtra::uv)
 layout(location = 1) out float out_alpha;
 #endif
 
@@ -21,7 +21,7 @@ void main() {
   // mesh's triangles use only its own vertices).
   if (uint(gl_VertexIndex) - pc.skip.x < pc.skip.y) gl_Position = vec4(2.0, 0.0, 0.5, 1.0);
 #ifdef GIQ_ALPHA_MASK
-  out_uv = scene_vertex_extra[gl_VertexIndex].uv.xy;
+  out_uv = scene_vertex_extra[gl_VertexIndex].uv;
   out_alpha = scene_vertex_extra[gl_VertexIndex].color.a;
 #endif
 }

@@ -40,6 +40,16 @@ using uint = uint32_t;
 #define GIQ_TRIANGLE_HAS_TANGENTS 2u
 #define GIQ_TRIANGLE_HAS_NORMALS 4u
 #define GIQ_TRIANGLE_HAS_COLORS 8u
+#define GIQ_TRIANGLE_HAS_UVS2 16u
+
+// Texture slots, as bits of GpuMaterial::textures2.z: the slots whose texture reads the
+// material's second texture-coordinate mapping (scenes::TextureSlot, Material::uv2_slots).
+#define GIQ_SLOT_BASE_COLOR 1u
+#define GIQ_SLOT_METALLIC_ROUGHNESS 2u
+#define GIQ_SLOT_NORMAL 4u
+#define GIQ_SLOT_EMISSIVE 8u
+#define GIQ_SLOT_SPECULAR 16u
+#define GIQ_SLOT_SPECULAR_COLOR 32u
 
 // GpuTexture::info.w: wrap_s | wrap_t << 2 | filter << 4 | format << 5 (scenes::Wrap,
 // scenes::Filter, scenes::TexelFormat order).
@@ -63,7 +73,7 @@ struct GpuVertex {
 // Per vertex, beside GpuVertex, for scenes with textures or vertex colours only.
 struct GpuVertexExtra {
   vec4 tangent;  // xyz tangent, w bitangent sign (scenes::Mesh::tangents)
-  vec4 uv;       // xy: the UVs the material reads (scenes::Mesh::uvs)
+  vec4 uv;       // xy, zw: the material's first and second mapping (scenes::Mesh::uvs, uvs2)
   vec4 color;    // COLOR_0, linear RGBA (scenes::Mesh::colors); white without
 };
 
@@ -80,7 +90,7 @@ struct GpuMaterial {
   vec4 params;          // x metallic, y roughness, z specular factor, w 1 = double-sided
   ivec4 textures;       // texture indices, -1 = none: x base colour, y metallic-roughness,
                         // z emissive, w normal
-  ivec4 textures2;      // x specular (A channel), y specular colour (RGB)
+  ivec4 textures2;      // x specular (A channel), y specular colour (RGB), z the GIQ_SLOT_* reading uv.zw
   vec4 mask;            // x: alpha mode (0 OPAQUE, 1 MASK, 2 BLEND), y: alpha cutoff, z: normal scale
 };
 

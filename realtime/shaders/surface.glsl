@@ -53,7 +53,7 @@ HitNormals hit_normals(uint tri, float b1, float b2, vec3 dir) {
   if ((t.extra.z & GIQ_TRIANGLE_HAS_NORMALS) != 0u)
     ns = b0 * scene_vertices[t.v.x].normal.xyz + b1 * scene_vertices[t.v.y].normal.xyz + b2 * scene_vertices[t.v.z].normal.xyz;
 #ifdef GIQ_NORMAL_MAPS
-  if (m.textures.w >= 0 && (t.extra.z & GIQ_TRIANGLE_HAS_UVS) != 0u) {
+  if (m.textures.w >= 0 && (t.extra.z & (reads_uv2(m, GIQ_SLOT_NORMAL) ? GIQ_TRIANGLE_HAS_UVS2 : GIQ_TRIANGLE_HAS_UVS)) != 0u) {
     // Tangent frame: the mesh's tangents, else dp/du from the triangle's UVs (pbrt-v4,
     // "Triangle Intersection"); the bitangent is sign * cross(n, t) (glTF 2.0, 3.7.2.1).
     vec3 tg;
@@ -64,8 +64,11 @@ HitNormals hit_normals(uint tri, float b1, float b2, vec3 dir) {
       tg = t4.xyz;
       sign = t4.w < 0.0 ? -1.0 : 1.0;
     } else {
-      vec2 uv0 = scene_vertex_extra[t.v.x].uv.xy;
-      vec2 d1 = scene_vertex_extra[t.v.y].uv.xy - uv0, d2 = scene_vertex_extra[t.v.z].uv.xy - uv0;
+      // dp/du in the normal texture's own mapping.
+      bool second = reads_uv2(m, GIQ_SLOT_NORMAL);
+      vec4 ua = scene_vertex_extra[t.v.x].uv, ub = scene_vertex_extra[t.v.y].uv, uc = scene_vertex_extra[t.v.z].uv;
+      vec2 uv0 = second ? ua.zw : ua.xy;
+      vec2 d1 = (second ? ub.zw : ub.xy) - uv0, d2 = (second ? uc.zw : uc.xy) - uv0;
       float det = d1.x * d2.y - d1.y * d2.x;
       tg = det != 0.0 ? ((p1 - p0) * d2.y - (p2 - p0) * d1.y) / det : vec3(0.0);
       if (det < 0.0) {
@@ -79,7 +82,7 @@ HitNormals hit_normals(uint tri, float b1, float b2, vec3 dir) {
       tg /= tl;
       vec3 n0 = normalize(ns);
       vec3 bt = sign * cross(n0, tg);
-      vec3 n = texture_sample(m.textures.w, triangle_uv(tri, b1, b2)).xyz * 2.0 - 1.0;  // [0,1] -> [-1,1]
+      vec3 n = texture_sample(m.textures.w, triangle_uv(m, GIQ_SLOT_NORMAL, tri, b1, b2)).xyz * 2.0 - 1.0;  // [0,1] -> [-1,1]
       n.x *= m.mask.z;
       n.y *= m.mask.z;
       ns = tg * n.x + bt * n.y + n0 * n.z;
@@ -109,16 +112,16 @@ Surface hit_material(uint tri, float b1, float b2, vec3 n) {
   GpuMaterial m = scene_materials[scene_triangles[tri].v.w];
   Surface s = make_surface(m, n);
 #ifdef GIQ_SURFACE_TEXTURES
-  vec2 uv = triangle_uv(tri, b1, b2);
-  if (m.textures.x >= 0) s.base_color *= texture_sample(m.textures.x, uv).rgb;
+  vec2 uv = triangle_uv(tri, b1, b2, false), uv2 = m.textures2.z != 0 ? triangle_uv(tri, b1, b2, true) : uv;
+  if (m.textures.x >= 0) s.base_color *= texture_sample(m.textures.x, reads_uv2(m, GIQ_SLOT_BASE_COLOR) ? uv2 : uv).rgb;
   if (m.textures.y >= 0) {
-    vec4 mr = texture_sample(m.textures.y, uv);
+    vec4 mr = texture_sample(m.textures.y, reads_uv2(m, GIQ_SLOT_METALLIC_ROUGHNESS) ? uv2 : uv);
     s.metallic = clamp(m.params.x * mr.b, 0.0, 1.0);
     float r = clamp(m.params.y * mr.g, 0.0, 1.0);
     s.alpha = max(r * r, 1e-3);
   }
-  if (m.textures2.x >= 0) s.specular *= texture_sample(m.textures2.x, uv).a;
-  if (m.textures2.y >= 0) s.specular_color *= texture_sample(m.textures2.y, uv).rgb;
+  if (m.textures2.x >= 0) s.specular *= texture_sample(m.textures2.x, reads_uv2(m, GIQ_SLOT_SPECULAR) ? uv2 : uv).a;
+  if (m.textures2.y >= 0) s.specular_color *= texture_sample(m.textures2.y, reads_uv2(m, GIQ_SLOT_SPECULAR_COLOR) ? uv2 : uv).rgb;
   s.base_color *= triangle_color(tri, b1, b2).rgb;  // COLOR_0 (reference make_surface)
 #endif
   return s;

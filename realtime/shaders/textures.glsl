@@ -89,14 +89,19 @@ vec4 texture_sample(int index, vec2 uv) {
   return r;
 }
 
-// TEXCOORD_0 at barycentrics (b1, b2) of triangle `tri`; 0 when its mesh has none, as the
-// reference's interpolate_uv.
-vec2 triangle_uv(uint tri, float b1, float b2) {
+// Whether the texture in `slot` (GIQ_SLOT_*) of material m reads the second mapping.
+bool reads_uv2(GpuMaterial m, uint slot) { return (uint(m.textures2.z) & slot) != 0u; }
+
+// The first or second texture-coordinate mapping at barycentrics (b1, b2) of triangle `tri`;
+// 0 when its mesh has none, as scenes::Mesh::uv_at.
+vec2 triangle_uv(uint tri, float b1, float b2, bool second) {
   uvec4 v = scene_triangles[tri].v;
-  if ((scene_triangles[tri].extra.z & GIQ_TRIANGLE_HAS_UVS) == 0u) return vec2(0.0);
-  return (1.0 - b1 - b2) * scene_vertex_extra[v.x].uv.xy + b1 * scene_vertex_extra[v.y].uv.xy +
-         b2 * scene_vertex_extra[v.z].uv.xy;
+  if ((scene_triangles[tri].extra.z & (second ? GIQ_TRIANGLE_HAS_UVS2 : GIQ_TRIANGLE_HAS_UVS)) == 0u) return vec2(0.0);
+  vec4 a = scene_vertex_extra[v.x].uv, b = scene_vertex_extra[v.y].uv, c = scene_vertex_extra[v.z].uv;
+  return second ? (1.0 - b1 - b2) * a.zw + b1 * b.zw + b2 * c.zw : (1.0 - b1 - b2) * a.xy + b1 * b.xy + b2 * c.xy;
 }
+// The coordinates the texture in `slot` of the triangle's material m reads.
+vec2 triangle_uv(GpuMaterial m, uint slot, uint tri, float b1, float b2) { return triangle_uv(tri, b1, b2, reads_uv2(m, slot)); }
 
 // COLOR_0 at barycentrics (b1, b2) of triangle `tri`; white when its mesh has none, as
 // scenes::Mesh::color_at.
@@ -110,13 +115,15 @@ vec4 triangle_color(uint tri, float b1, float b2) {
 
 #ifdef GIQ_ALPHA_MASK
 // glTF 2.0, 3.9.4 "Alpha Coverage", as scenes::Scene::coverage: alpha is baseColorFactor.a
-// times the base colour texture's alpha (when the mesh has texture coordinates) times
+// times the base colour texture's alpha at uv (its mapping's coordinates, when the mesh has
+// them) times
 // COLOR_0's alpha (`vertex_alpha`); a MASK surface is there (1) or not (0) by alphaCutoff, a
 // BLEND surface is there with probability alpha (stochastic transparency).
 float alpha_coverage(GpuMaterial m, uint tri, vec2 uv, float vertex_alpha) {
   if (m.mask.x == 0.0) return 1.0;
   float alpha = m.base_color.a;
-  if (m.textures.x >= 0 && (scene_triangles[tri].extra.z & GIQ_TRIANGLE_HAS_UVS) != 0u) alpha *= texture_sample(m.textures.x, uv).a;
+  uint has = reads_uv2(m, GIQ_SLOT_BASE_COLOR) ? GIQ_TRIANGLE_HAS_UVS2 : GIQ_TRIANGLE_HAS_UVS;
+  if (m.textures.x >= 0 && (scene_triangles[tri].extra.z & has) != 0u) alpha *= texture_sample(m.textures.x, uv).a;
   alpha *= vertex_alpha;
   if (m.mask.x == 1.0) return alpha < m.mask.y ? 0.0 : 1.0;
   return clamp(alpha, 0.0, 1.0);
@@ -125,7 +132,7 @@ float alpha_coverage(GpuMaterial m, uint tri, vec2 uv, float vertex_alpha) {
 float alpha_coverage(uint tri, float b1, float b2) {
   GpuMaterial m = scene_materials[scene_triangles[tri].v.w];
   if (m.mask.x == 0.0) return 1.0;
-  return alpha_coverage(m, tri, triangle_uv(tri, b1, b2), triangle_color(tri, b1, b2).a);
+  return alpha_coverage(m, tri, triangle_uv(m, GIQ_SLOT_BASE_COLOR, tri, b1, b2), triangle_color(tri, b1, b2).a);
 }
 
 // Whether a point is absent, given xi uniform in [0, 1) from the caller: a hash of the ray
@@ -153,7 +160,7 @@ float alpha_pixel_number(vec2 frag, uint tri) {
 vec3 emission_at(GpuMaterial m, uint tri, float b1, float b2) {
   vec3 e = m.emissive.rgb;
 #if defined(GIQ_TEXTURES) || defined(GIQ_NORMAL_MAPS)
-  if (m.textures.z >= 0) e *= texture_sample(m.textures.z, triangle_uv(tri, b1, b2)).rgb;
+  if (m.textures.z >= 0) e *= texture_sample(m.textures.z, triangle_uv(m, GIQ_SLOT_EMISSIVE, tri, b1, b2)).rgb;
 #endif
   return e;
 }

@@ -133,7 +133,8 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat) {
     const uint32_t flags = (mesh.uvs.size() == mesh.positions.size() && !mesh.uvs.empty() ? GIQ_TRIANGLE_HAS_UVS : 0u) |
                            (mesh.tangents.size() == mesh.positions.size() && !mesh.tangents.empty() ? GIQ_TRIANGLE_HAS_TANGENTS : 0u) |
                            (mesh.normals.size() == mesh.positions.size() && !mesh.normals.empty() ? GIQ_TRIANGLE_HAS_NORMALS : 0u) |
-                           (mesh.colors.size() == mesh.positions.size() && !mesh.colors.empty() ? GIQ_TRIANGLE_HAS_COLORS : 0u);
+                           (mesh.colors.size() == mesh.positions.size() && !mesh.colors.empty() ? GIQ_TRIANGLE_HAS_COLORS : 0u) |
+                           (mesh.uvs2.size() == mesh.positions.size() && !mesh.uvs2.empty() ? GIQ_TRIANGLE_HAS_UVS2 : 0u);
     const uint32_t first = geometry_.mesh_first_triangle[m];
     for (size_t t = 0; t < mesh.triangles.size(); ++t) triangles[first + t].extra.z = flags;
   }
@@ -144,7 +145,8 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat) {
       for (size_t i = 0; i < mesh.positions.size(); ++i) {
         GpuVertexExtra e{glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(1.0f)};
         if (i < mesh.tangents.size()) e.tangent = mesh.tangents[i];
-        if (i < mesh.uvs.size()) e.uv = glm::vec4(mesh.uvs[i], 0.0f, 0.0f);
+        if (i < mesh.uvs.size()) e.uv.x = mesh.uvs[i].x, e.uv.y = mesh.uvs[i].y;
+        if (i < mesh.uvs2.size()) e.uv.z = mesh.uvs2[i].x, e.uv.w = mesh.uvs2[i].y;
         if (i < mesh.colors.size()) e.color = mesh.colors[i];
         vertex_extra.push_back(e);
       }
@@ -230,7 +232,7 @@ void SceneGpu::upload_materials(const scenes::Scene& scene) {
     const bool tex = needs_textures(scene.features);
     g.textures = tex ? glm::ivec4(m.base_color_texture, m.metallic_roughness_texture, m.emissive_texture, m.normal_texture)
                      : glm::ivec4(-1);
-    g.textures2 = tex ? glm::ivec4(m.specular_texture, m.specular_color_texture, -1, -1) : glm::ivec4(-1);
+    g.textures2 = tex ? glm::ivec4(m.specular_texture, m.specular_color_texture, int(m.uv2_slots), -1) : glm::ivec4(-1, -1, 0, -1);
     const float mode = m.alpha_mode == scenes::AlphaMode::Mask ? 1.0f : m.alpha_mode == scenes::AlphaMode::Blend ? 2.0f : 0.0f;
     g.mask = glm::vec4(mode, m.alpha_cutoff, m.normal_scale, 0.0f);
     materials.push_back(g);

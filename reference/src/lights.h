@@ -100,11 +100,6 @@ glm::vec3 emitted_radiance(const scenes::Scene& scene, const scenes::Material& m
   return e;
 }
 
-// Texture coordinate of barycentrics (b1, b2) on a triangle; zero when the mesh has no UVs.
-inline glm::vec2 interpolate_uv(const scenes::Mesh& mesh, const glm::uvec3& tri, float b1, float b2) {
-  if (mesh.uvs.empty()) return glm::vec2(0.0f);
-  return (1.0f - b1 - b2) * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];
-}
 
 template <unsigned F>
 LightSample LightSampler::sample(glm::vec3 p, float u_pick, float u_alias, glm::vec2 u) const {
@@ -132,7 +127,7 @@ LightSample LightSampler::sample(glm::vec3 p, float u_pick, float u_alias, glm::
       }
       s.normal = n;
       s.area = true;
-      s.radiance = emitted_radiance<F>(scene_, mat, interpolate_uv(*em.mesh, em.triangle, b.x, b.y));
+      s.radiance = emitted_radiance<F>(scene_, mat, em.mesh->uv_at(em.triangle, b.x, b.y, mat.uv2_slots & scenes::kEmissiveSlot));
       // A ray that found this point would have met the surface with probability equal to
       // its coverage (MASK cut-outs, BLEND): the light found here carries it too.
       if (mat.alpha_mode != scenes::AlphaMode::Opaque) s.radiance *= scene_.coverage(*em.mesh, em.triangle, b.x, b.y);

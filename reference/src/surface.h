@@ -53,17 +53,22 @@ Surface make_surface(const RenderContext& ctx, const Hit& hit, glm::vec3 dir) {
   glm::vec3 specular_color = m.specular_color;
   glm::vec2 uv(0.0f);
   if constexpr (has(F, kTextures)) {
-    uv = interpolate_uv(mesh, tri, b1, b2);
-    const auto tex = [&](int i) { return ctx.scene.textures[size_t(i)].sample(uv); };
-    if (m.base_color_texture >= 0) base *= glm::vec3(tex(m.base_color_texture));
+    // The material's first texture-coordinate mapping, and its second where a slot reads it.
+    uv = mesh.uv_at(tri, b1, b2);
+    const glm::vec2 uv2 = m.uv2_slots ? mesh.uv_at(tri, b1, b2, true) : uv;
+    const auto tex = [&](int i, scenes::TextureSlot slot) {
+      return ctx.scene.textures[size_t(i)].sample(m.uv2_slots & slot ? uv2 : uv);
+    };
+    if (m.base_color_texture >= 0) base *= glm::vec3(tex(m.base_color_texture, scenes::kBaseColorSlot));
     base *= glm::vec3(mesh.color_at(tri, b1, b2));
     if (m.metallic_roughness_texture >= 0) {
-      const glm::vec4 t = tex(m.metallic_roughness_texture);  // glTF: G = roughness, B = metallic
+      const glm::vec4 t = tex(m.metallic_roughness_texture, scenes::kMetallicRoughnessSlot);  // glTF: G = roughness, B = metallic
       roughness *= t.g, metallic *= t.b;
     }
-    if (m.specular_texture >= 0) specular *= tex(m.specular_texture).a;
-    if (m.specular_color_texture >= 0) specular_color *= glm::vec3(tex(m.specular_color_texture));
-    if (m.normal_texture >= 0 && !mesh.uvs.empty()) {
+    if (m.specular_texture >= 0) specular *= tex(m.specular_texture, scenes::kSpecularSlot).a;
+    if (m.specular_color_texture >= 0) specular_color *= glm::vec3(tex(m.specular_color_texture, scenes::kSpecularColorSlot));
+    const std::vector<glm::vec2>& normal_uvs = m.uv2_slots & scenes::kNormalSlot ? mesh.uvs2 : mesh.uvs;
+    if (m.normal_texture >= 0 && !normal_uvs.empty()) {
       // Tangent frame: the mesh's tangents, else dp/du from the triangle's UVs (pbrt-v4,
       // "Triangle Intersection": partial derivatives from the UV parameterisation).
       glm::vec3 t;
@@ -72,7 +77,7 @@ Surface make_surface(const RenderContext& ctx, const Hit& hit, glm::vec3 dir) {
         const glm::vec4 t4 = b0 * mesh.tangents[tri.x] + b1 * mesh.tangents[tri.y] + b2 * mesh.tangents[tri.z];
         t = glm::vec3(t4), sign = t4.w < 0.0f ? -1.0f : 1.0f;
       } else {
-        const glm::vec2 d1 = mesh.uvs[tri.y] - mesh.uvs[tri.x], d2 = mesh.uvs[tri.z] - mesh.uvs[tri.x];
+        const glm::vec2 d1 = normal_uvs[tri.y] - normal_uvs[tri.x], d2 = normal_uvs[tri.z] - normal_uvs[tri.x];
         const float det = d1.x * d2.y - d1.y * d2.x;
         t = det != 0.0f ? ((p1 - p0) * d2.y - (p2 - p0) * d1.y) / det : glm::vec3(0.0f);
         if (det < 0.0f) sign = -1.0f, t = -t;
@@ -82,7 +87,7 @@ Surface make_surface(const RenderContext& ctx, const Hit& hit, glm::vec3 dir) {
       if (tl > 0.0f && std::isfinite(tl)) {
         t /= tl;
         const glm::vec3 b = sign * glm::cross(glm::normalize(ns), t);
-        glm::vec3 n = glm::vec3(tex(m.normal_texture)) * 2.0f - 1.0f;  // glTF: [0,1] -> [-1,1]
+        glm::vec3 n = glm::vec3(tex(m.normal_texture, scenes::kNormalSlot)) * 2.0f - 1.0f;  // glTF: [0,1] -> [-1,1]
         n.x *= m.normal_scale, n.y *= m.normal_scale;
         ns = t * n.x + b * n.y + glm::normalize(ns) * n.z;
       }
@@ -108,7 +113,7 @@ Surface make_surface(const RenderContext& ctx, const Hit& hit, glm::vec3 dir) {
   s.bsdf.f0_dielectric = glm::min(0.04f * specular_color, glm::vec3(1.0f)) * specular;
   s.bsdf.f90_dielectric = specular;
   if constexpr (has(F, kEmissive)) {
-    if (m.is_emissive()) s.emission = emitted_radiance<F>(ctx.scene, m, uv);
+    if (m.is_emissive()) s.emission = emitted_radiance<F>(ctx.scene, m, m.uv2_slots & scenes::kEmissiveSlot ? mesh.uv_at(tri, b1, b2, true) : uv);
   }
   return s;
 }

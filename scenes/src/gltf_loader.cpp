@@ -185,7 +185,7 @@ bool uses_extension(const Context& ctx, const char* name) {
 }
 
 PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p, const std::string& w, std::vector<Material>& materials,
-                               const std::vector<UvMapping>& uv_mappings, int& default_material) {
+                               const std::vector<std::vector<UvMapping>>& uv_mappings, int& default_material) {
   PrimitiveSource out;
   const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
   if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
@@ -239,15 +239,21 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
     same_count(d, "TANGENT");
     for (size_t i = 0; i < n; ++i) out.tangents.emplace_back(d.values[4 * i], d.values[4 * i + 1], d.values[4 * i + 2], d.values[4 * i + 3]);
   }
-  // The one UV set the material's textures read, transformed (UvMapping).
-  const UvMapping uv = size_t(out.material) < uv_mappings.size() ? uv_mappings[size_t(out.material)] : UvMapping{};
-  const std::string uv_name = "TEXCOORD_" + std::to_string(uv.set);
-  if (auto a = p.attributes.find(uv_name); a != p.attributes.end()) {
-    const AccessorData d = read_accessor(ctx, a->second, w + ".attributes." + uv_name, uv_rule);
-    same_count(d, uv_name);
-    for (size_t i = 0; i < n; ++i) out.uvs.push_back(uv.apply(glm::vec2(d.values[2 * i], d.values[2 * i + 1])));
-    if (std::any_of(out.uvs.begin(), out.uvs.end(), [](glm::vec2 t) { return !std::isfinite(t.x) || !std::isfinite(t.y); }))
-      ctx.fail(uv.field + ".extensions.KHR_texture_transform", "maps " + w + ".attributes." + uv_name + " beyond the float range");
+  // The UV sets the material's textures read, transformed (UvMapping): TEXCOORD_0 when they
+  // say nothing.
+  std::vector<UvMapping> mappings = size_t(out.material) < uv_mappings.size() ? uv_mappings[size_t(out.material)] : std::vector<UvMapping>{};
+  if (mappings.empty()) mappings.push_back(UvMapping{});
+  for (size_t k = 0; k < mappings.size(); ++k) {
+    const UvMapping& uv = mappings[k];
+    std::vector<glm::vec2>& uvs = k == 0 ? out.uvs : out.uvs2;
+    const std::string uv_name = "TEXCOORD_" + std::to_string(uv.set);
+    if (auto a = p.attributes.find(uv_name); a != p.attributes.end()) {
+      const AccessorData d = read_accessor(ctx, a->second, w + ".attributes." + uv_name, uv_rule);
+      same_count(d, uv_name);
+      for (size_t i = 0; i < n; ++i) uvs.push_back(uv.apply(glm::vec2(d.values[2 * i], d.values[2 * i + 1])));
+      if (std::any_of(uvs.begin(), uvs.end(), [](glm::vec2 t) { return !std::isfinite(t.x) || !std::isfinite(t.y); }))
+        ctx.fail(uv.field + ".extensions.KHR_texture_transform", "maps " + w + ".attributes." + uv_name + " beyond the float range");
+    }
   }
   if (auto a = p.attributes.find("COLOR_0"); a != p.attributes.end()) {
     // Linear RGB(A) multiplying the base colour, alpha included (glTF 2.0 spec, 3.7.2.1 and
@@ -282,7 +288,7 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
     out.collapsed_triangles += collapsed;
     return collapsed;
   });
-  if (out.triangles.empty()) out.positions.clear(), out.normals.clear(), out.tangents.clear(), out.uvs.clear(), out.colors.clear();
+  if (out.triangles.empty()) out.positions.clear(), out.normals.clear(), out.tangents.clear(), out.uvs.clear(), out.uvs2.clear(), out.colors.clear();
   ctx.decoded_accessors.clear();
   return out;
 }
@@ -416,7 +422,7 @@ Scene load(const std::filesystem::path& path) {
   Scene s;
   s.path = path;
   s.content_hash = doc.content_hash;
-  std::vector<gltf::UvMapping> uv_mappings;
+  std::vector<std::vector<gltf::UvMapping>> uv_mappings;
   gltf::load_materials(ctx, doc, s.materials, s.textures, uv_mappings);
   gltf::load_nodes(ctx, *src);
   int default_material = -1;

@@ -312,40 +312,54 @@ glm::dmat3 texture_transform(const Context& ctx, const tinygltf::Value& e, const
   return T * R * S;
 }
 
-// Reads a textureInfo's texture-coordinate set and transform and checks they agree with the
-// material's other textures: renderers keep one UV set per vertex (UvMapping).
+// Reads a textureInfo's texture-coordinate set and transform into the material's mappings
+// (UvMapping): renderers keep two per vertex (Mesh::uvs, Mesh::uvs2), which covers glTF's
+// TEXCOORD_1 for some slots and per-texture KHR_texture_transform as real assets use them.
 class UvTable {
  public:
-  UvTable(const Context& ctx, UvMapping& out) : ctx_(ctx), out_(out) {}
+  UvTable(const Context& ctx, Material& material, std::vector<UvMapping>& out) : ctx_(ctx), material_(material), out_(out) {}
 
-  void use(int tex_coord, const tinygltf::Value* transform, const std::string& field) {
+  // The texture in `slot` reads this mapping.
+  void use(TextureSlot slot, int tex_coord, const tinygltf::Value* transform, const std::string& field) {
     if (tex_coord < 0) ctx_.fail(field + ".texCoord", "is " + std::to_string(tex_coord) + "; expected a non-negative integer");
     UvMapping m;
     m.set = tex_coord;
     m.field = field;
     if (transform) m.transform = texture_transform(ctx_, *transform, field + ".extensions.KHR_texture_transform", m.set);
-    if (out_.field.empty()) {
-      out_ = m;
-    } else if (m.set != out_.set || m.transform != out_.transform) {
-      ctx_.fail(field, "reads TEXCOORD_" + std::to_string(m.set) + (transform ? " with a texture transform" : "") + ", unlike " + out_.field +
-                           " (TEXCOORD_" + std::to_string(out_.set) + (out_.transform != glm::dmat3(1.0) ? " with a texture transform" : "") +
-                           "); giq applies one texture-coordinate set and transform per material");
+    size_t k = 0;
+    while (k < out_.size() && (out_[k].set != m.set || out_[k].transform != m.transform)) ++k;
+    if (k == out_.size()) {
+      if (out_.size() == 2) {
+        auto says = [](const UvMapping& u) {
+          return "TEXCOORD_" + std::to_string(u.set) + (u.transform != glm::dmat3(1.0) ? " with a texture transform" : "");
+        };
+        ctx_.fail(field, "reads " + says(m) + ", unlike " + out_[0].field + " (" + says(out_[0]) + ") and " + out_[1].field + " (" +
+                             says(out_[1]) + "); giq applies at most two texture-coordinate mappings (set and transform) per material");
+      }
+      out_.push_back(m);
     }
+    same_as(slot, k == 1);
   }
   // A core textureInfo (tinygltf's TextureInfo / NormalTextureInfo).
   template <class Info>
-  void use(const Info& info, const std::string& field) {
+  void use(TextureSlot slot, const Info& info, const std::string& field) {
     auto it = info.extensions.find("KHR_texture_transform");
-    use(info.texCoord, it == info.extensions.end() ? nullptr : &it->second, field);
+    use(slot, info.texCoord, it == info.extensions.end() ? nullptr : &it->second, field);
+  }
+  // The texture in `slot` reads the mapping `second` says.
+  void same_as(TextureSlot slot, bool second) {
+    material_.uv2_slots = second ? material_.uv2_slots | slot : material_.uv2_slots & ~uint32_t(slot);
   }
 
  private:
   const Context& ctx_;
-  UvMapping& out_;
+  Material& material_;
+  std::vector<UvMapping>& out_;
 };
 
 // A textureInfo given as an extension's JSON value (KHR_materials_specular textures).
-int extension_texture(const Context& ctx, TextureTable& table, UvTable& uv, const tinygltf::Value& info, const std::string& field, bool srgb) {
+int extension_texture(const Context& ctx, TextureTable& table, UvTable& uv, TextureSlot slot, const tinygltf::Value& info, const std::string& field,
+                      bool srgb) {
   if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsInt()) ctx.fail(field + ".index", "missing or not an integer");
   int tex_coord = 0;
   if (info.Has("texCoord")) {
@@ -354,22 +368,22 @@ int extension_texture(const Context& ctx, TextureTable& table, UvTable& uv, cons
   }
   const tinygltf::Value* transform = nullptr;
   if (info.Has("extensions") && info.Get("extensions").Has("KHR_texture_transform")) transform = &info.Get("extensions").Get("KHR_texture_transform");
-  uv.use(tex_coord, transform, field);
+  uv.use(slot, tex_coord, transform, field);
   return table.use(info.Get("index").GetNumberAsInt(), field, srgb);
 }
 
 }  // namespace
 
 void load_materials(const Context& ctx, const Document& doc, std::vector<Material>& materials, std::vector<Texture>& textures,
-                    std::vector<UvMapping>& uv_mappings) {
+                    std::vector<std::vector<UvMapping>>& uv_mappings) {
   TextureTable table(ctx, doc, textures);
   const auto& m = ctx.model;
   for (size_t i = 0; i < m.materials.size(); ++i) {
     const auto& g = m.materials[i];
     const std::string where = index_path("materials", i);
     Material mat;
-    UvMapping mapping;
-    UvTable uv(ctx, mapping);
+    std::vector<UvMapping> mappings;
+    UvTable uv(ctx, mat, mappings);
     mat.name = g.name.empty() ? "material" + std::to_string(i) : g.name;
     const auto& pbr = g.pbrMetallicRoughness;
     const std::string pw = where + ".pbrMetallicRoughness";
@@ -382,21 +396,21 @@ void load_materials(const Context& ctx, const Document& doc, std::vector<Materia
     mat.metallic = float(number(ctx, tinygltf::Value(pbr.metallicFactor), pw + ".metallicFactor", 0.0, 1.0));
     mat.roughness = float(number(ctx, tinygltf::Value(pbr.roughnessFactor), pw + ".roughnessFactor", 0.0, 1.0));
     if (pbr.baseColorTexture.index >= 0) {
-      uv.use(pbr.baseColorTexture, pw + ".baseColorTexture");
+      uv.use(kBaseColorSlot, pbr.baseColorTexture, pw + ".baseColorTexture");
       mat.base_color_texture = table.use(pbr.baseColorTexture.index, pw + ".baseColorTexture", true);
     }
     if (pbr.metallicRoughnessTexture.index >= 0) {
-      uv.use(pbr.metallicRoughnessTexture, pw + ".metallicRoughnessTexture");
+      uv.use(kMetallicRoughnessSlot, pbr.metallicRoughnessTexture, pw + ".metallicRoughnessTexture");
       mat.metallic_roughness_texture = table.use(pbr.metallicRoughnessTexture.index, pw + ".metallicRoughnessTexture", false);
     }
     if (g.normalTexture.index >= 0) {
-      uv.use(g.normalTexture, where + ".normalTexture");
+      uv.use(kNormalSlot, g.normalTexture, where + ".normalTexture");
       mat.normal_texture = table.use(g.normalTexture.index, where + ".normalTexture", false);
       mat.normal_scale = float(number(ctx, tinygltf::Value(g.normalTexture.scale), where + ".normalTexture.scale", -1e6, 1e6));
     }
     mat.emissive = color3(ctx, g.emissiveFactor, where + ".emissiveFactor", 1.0);
     if (g.emissiveTexture.index >= 0) {
-      uv.use(g.emissiveTexture, where + ".emissiveTexture");
+      uv.use(kEmissiveSlot, g.emissiveTexture, where + ".emissiveTexture");
       mat.emissive_texture = table.use(g.emissiveTexture.index, where + ".emissiveTexture", true);
     }
     if (g.alphaMode == "MASK") {
@@ -419,9 +433,9 @@ void load_materials(const Context& ctx, const Document& doc, std::vector<Materia
       const auto& e = it->second;
       if (e.Has("specularFactor")) mat.specular = float(number(ctx, e.Get("specularFactor"), sw + ".specularFactor", 0.0, 1.0));
       if (e.Has("specularColorFactor")) mat.specular_color = numbers<3>(ctx, e.Get("specularColorFactor"), sw + ".specularColorFactor", 0.0, 1e6);
-      if (e.Has("specularTexture")) mat.specular_texture = extension_texture(ctx, table, uv, e.Get("specularTexture"), sw + ".specularTexture", false);
+      if (e.Has("specularTexture")) mat.specular_texture = extension_texture(ctx, table, uv, kSpecularSlot, e.Get("specularTexture"), sw + ".specularTexture", false);
       if (e.Has("specularColorTexture"))
-        mat.specular_color_texture = extension_texture(ctx, table, uv, e.Get("specularColorTexture"), sw + ".specularColorTexture", true);
+        mat.specular_color_texture = extension_texture(ctx, table, uv, kSpecularColorSlot, e.Get("specularColorTexture"), sw + ".specularColorTexture", true);
     }
     if (auto it = g.extensions.find("KHR_materials_pbrSpecularGlossiness"); it != g.extensions.end()) {
       // Converted as glTF-Transform's metalRough() does: a dielectric whose F0 is the specular
@@ -435,7 +449,7 @@ void load_materials(const Context& ctx, const Document& doc, std::vector<Materia
       if (!e.IsObject()) ctx.fail(xw, "must be a JSON object");
       mat.base_color = glm::vec4(1.0f), mat.base_color_texture = -1;
       if (e.Has("diffuseFactor")) mat.base_color = numbers<4>(ctx, e.Get("diffuseFactor"), xw + ".diffuseFactor", 0.0, 1.0);
-      if (e.Has("diffuseTexture")) mat.base_color_texture = extension_texture(ctx, table, uv, e.Get("diffuseTexture"), xw + ".diffuseTexture", true);
+      if (e.Has("diffuseTexture")) mat.base_color_texture = extension_texture(ctx, table, uv, kBaseColorSlot, e.Get("diffuseTexture"), xw + ".diffuseTexture", true);
       const glm::vec3 specular = e.Has("specularFactor") ? numbers<3>(ctx, e.Get("specularFactor"), xw + ".specularFactor", 0.0, 1.0) : glm::vec3(1.0f);
       const double glossiness = e.Has("glossinessFactor") ? number(ctx, e.Get("glossinessFactor"), xw + ".glossinessFactor", 0.0, 1.0) : 1.0;
       mat.metallic = 0.0f, mat.metallic_roughness_texture = -1;
@@ -444,7 +458,8 @@ void load_materials(const Context& ctx, const Document& doc, std::vector<Materia
       mat.specular_color = specular / 0.04f;
       if (e.Has("specularGlossinessTexture")) {
         const std::string tw = xw + ".specularGlossinessTexture";
-        mat.specular_color_texture = extension_texture(ctx, table, uv, e.Get("specularGlossinessTexture"), tw, true);
+        mat.specular_color_texture = extension_texture(ctx, table, uv, kSpecularColorSlot, e.Get("specularGlossinessTexture"), tw, true);
+        uv.same_as(kMetallicRoughnessSlot, mat.uv2_slots & kSpecularColorSlot);
         mat.metallic_roughness_texture = table.roughness_from_glossiness(e.Get("specularGlossinessTexture").Get("index").GetNumberAsInt(), tw, glossiness);
         mat.roughness = 1.0f;  // the texture holds 1 - glossiness x A
       }
@@ -469,13 +484,14 @@ void load_materials(const Context& ctx, const Document& doc, std::vector<Materia
       // to zero while alpha (for MASK) stays.
       mat.emissive = glm::vec3(mat.base_color);
       mat.emissive_texture = mat.base_color_texture >= 0 ? table.use(pbr.baseColorTexture.index, pw + ".baseColorTexture", true) : -1;
+      uv.same_as(kEmissiveSlot, mat.uv2_slots & kBaseColorSlot);
       mat.base_color = glm::vec4(0.0f, 0.0f, 0.0f, mat.base_color.a);
       mat.metallic = 0.0f, mat.metallic_roughness_texture = -1;
       mat.specular = 0.0f, mat.specular_texture = -1, mat.specular_color_texture = -1;
       mat.normal_texture = -1;
     }
     materials.push_back(std::move(mat));
-    uv_mappings.push_back(std::move(mapping));
+    uv_mappings.push_back(std::move(mappings));
   }
   table.finish();
 }

@@ -12,10 +12,11 @@
 
 namespace giq::scenes::gltf {
 
-// The texture coordinates every texture of one material reads: a TEXCOORD_<set> attribute and
-// a KHR_texture_transform. They are applied to a primitive's UVs when it is loaded, so every
-// renderer reads the transformed set; an affine map commutes with barycentric interpolation,
-// so this is exact.
+// Texture coordinates a material's textures read: a TEXCOORD_<set> attribute and a
+// KHR_texture_transform. A material has up to two (Material::uv2_slots says which textures
+// read the second); they are applied to a primitive's UVs when it is loaded (Mesh::uvs,
+// Mesh::uvs2), so every renderer reads transformed sets; an affine map commutes with
+// barycentric interpolation, so this is exact.
 struct UvMapping {
   int set = 0;                // TEXCOORD_<set>
   glm::dmat3 transform{1.0};  // of (u, v, 1): offset * rotation * scale (KHR_texture_transform)
@@ -24,8 +25,8 @@ struct UvMapping {
 };
 
 // Fills `materials` (one per glTF material, same order), the textures they use and each
-// material's UV mapping (`uv`, same order).
+// material's UV mappings (`uv`, same order; none, one or two each).
 void load_materials(const Context& ctx, const Document& doc, std::vector<Material>& materials, std::vector<Texture>& textures,
-                    std::vector<UvMapping>& uv);
+                    std::vector<std::vector<UvMapping>>& uv);
 
 }  // namespace giq::scenes::gltf

@@ -38,7 +38,7 @@ std::string node_label(const SceneSource& src, int i) {
 }
 
 void emit_mesh(const PrimitiveSource& p, const glm::dmat4& M, glm::dvec3 origin, Mesh& m, size_t& dropped) {
-  m.positions.clear(), m.normals.clear(), m.tangents.clear(), m.uvs.clear(), m.colors.clear(), m.triangles.clear();
+  m.positions.clear(), m.normals.clear(), m.tangents.clear(), m.uvs.clear(), m.uvs2.clear(), m.colors.clear(), m.triangles.clear();
   dropped += p.collapsed_triangles;
   if (p.triangles.empty()) return;
   const glm::dmat3 L(M);
@@ -90,6 +90,7 @@ void emit_mesh(const PrimitiveSource& p, const glm::dmat4& M, glm::dvec3 origin,
         m.positions.push_back(pos[v]);
         m.normals.push_back(face[k]);
         if (!p.uvs.empty()) m.uvs.push_back(p.uvs[v]);
+        if (!p.uvs2.empty()) m.uvs2.push_back(p.uvs2[v]);
         if (!p.colors.empty()) m.colors.push_back(p.colors[v]);
         if (!p.tangents.empty()) m.tangents.push_back(tangent(v, face[k]));
       }
@@ -120,6 +121,7 @@ void emit_mesh(const PrimitiveSource& p, const glm::dmat4& M, glm::dvec3 origin,
     if (remap[i] == UINT32_MAX) continue;
     m.normals.push_back(normal[i]);
     if (!p.uvs.empty()) m.uvs.push_back(p.uvs[i]);
+    if (!p.uvs2.empty()) m.uvs2.push_back(p.uvs2[i]);
     if (!p.colors.empty()) m.colors.push_back(p.colors[i]);
     if (!p.tangents.empty()) m.tangents.push_back(tangent(i, normal[i]));
   }

@@ -19,9 +19,10 @@ namespace {
 // at each sub-triangle's centroid. Exact for textures linear over the triangle, and for
 // nearest-filtered texels whose edges fall on the subdivision; converging to the area
 // average as k grows otherwise.
-glm::vec3 mean_emission(const Mesh& m, const glm::uvec3& t, const Texture& tex, int max_half_k) {
-  if (m.uvs.empty()) return glm::vec3(tex.sample(glm::vec2(0.0f)));
-  const glm::vec2 a = m.uvs[t.x], b = m.uvs[t.y], c = m.uvs[t.z];
+glm::vec3 mean_emission(const Mesh& m, const glm::uvec3& t, const Texture& tex, bool second, int max_half_k) {
+  const std::vector<glm::vec2>& uvs = second ? m.uvs2 : m.uvs;
+  if (uvs.empty()) return glm::vec3(tex.sample(glm::vec2(0.0f)));
+  const glm::vec2 a = uvs[t.x], b = uvs[t.y], c = uvs[t.z];
   const glm::vec2 size(float(tex.width), float(tex.height));
   const float edge = std::max({glm::length((b - a) * size), glm::length((c - b) * size), glm::length((a - c) * size)});
   // Clamped as a float: a huge UV edge would overflow the conversion to int.
@@ -86,10 +87,9 @@ float Scene::coverage(const Mesh& m, const glm::uvec3& t, float b1, float b2) co
   const Material& mat = materials[size_t(m.material)];
   if (mat.alpha_mode == AlphaMode::Opaque) return 1.0f;
   float alpha = mat.base_color.a;
-  if (mat.base_color_texture >= 0 && !m.uvs.empty()) {
-    const glm::vec2 uv = (1.0f - b1 - b2) * m.uvs[t.x] + b1 * m.uvs[t.y] + b2 * m.uvs[t.z];
-    alpha *= textures[size_t(mat.base_color_texture)].sample(uv).a;
-  }
+  const bool second = mat.uv2_slots & kBaseColorSlot;
+  if (mat.base_color_texture >= 0 && !(second ? m.uvs2 : m.uvs).empty())
+    alpha *= textures[size_t(mat.base_color_texture)].sample(m.uv_at(t, b1, b2, second)).a;
   alpha *= m.color_at(t, b1, b2).a;
   return mat.coverage(alpha);
 }
@@ -138,7 +138,7 @@ void Scene::derive() {
       e.mesh = mi;
       e.triangle = ti;
       e.area = 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
-      e.radiance = tex ? mat.emissive * mean_emission(m, t, *tex, max_half_k) : mat.emissive;
+      e.radiance = tex ? mat.emissive * mean_emission(m, t, *tex, mat.uv2_slots & kEmissiveSlot, max_half_k) : mat.emissive;
       if (!(e.radiance.r > 0.0f || e.radiance.g > 0.0f || e.radiance.b > 0.0f) || !(e.area > 0.0f)) continue;
       // A Lambertian emitter of radiance L and area A emits pi * A * L (per side).
       e.power = float(std::numbers::pi * e.area * luminance(e.radiance) * (mat.double_sided ? 2.0 : 1.0));

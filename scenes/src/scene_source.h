@@ -17,7 +17,7 @@ struct PrimitiveSource {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // empty: flat normals are generated when posed
   std::vector<glm::vec4> tangents;
-  std::vector<glm::vec2> uvs;
+  std::vector<glm::vec2> uvs, uvs2;  // Mesh::uvs, Mesh::uvs2
   std::vector<glm::vec4> colors;  // COLOR_0; empty: white
   std::vector<glm::uvec3> triangles;  // degenerate ones are dropped when posed
   size_t collapsed_triangles = 0;     // dropped when loaded: two equal corners, no area in any pose

@@ -77,6 +77,20 @@ TEST_F(TexturesReferenceTest, PtAgreesWithinNoiseOnATexturedGltfRoom) {
   test::expect_agreement(gpu, cpu, "textured_room.gltf");
 }
 
+// Textures on two mappings in one material (two_uv_sets.gltf): the base colour on TEXCOORD_0,
+// the emissive texture and a normal map (tangents from TEXCOORD_1's dp/du) on a transformed
+// TEXCOORD_1; the emitting floor is picked by its texture-averaged power on both sides.
+TEST_F(TexturesReferenceTest, PtAgreesWithinNoiseOnTwoUvMappings) {
+  const scenes::Scene s = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes/two_uv_sets.gltf");
+  ASSERT_TRUE(s.features.textures && s.features.normal_maps && s.features.emissive_meshes);
+  ASSERT_NE(s.materials[0].uv2_slots, 0u);
+  const int size = 48;
+  const uint32_t spp = 64;
+  const image::Image gpu = render(s, "pt", size, {"samples_per_frame=" + std::to_string(spp), "seed=7"});
+  const image::Image cpu = reference(s, size, spp);
+  test::expect_agreement(gpu, cpu, "two_uv_sets.gltf");
+}
+
 // A Lambertian plane with a bilinear base-colour checker and a normal map of bumps
 // (tangents from the UVs on one half, given per vertex on the other, mirrored), lit by a
 // point light: `direct` is exact here (no occluder, punctual light), so it must equal the

@@ -253,6 +253,39 @@ TEST(Loader, MaterialsAndExtensions) {
   EXPECT_TRUE(s.features.normal_maps && s.features.textures && s.features.specular && s.features.emissive_meshes);
 }
 
+// Two mappings in one material (MultiUVTest, TextureTransformMultiTest): the base colour on
+// TEXCOORD_0 as it is, the emissive and normal textures on TEXCOORD_1 with a transform, which
+// lands in Mesh::uvs2 with their slots marked.
+TEST(Loader, TexturesOnTwoMappingsKeepBoth) {
+  const Scene s = load(data("two_uv_sets.gltf"));
+  EXPECT_TRUE(s.warnings.empty());
+  const Material& m = s.materials[0];
+  ASSERT_EQ(m.name, "two_sets");
+  EXPECT_EQ(m.uv2_slots, uint32_t(kEmissiveSlot | kNormalSlot));
+  EXPECT_GE(m.base_color_texture, 0);
+  EXPECT_GE(m.emissive_texture, 0);
+  EXPECT_GE(m.normal_texture, 0);
+  EXPECT_EQ(s.materials[1].uv2_slots, 0u);
+  const Mesh& floor = s.meshes[0];
+  ASSERT_EQ(floor.name, "floor");
+  ASSERT_EQ(floor.uvs.size(), 4u);
+  ASSERT_EQ(floor.uvs2.size(), 4u);
+  const glm::vec2 uv0[4] = {{0, 2}, {2, 2}, {2, 0}, {0, 0}}, uv1[4] = {{1, 0}, {1, 1}, {0, 1}, {0, 0}};
+  // KHR_texture_transform: offset + R(rotation) * scale * uv, R = [cos sin; -sin cos].
+  const double c = std::cos(0.5), sn = std::sin(0.5);
+  for (size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(floor.uvs[i], uv0[i]);
+    const double x = 2.0 * uv1[i].x, y = 1.5 * uv1[i].y;
+    EXPECT_NEAR(floor.uvs2[i].x, 0.25 + c * x + sn * y, 1e-6);
+    EXPECT_NEAR(floor.uvs2[i].y, -sn * x + c * y, 1e-6);
+  }
+  EXPECT_TRUE(s.meshes[1].uvs.empty() && s.meshes[1].uvs2.empty());
+  // Mesh::uv_at interpolates the mapping asked for.
+  EXPECT_NEAR(floor.uv_at(floor.triangles[0], 0.25f, 0.5f, true).x,
+              0.25f * floor.uvs2[floor.triangles[0].x].x + 0.25f * floor.uvs2[floor.triangles[0].y].x + 0.5f * floor.uvs2[floor.triangles[0].z].x,
+              1e-6);
+}
+
 TEST(Loader, TextureTransformAndSecondUvSetAreAppliedToTheUvs) {
   const Scene s = load(data("uv_sets.gltf"));
   ASSERT_EQ(s.meshes.size(), 2u);

@@ -185,6 +185,69 @@ def uv_sets():
     return g.finish()
 
 
+def two_uv_sets():
+    """Textures on two texture-coordinate mappings in one material, as MultiUVTest and
+    TextureTransformMultiTest have them: an sRGB checker base colour on TEXCOORD_0, and an
+    emissive texture and a normal map (no TANGENT: the tangent frame comes from TEXCOORD_1's
+    own dp/du) on TEXCOORD_1 with a KHR_texture_transform. The floor emits and is lit by a
+    point light; white walls show both. The real-time tests compare `pt` with the reference."""
+    g = Gltf()
+    g.doc["extensionsUsed"] = ["KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform"]
+
+    def texture(png, sampler):
+        return g.add("textures", {"source": g.add("images", {"uri": "data:image/png;base64," + base64.b64encode(png).decode()}),
+                                  "sampler": sampler})
+
+    linear = g.add("samplers", {"magFilter": 9729, "wrapS": 10497, "wrapT": 10497})
+    nearest = g.add("samplers", {"magFilter": 9728, "wrapS": 10497, "wrapT": 10497})
+    checker = png_rgba(4, 4, [[(220, 200, 60, 255) if (x + y) % 2 else (60, 120, 220, 255) for x in range(4)] for y in range(4)])
+    glow = png_rgba(2, 2, [[(255, 60, 20, 255), (10, 10, 10, 255)], [(10, 10, 10, 255), (40, 255, 80, 255)]])
+    bumps = []
+    for x in range(8):
+        tilt = 0.6 * math.sin(2 * math.pi * (x + 0.5) / 8)
+        length = math.sqrt(tilt * tilt + 1.0)
+        bumps.append(tuple(int(round(255 * (0.5 * c / length + 0.5))) for c in (tilt, 0.0, 1.0)) + (255,))
+    normal = png_rgba(8, 1, [bumps])
+    transform = {"KHR_texture_transform": {"offset": [0.25, 0], "rotation": 0.5, "scale": [2, 1.5]}}
+    floor_m = g.add("materials", {
+        "name": "two_sets",
+        "pbrMetallicRoughness": {"baseColorTexture": {"index": texture(checker, linear)}, "metallicFactor": 0.0, "roughnessFactor": 0.7},
+        "emissiveTexture": {"index": texture(glow, nearest), "texCoord": 1, "extensions": transform},
+        "emissiveFactor": [1, 1, 1],
+        "normalTexture": {"index": texture(normal, linear), "texCoord": 1, "extensions": transform},
+        "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 1.5}}})
+    wall_m = g.add("materials", {"name": "white", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.8, 0.8, 1], "metallicFactor": 0.0},
+                                 "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}})
+    g.doc["extensionsUsed"].append("KHR_materials_specular")
+
+    def quad(name, p, material, uv0=None, uv1=None):
+        a, b, c = p[0], p[1], p[2]
+        e1 = [b[i] - a[i] for i in range(3)]
+        e2 = [c[i] - a[i] for i in range(3)]
+        n = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]]
+        length = math.sqrt(sum(x * x for x in n))
+        attrs = {"POSITION": g.accessor(p, "VEC3", minmax=True), "NORMAL": g.accessor([[x / length for x in n]] * 4, "VEC3")}
+        if uv0:
+            attrs["TEXCOORD_0"] = g.accessor(uv0, "VEC2")
+        if uv1:
+            attrs["TEXCOORD_1"] = g.accessor(uv1, "VEC2")
+        m = g.add("meshes", {"name": name, "primitives": [
+            {"attributes": attrs, "indices": g.accessor([0, 1, 2, 0, 2, 3], "SCALAR", USHORT), "material": material}]})
+        g.node(name=name, mesh=m)
+
+    # TEXCOORD_0 tiles the checker twice; TEXCOORD_1 runs the other way round the quad.
+    quad("floor", [(-1.5, 0, 1.5), (1.5, 0, 1.5), (1.5, 0, -1.5), (-1.5, 0, -1.5)], floor_m,
+         uv0=[(0, 2), (2, 2), (2, 0), (0, 0)], uv1=[(1, 0), (1, 1), (0, 1), (0, 0)])
+    quad("back", [(-1.5, 0, -1.5), (1.5, 0, -1.5), (1.5, 2.5, -1.5), (-1.5, 2.5, -1.5)], wall_m)
+    quad("left", [(-1.5, 0, 1.5), (-1.5, 0, -1.5), (-1.5, 2.5, -1.5), (-1.5, 2.5, 1.5)], wall_m)
+    quad("right", [(1.5, 0, -1.5), (1.5, 0, 1.5), (1.5, 2.5, 1.5), (1.5, 2.5, -1.5)], wall_m)
+    g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [{"name": "bulb", "type": "point", "intensity": 4.0}]}}
+    g.node(name="bulb", translation=[0.5, 2.0, 0.5], extensions={"KHR_lights_punctual": {"light": 0}})
+    d = g.finish()
+    d["extras"] = {"giq": {"views": [{"name": "front", "eye": [0, 2.0, 3.4], "target": [0, 0.4, 0], "yfov_deg": 60}]}}
+    return d
+
+
 def extensions():
     """Extensions real assets use that giq maps onto its materials at load (unlit, ior),
     primitives it drops with a warning (points, lines) and optional extensions it ignores."""
@@ -566,9 +629,10 @@ def hostile():
         return f
     good_png = png_rgba(1, 1, [[(255, 255, 255, 255)]])
     case("bad_texture.gltf", "images[0]", minimal(a=texture(b"\x89PNG\r\n\x1a\n this is not an image")))
-    def mixed_uv_sets(d, g):
-        d["materials"][0]["emissiveTexture"] = {"index": 0, "texCoord": 1}
-    case("mixed_uv_sets.gltf", "materials[0].emissiveTexture", minimal(a=texture(good_png), b=mixed_uv_sets))
+    def three_uv_mappings(d, g):
+        d["materials"][0]["normalTexture"] = {"index": 0, "texCoord": 1}
+        d["materials"][0]["emissiveTexture"] = {"index": 0, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0]}}}
+    case("three_uv_mappings.gltf", "materials[0].emissiveTexture", minimal(a=texture(good_png), b=three_uv_mappings))
     case("bad_texture_transform.gltf", "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.scale",
          minimal(a=texture(good_png, ext={"KHR_texture_transform": {"scale": [2]}})))
 
@@ -625,6 +689,7 @@ def main():
     write(os.path.join(HERE, "materials.gltf"), materials())
     write(os.path.join(HERE, "textured_room.gltf"), textured_room())
     write(os.path.join(HERE, "uv_sets.gltf"), uv_sets())
+    write(os.path.join(HERE, "two_uv_sets.gltf"), two_uv_sets())
     write(os.path.join(HERE, "extensions.gltf"), extensions())
     write(os.path.join(HERE, "instancing.gltf"), instancing())
     write(os.path.join(HERE, "external.gltf"), external())

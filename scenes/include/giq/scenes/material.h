@@ -2,9 +2,11 @@
 // glTF 2.0 metallic-roughness material with the extensions giq understands
 // (KHR_materials_emissive_strength, KHR_materials_specular; KHR_materials_ior and
 // KHR_materials_unlit are mapped onto these fields when loaded). Texture members index
-// Scene::textures; -1 means "no texture". Every texture reads Mesh::uvs.
+// Scene::textures; -1 means "no texture". A texture reads Mesh::uvs, or Mesh::uvs2 where its
+// slot's bit is in Material::uv2_slots.
 
 #include <algorithm>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <string>
 
@@ -14,6 +16,16 @@ namespace giq::scenes {
 // the surface with probability alpha and passes it otherwise, so the reference converges to
 // the surface's alpha-weighted average, whatever order the surfaces are in.
 enum class AlphaMode { Opaque, Mask, Blend };
+
+// A material's texture slots, as bits of Material::uv2_slots (and of the GPU's GIQ_SLOT_*).
+enum TextureSlot : uint32_t {
+  kBaseColorSlot = 1,
+  kMetallicRoughnessSlot = 2,
+  kNormalSlot = 4,
+  kEmissiveSlot = 8,
+  kSpecularSlot = 16,
+  kSpecularColorSlot = 32,
+};
 
 struct Material {
   std::string name;
@@ -35,6 +47,9 @@ struct Material {
   AlphaMode alpha_mode = AlphaMode::Opaque;
   float alpha_cutoff = 0.5f;
   bool double_sided = false;
+  // The slots whose texture reads the material's second texture-coordinate mapping (a
+  // TEXCOORD_n and KHR_texture_transform of their own, baked into Mesh::uvs2).
+  uint32_t uv2_slots = 0;
 
   bool is_emissive() const { return emissive != glm::vec3(0.0f); }
   // How much of a point with this `alpha` (baseColorFactor.a x texture alpha x COLOR_0 alpha)

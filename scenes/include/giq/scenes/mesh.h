@@ -21,11 +21,21 @@ struct Mesh {
   std::vector<glm::vec3> positions;   // local frame
   std::vector<glm::vec3> normals;     // unit; flat normals generated when the file has none
   std::vector<glm::vec4> tangents;    // xyz unit, w = bitangent sign; empty when absent
-  std::vector<glm::vec2> uvs;         // the set the material reads, texture transform applied; empty when absent
+  // Texture coordinates of the material's first and second mapping (TEXCOORD_n with
+  // KHR_texture_transform applied; Material::uv2_slots says which textures read uvs2); empty
+  // when absent.
+  std::vector<glm::vec2> uvs, uvs2;
   std::vector<glm::vec4> colors;      // COLOR_0, linear RGBA multiplying the base colour; empty when absent
   std::vector<glm::uvec3> triangles;  // vertex indices; degenerate triangles removed
 
   size_t triangle_count() const { return triangles.size(); }
+  // Texture coordinates at barycentrics (b1, b2) of triangle t in the first or second mapping,
+  // (0, 0) where the mesh has none; the GPU's triangle_uv interpolates the same way.
+  glm::vec2 uv_at(const glm::uvec3& t, float b1, float b2, bool second = false) const {
+    const std::vector<glm::vec2>& set = second ? uvs2 : uvs;
+    if (set.empty()) return glm::vec2(0.0f);
+    return (1.0f - b1 - b2) * set[t.x] + b1 * set[t.y] + b2 * set[t.z];
+  }
   // COLOR_0 at barycentrics (b1, b2) of triangle t, white without vertex colours; the GPU's
   // triangle_color (realtime/shaders/textures.glsl) interpolates the same way.
   glm::vec4 color_at(const glm::uvec3& t, float b1, float b2) const {
