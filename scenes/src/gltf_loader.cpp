@@ -423,7 +423,8 @@ Scene load(const std::filesystem::path& path) {
   s.path = path;
   s.content_hash = doc.content_hash;
   std::vector<std::vector<gltf::UvMapping>> uv_mappings;
-  gltf::load_materials(ctx, doc, s.materials, s.textures, uv_mappings);
+  // Images decode on worker threads while the geometry is read.
+  const std::unique_ptr<gltf::TextureDecoding> textures = gltf::load_materials(ctx, doc, s.materials, s.textures, uv_mappings);
   gltf::load_nodes(ctx, *src);
   int default_material = -1;
   for (size_t m = 0; m < model.meshes.size(); ++m) {
@@ -436,6 +437,7 @@ Scene load(const std::filesystem::path& path) {
   gltf::load_cameras(ctx, *src);
   gltf::load_lights(ctx, *src);
   gltf::load_animations(ctx, *src);
+  textures->finish();
   s.warnings = doc.warnings;
   s.warnings.insert(s.warnings.end(), ctx.warnings.begin(), ctx.warnings.end());
 

@@ -31,7 +31,7 @@ std::string decode_failure() {
   return r ? r : "unknown reason";
 }
 
-class TextureTable {
+class TextureTable : public TextureDecoding {
  public:
   TextureTable(const Context& ctx, const Document& doc, std::vector<Texture>& out) : ctx_(ctx), doc_(doc), out_(out) {}
 
@@ -83,22 +83,33 @@ class TextureTable {
   // Decodes every image the materials use, in parallel, each once, and fills the textures'
   // texels. Checks and errors come in the order the materials asked for the images, so the
   // first bad image is reported as a sequential load would.
-  void finish() {
-    std::vector<int> images;  // first-use order
-    std::map<int, Header> headers;
+  // Checks every image's header (errors now, in first-use order) and starts decoding them on
+  // worker threads, one per core, while the caller goes on (the loader reads the geometry).
+  void start() {
     for (const auto& r : requests_) {
-      if (!headers.count(r.image)) headers[r.image] = header(r.image), images.push_back(r.image);
-      const Header& h = headers[r.image];
+      if (!headers_.count(r.image)) headers_[r.image] = header(r.image), images_.push_back(r.image);
+      const Header& h = headers_[r.image];
       // 8-bit texels serve both colour spaces; 16-bit ones become floats once per colour space.
       if (h.sixteen ? counted_.insert({r.image, r.srgb}).second : counted_.insert({r.image, false}).second)
         count_bytes(int64_t(h.width) * h.height * (h.sixteen ? 16 : 4), index_path("images", size_t(r.image)));
     }
-    std::vector<Raw> raw(images.size());
-    parallel_for(images.size(), [&](size_t i) { raw[i] = decode(images[i], headers[images[i]]); });
+    raw_.resize(images_.size());
+    const size_t threads = std::min<size_t>(images_.size(), std::max(1u, std::thread::hardware_concurrency()));
+    for (size_t t = 0; t < threads; ++t)
+      workers_.emplace_back([this] {
+        for (size_t i; (i = next_.fetch_add(1)) < images_.size();) raw_[i] = decode(images_[i], headers_.at(images_[i]));
+      });
+  }
+
+  // Waits for the workers and fills the textures' texels; the first image that failed (in
+  // first-use order) is the error.
+  void finish() override {
+    join();
+    std::vector<Raw>& raw = raw_;
     std::map<int, size_t> slot;
-    for (size_t i = 0; i < images.size(); ++i) {
-      if (!raw[i].error.empty()) ctx_.fail(index_path("images", size_t(images[i])), raw[i].error);
-      slot[images[i]] = i;
+    for (size_t i = 0; i < images_.size(); ++i) {
+      if (!raw[i].error.empty()) ctx_.fail(index_path("images", size_t(images_[i])), raw[i].error);
+      slot[images_[i]] = i;
     }
     std::map<std::pair<int, bool>, std::shared_ptr<const std::vector<uint32_t>>> floats;
     for (const auto& r : requests_) {
@@ -122,7 +133,10 @@ class TextureTable {
       tex.words = f, tex.format = TexelFormat::Rgba32F;
     }
     for (const auto& j : derived_jobs_) make_roughness(j);
+    raw_.clear();
   }
+
+  ~TextureTable() override { join(); }  // an error elsewhere in the file: the workers still finish first
 
  private:
   struct Header {
@@ -160,20 +174,9 @@ class TextureTable {
     }
   }
 
-  // Runs f(0..n-1) on up to one thread per core.
-  static void parallel_for(size_t n, const std::function<void(size_t)>& f) {
-    const size_t threads = std::min<size_t>(n, std::max(1u, std::thread::hardware_concurrency()));
-    if (threads <= 1) {
-      for (size_t i = 0; i < n; ++i) f(i);
-      return;
-    }
-    std::atomic<size_t> next{0};
-    std::vector<std::thread> pool;
-    for (size_t t = 0; t < threads; ++t)
-      pool.emplace_back([&] {
-        for (size_t i; (i = next.fetch_add(1)) < n;) f(i);
-      });
-    for (auto& t : pool) t.join();
+  void join() {
+    for (auto& w : workers_)
+      if (w.joinable()) w.join();
   }
 
   // The image's size and depth from its header, refused before decoding when too large.
@@ -268,6 +271,12 @@ class TextureTable {
   std::vector<DerivedJob> derived_jobs_;
   std::set<std::pair<int, bool>> counted_;  // (image, colour space) whose bytes are counted
   int64_t total_bytes_ = 0;
+  // Decoding (start, finish): images in first-use order, their headers, the workers' results.
+  std::vector<int> images_;
+  std::map<int, Header> headers_;
+  std::vector<Raw> raw_;
+  std::atomic<size_t> next_{0};
+  std::vector<std::thread> workers_;
 };
 
 double number(const Context& ctx, const tinygltf::Value& v, const std::string& field, double lo, double hi) {
@@ -374,9 +383,10 @@ int extension_texture(const Context& ctx, TextureTable& table, UvTable& uv, Text
 
 }  // namespace
 
-void load_materials(const Context& ctx, const Document& doc, std::vector<Material>& materials, std::vector<Texture>& textures,
-                    std::vector<std::vector<UvMapping>>& uv_mappings) {
-  TextureTable table(ctx, doc, textures);
+std::unique_ptr<TextureDecoding> load_materials(const Context& ctx, const Document& doc, std::vector<Material>& materials,
+                                                std::vector<Texture>& textures, std::vector<std::vector<UvMapping>>& uv_mappings) {
+  auto decoding = std::make_unique<TextureTable>(ctx, doc, textures);
+  TextureTable& table = *decoding;
   const auto& m = ctx.model;
   for (size_t i = 0; i < m.materials.size(); ++i) {
     const auto& g = m.materials[i];
@@ -493,7 +503,8 @@ void load_materials(const Context& ctx, const Document& doc, std::vector<Materia
     materials.push_back(std::move(mat));
     uv_mappings.push_back(std::move(mappings));
   }
-  table.finish();
+  table.start();
+  return decoding;
 }
 
 }  // namespace giq::scenes::gltf

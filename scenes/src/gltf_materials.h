@@ -2,6 +2,7 @@
 // glTF materials and the textures they sample, decoded once to linear float RGBA.
 
 #include <glm/glm.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,9 +25,19 @@ struct UvMapping {
   glm::vec2 apply(glm::vec2 uv) const { return glm::vec2(transform * glm::dvec3(glm::dvec2(uv), 1.0)); }
 };
 
-// Fills `materials` (one per glTF material, same order), the textures they use and each
-// material's UV mappings (`uv`, same order; none, one or two each).
-void load_materials(const Context& ctx, const Document& doc, std::vector<Material>& materials, std::vector<Texture>& textures,
-                    std::vector<std::vector<UvMapping>>& uv);
+// The textures' images, decoding on worker threads (one per core) while the loader reads the
+// geometry. finish() waits, fills the textures' texels and throws the first image's error;
+// destroying it unfinished (another error) waits for the workers too.
+class TextureDecoding {
+ public:
+  virtual ~TextureDecoding() = default;
+  virtual void finish() = 0;
+};
+
+// Fills `materials` (one per glTF material, same order), the textures they use (texels once
+// the returned decoding finishes) and each material's UV mappings (`uv`, same order; none,
+// one or two each). Header errors (size, format) are thrown here.
+std::unique_ptr<TextureDecoding> load_materials(const Context& ctx, const Document& doc, std::vector<Material>& materials,
+                                                std::vector<Texture>& textures, std::vector<std::vector<UvMapping>>& uv);
 
 }  // namespace giq::scenes::gltf

@@ -58,8 +58,11 @@ bool decode(Source& s, int width, int height, bool sixteen, png_bytep* rows) {
     return false;
   }
   png_set_read_fn(png, &s, on_read);
-  // As lenient as stb_image, which checks no CRC.
+  // As lenient as stb_image, which checks no CRC and no Adler-32 (and so computes neither).
   png_set_crc_action(png, PNG_CRC_QUIET_USE, PNG_CRC_QUIET_USE);
+#ifdef PNG_IGNORE_ADLER32
+  png_set_option(png, PNG_IGNORE_ADLER32, PNG_OPTION_ON);
+#endif
   png_set_benign_errors(png, 1);
   png_read_info(png, info);
   const png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);

@@ -16,6 +16,7 @@ struct MeshData {
   std::vector<glm::dvec3> positions;
   std::vector<glm::dvec3> normals;  // unit
   std::vector<uint32_t> indices;    // triangles, counter-clockwise seen from the normal's side
+  std::vector<glm::dvec2> uvs;      // TEXCOORD_0 per vertex, or empty
 
   size_t triangle_count() const { return indices.size() / 3; }
 };

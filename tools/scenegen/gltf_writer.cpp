@@ -7,6 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <zlib.h>
+
 namespace giq::scenegen {
 namespace {
 
@@ -16,6 +18,7 @@ static_assert(std::endian::native == std::endian::little,
 // glTF 2.0 §5.1.3 / §5.12 constants.
 constexpr int kFloat = 5126;
 constexpr int kUnsignedShort = 5123;
+constexpr int kUnsignedInt = 5125;
 constexpr int kArrayBuffer = 34962;
 constexpr int kElementArrayBuffer = 34963;
 
@@ -73,6 +76,42 @@ Json view_json(const ViewSpec& v) {
   j["up"] = vec3(v.up);
   j["yfov_deg"] = clean(v.yfov_deg);
   return j;
+}
+
+// An 8-bit RGBA PNG (ISO/IEC 15948): signature, IHDR, one IDAT of rows with the Sub filter
+// (as encoders commonly choose for photographs and gradients), IEND.
+std::vector<uint8_t> encode_png(int width, int height, const std::vector<uint8_t>& rgba) {
+  const size_t row = size_t(width) * 4;
+  std::vector<uint8_t> raw;
+  raw.reserve(size_t(height) * (row + 1));
+  for (int y = 0; y < height; ++y) {
+    const uint8_t* r = rgba.data() + size_t(y) * row;
+    raw.push_back(1);  // Sub: each byte minus the byte 4 to its left
+    for (size_t i = 0; i < row; ++i) raw.push_back(uint8_t(r[i] - (i >= 4 ? r[i - 4] : 0)));
+  }
+  uLongf packed_size = compressBound(uLong(raw.size()));
+  std::vector<uint8_t> packed(packed_size);
+  if (compress2(packed.data(), &packed_size, raw.data(), uLong(raw.size()), 6) != Z_OK) throw std::runtime_error("zlib failed");
+  packed.resize(packed_size);
+  std::vector<uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  auto be32 = [&](uint32_t v) {
+    for (int k = 3; k >= 0; --k) out.push_back(uint8_t(v >> (8 * k)));
+  };
+  auto chunk = [&](const char* type, const std::vector<uint8_t>& data) {
+    be32(uint32_t(data.size()));
+    const size_t start = out.size();
+    out.insert(out.end(), type, type + 4);
+    out.insert(out.end(), data.begin(), data.end());
+    be32(uint32_t(crc32(0, out.data() + start, uInt(out.size() - start))));
+  };
+  std::vector<uint8_t> ihdr;
+  for (uint32_t v : {uint32_t(width), uint32_t(height)})
+    for (int k = 3; k >= 0; --k) ihdr.push_back(uint8_t(v >> (8 * k)));
+  ihdr.insert(ihdr.end(), {8, 6, 0, 0, 0});  // 8-bit RGBA, deflate, adaptive filtering, no interlace
+  chunk("IHDR", ihdr);
+  chunk("IDAT", packed);
+  chunk("IEND", {});
+  return out;
 }
 
 }  // namespace
@@ -150,7 +189,11 @@ int GltfWriter::add_material(const MaterialSpec& spec) {
       {clean(spec.base_color.r), clean(spec.base_color.g), clean(spec.base_color.b), 1.0f});
   pbr["metallicFactor"] = clean(spec.metallic);
   pbr["roughnessFactor"] = clean(spec.roughness);
+  if (spec.base_color_texture >= 0) pbr["baseColorTexture"] = {{"index", spec.base_color_texture}};
+  if (spec.metallic_roughness_texture >= 0) pbr["metallicRoughnessTexture"] = {{"index", spec.metallic_roughness_texture}};
   m["pbrMetallicRoughness"] = std::move(pbr);
+  if (spec.normal_texture >= 0) m["normalTexture"] = {{"index", spec.normal_texture}};
+  if (spec.double_sided) m["doubleSided"] = true;
   Json ext = Json::object();
   const double peak = std::max({spec.emission.r, spec.emission.g, spec.emission.b});
   if (peak > 0.0) {
@@ -172,6 +215,29 @@ int GltfWriter::add_material(const MaterialSpec& spec) {
   return static_cast<int>(materials_.size() - 1);
 }
 
+int GltfWriter::add_texture(const std::string& name, int width, int height, const std::vector<uint8_t>& rgba) {
+  if (width < 1 || height < 1 || rgba.size() != size_t(width) * size_t(height) * 4)
+    throw std::logic_error(name + ": texel count does not match the size");
+  const std::vector<uint8_t> png = encode_png(width, height, rgba);
+  while (buffer_.size() % 4 != 0) buffer_.push_back(0);
+  Json view;
+  view["buffer"] = 0;
+  view["byteOffset"] = buffer_.size();
+  view["byteLength"] = png.size();
+  buffer_.insert(buffer_.end(), png.begin(), png.end());
+  buffer_views_.push_back(std::move(view));
+  Json image;
+  image["name"] = name;
+  image["bufferView"] = buffer_views_.size() - 1;
+  image["mimeType"] = "image/png";
+  images_.push_back(std::move(image));
+  Json texture;
+  texture["sampler"] = 0;
+  texture["source"] = images_.size() - 1;
+  textures_.push_back(std::move(texture));
+  return static_cast<int>(textures_.size() - 1);
+}
+
 int GltfWriter::add_node(Json node, int parent, const Pose& pose) {
   Pose world = pose;
   if (parent >= 0) {
@@ -191,15 +257,26 @@ int GltfWriter::add_node(Json node, int parent, const Pose& pose) {
 
 int GltfWriter::add_mesh_node(const std::string& name, const MeshData& mesh, int material,
                               const Pose& pose) {
-  if (mesh.positions.empty() || mesh.positions.size() > 65535)
-    throw std::logic_error(name + ": vertex count out of range for 16-bit indices");
+  if (mesh.positions.empty()) throw std::logic_error(name + ": no vertices");
+  if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()) throw std::logic_error(name + ": one UV a vertex");
   Json attributes;
   attributes["POSITION"] = add_vec3_accessor(mesh.positions, kArrayBuffer, true);
   attributes["NORMAL"] = add_vec3_accessor(mesh.normals, kArrayBuffer, false);
-  const std::vector<uint16_t> indices(mesh.indices.begin(), mesh.indices.end());
-  const int index_accessor =
-      add_accessor(indices.data(), indices.size() * sizeof(uint16_t), kUnsignedShort,
-                   indices.size(), "SCALAR", kElementArrayBuffer);
+  if (!mesh.uvs.empty()) {
+    std::vector<float> uv;
+    for (const glm::dvec2& t : mesh.uvs) uv.insert(uv.end(), {clean(t.x), clean(t.y)});
+    attributes["TEXCOORD_0"] = add_accessor(uv.data(), uv.size() * sizeof(float), kFloat, mesh.uvs.size(), "VEC2", kArrayBuffer);
+  }
+  // 16-bit indices where they suffice (the small built-in scenes), 32-bit otherwise.
+  int index_accessor;
+  if (mesh.positions.size() <= 65535) {
+    const std::vector<uint16_t> indices(mesh.indices.begin(), mesh.indices.end());
+    index_accessor = add_accessor(indices.data(), indices.size() * sizeof(uint16_t), kUnsignedShort, indices.size(), "SCALAR",
+                                  kElementArrayBuffer);
+  } else {
+    index_accessor = add_accessor(mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t), kUnsignedInt, mesh.indices.size(),
+                                  "SCALAR", kElementArrayBuffer);
+  }
   Json primitive;
   primitive["attributes"] = std::move(attributes);
   primitive["indices"] = index_accessor;
@@ -323,7 +400,7 @@ void GltfWriter::add_leak_region(const std::string& node_name) {
   leak_regions_.push_back(node_name);
 }
 
-std::string GltfWriter::dump() const {
+Json GltfWriter::document(const std::string* buffer_uri) const {
   std::set<std::string> node_names, view_names;
   for (const Json& n : nodes_)
     if (!node_names.insert(n["name"].get<std::string>()).second)
@@ -356,12 +433,43 @@ std::string GltfWriter::dump() const {
   if (!materials_.empty()) doc["materials"] = materials_;
   if (!cameras_.empty()) doc["cameras"] = cameras_;
   if (!animations_.empty()) doc["animations"] = animations_;
+  if (!images_.empty()) {
+    doc["images"] = images_;
+    doc["textures"] = textures_;
+    doc["samplers"] = Json::array({{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}}});
+  }
   doc["accessors"] = accessors_;
   doc["bufferViews"] = buffer_views_;
-  doc["buffers"] =
-      Json::array({{{"byteLength", buffer_.size()},
-                    {"uri", "data:application/octet-stream;base64," + base64(buffer_)}}});
-  return doc.dump(2) + "\n";
+  Json buffer = {{"byteLength", buffer_.size()}};
+  if (buffer_uri) buffer["uri"] = *buffer_uri;
+  doc["buffers"] = Json::array({std::move(buffer)});
+  return doc;
+}
+
+std::string GltfWriter::dump() const {
+  const std::string uri = "data:application/octet-stream;base64," + base64(buffer_);
+  return document(&uri).dump(2) + "\n";
+}
+
+std::vector<uint8_t> GltfWriter::dump_glb() const {
+  std::string json = document(nullptr).dump();
+  while (json.size() % 4) json += ' ';  // §4.4.3.1: the JSON chunk is padded with spaces
+  std::vector<uint8_t> bin = buffer_;
+  while (bin.size() % 4) bin.push_back(0);
+  std::vector<uint8_t> out;
+  auto le32 = [&](uint32_t v) {
+    for (int k = 0; k < 4; ++k) out.push_back(uint8_t(v >> (8 * k)));
+  };
+  le32(0x46546C67);  // "glTF"
+  le32(2);
+  le32(uint32_t(12 + 8 + json.size() + 8 + bin.size()));
+  le32(uint32_t(json.size()));
+  le32(0x4E4F534A);  // "JSON"
+  out.insert(out.end(), json.begin(), json.end());
+  le32(uint32_t(bin.size()));
+  le32(0x004E4942);  // "BIN"
+  out.insert(out.end(), bin.begin(), bin.end());
+  return out;
 }
 
 }  // namespace giq::scenegen

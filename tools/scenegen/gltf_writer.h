@@ -1,6 +1,7 @@
 #pragma once
 // A small glTF 2.0 writer for the built-in scenes: one self-contained .gltf with every byte of
-// geometry and animation in one embedded base64 buffer, so any glTF viewer opens it as it is.
+// geometry, images and animation in one embedded base64 buffer, so any glTF viewer opens it as
+// it is, or the same as one binary .glb (large scenes).
 //
 // Output is deterministic: the JSON keeps insertion order, numbers are single-precision floats
 // printed in their shortest round-trip form (glTF 2.0 §3.6.2.5: float min/max "represent
@@ -44,6 +45,9 @@ struct MaterialSpec {
   // Emitted radiance. Written as emissiveFactor normalised to a maximum of 1 times
   // KHR_materials_emissive_strength (the maximum), since emissiveFactor is limited to [0, 1].
   glm::dvec3 emission{0.0};
+  // Textures (GltfWriter::add_texture) read through TEXCOORD_0; -1 = none.
+  int base_color_texture = -1, metallic_roughness_texture = -1, normal_texture = -1;
+  bool double_sided = false;
 };
 
 enum class LightKind { Directional, Point };
@@ -91,6 +95,9 @@ struct LightFacts {
 class GltfWriter {
  public:
   int add_material(const MaterialSpec& spec);
+  // An 8-bit RGBA image (rows top first) stored in the buffer as a PNG, sampled bilinearly
+  // with REPEAT wrapping; returns the texture index.
+  int add_texture(const std::string& name, int width, int height, const std::vector<uint8_t>& rgba);
   // A node with its own mesh (named like the node) of one triangle primitive.
   int add_mesh_node(const std::string& name, const MeshData& mesh, int material,
                     const Pose& pose = {});
@@ -110,6 +117,8 @@ class GltfWriter {
 
   // The finished document (validates names first; throws std::logic_error on a broken scene).
   std::string dump() const;
+  // The same as a binary glTF (glTF 2.0 §4.4: JSON chunk, BIN chunk holding the buffer).
+  std::vector<uint8_t> dump_glb() const;
 
   const std::vector<NodeFacts>& node_facts() const { return facts_; }
   const std::vector<MaterialSpec>& material_specs() const { return material_specs_; }
@@ -126,10 +135,11 @@ class GltfWriter {
   int add_vec3_accessor(const std::vector<glm::dvec3>& values, std::optional<int> target,
                         bool bounds);
   int add_node(Json node, int parent, const Pose& pose);
+  Json document(const std::string* buffer_uri) const;
 
   std::vector<uint8_t> buffer_;
   std::vector<Json> buffer_views_, accessors_, meshes_, materials_, nodes_, cameras_, lights_,
-      animations_;
+      animations_, images_, textures_;
   std::vector<int> roots_;
   std::set<std::string> extensions_;
   std::vector<NodeFacts> facts_;

@@ -21,6 +21,17 @@ BuiltinScene make_leak();
 BuiltinScene make_sunroom();
 BuiltinScene make_movinglight();
 
+// How finely the atrium is made: materials (three textures each, of texture_size^2 texels),
+// quads round a column and up it, along an arch, across and down a curtain, along a wall.
+struct AtriumDetail {
+  int materials = 34, texture_size = 2048;
+  int column_segments = 192, column_rings = 160, arch_segments = 512;
+  int curtain_folds = 240, curtain_rows = 120, panel = 64;
+  // The same hall at a few thousand triangles and 16² textures (tests).
+  static AtriumDetail small() { return {4, 16, 12, 2, 8, 12, 4, 2}; }
+};
+BuiltinScene make_atrium(const AtriumDetail& detail);
+
 // In the order the documentation lists them.
 std::vector<BuiltinScene> all_scenes();
 
