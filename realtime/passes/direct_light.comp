@@ -16,6 +16,7 @@
 #include "shaders/lights.glsl"
 #include "shaders/closest_point.glsl"
 #include "shaders/polygon_irradiance.glsl"
+#include "shaders/environment.glsl"
 #include "passes/direct_light_shared.h"
 #include "passes/shadow_maps_shared.h"
 
@@ -78,7 +79,8 @@ void main() {
   Receiver r = load_receiver(px);
   vec3 radiance = vec3(0.0);
   if (!r.hit) {
-    radiance = pc.environment.rgb;  // the camera sees the environment directly
+    // The camera sees the environment directly, in the direction of the pixel's centre.
+    radiance = environment_radiance(pc.environment, camera_ray_direction(pc.camera, vec2(px) + 0.5, vec2(pc.size)));
   } else if (r.lit) {  // the back of a one-sided material is black
     GpuMaterial mat = scene_materials[r.material];
     vec3 p = r.x;

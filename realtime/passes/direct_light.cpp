@@ -98,7 +98,7 @@ void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer
   pipeline_.push_descriptors(in.cmd, d);
   gpu::DirectPush pc{};
   pc.camera = gpu::make_gpu_camera(in.camera);
-  pc.environment = glm::vec4(in.scene.environment, 0.0f);
+  pc.environment = glm::vec4(in.scene.environment, float(in.scene.environment_map));
   pc.size = glm::uvec2(width_, height_);
   pc.normal_offset = normal_offset_;
   pc.pcf_radius = pcf_radius_;

@@ -12,7 +12,7 @@ using uvec4 = glm::uvec4;
 
 struct DirectPush {
   GpuCamera camera;
-  vec4 environment;       // rgb constant environment radiance
+  vec4 environment;       // rgb constant environment radiance, w its map's texture or -1 (shaders/environment.glsl)
   uvec2 size;             // the image's width and height
   float normal_offset;    // receiver offset along its normal, in shadow-map texels
   uint pcf_radius;        // PCF kernel radius in texels

@@ -12,7 +12,7 @@
 #include "scene.glsl"
 #include "sampling.glsl"
 
-#if defined(GIQ_TEXTURES) || defined(GIQ_NORMAL_MAPS) || defined(GIQ_ALPHA_MASK) || defined(GIQ_VERTEX_COLORS)
+#if defined(GIQ_TEXTURES) || defined(GIQ_NORMAL_MAPS) || defined(GIQ_ALPHA_MASK) || defined(GIQ_VERTEX_COLORS) || defined(GIQ_ENVIRONMENT_MAP)
 
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require

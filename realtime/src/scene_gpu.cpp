@@ -43,7 +43,9 @@ uint32_t format_code(scenes::TexelFormat f) {
   return f == scenes::TexelFormat::Rgba8Srgb ? GIQ_TEXELS_RGBA8_SRGB : f == scenes::TexelFormat::Rgba8Unorm ? GIQ_TEXELS_RGBA8_UNORM : GIQ_TEXELS_RGBA32F;
 }
 
-bool needs_textures(const scenes::FeatureSet& f) { return f.textures || f.normal_maps || f.alpha_mask || f.vertex_colors; }
+bool needs_textures(const scenes::FeatureSet& f) {
+  return f.textures || f.normal_maps || f.alpha_mask || f.vertex_colors || f.environment_map;
+}
 
 }  // namespace
 

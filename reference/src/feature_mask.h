@@ -9,10 +9,10 @@ namespace giq::reference {
 
 enum FeatureBit : unsigned {
   kSpecular = 1u << 0,     // some material has a GGX lobe
-  kTextures = 1u << 1,     // some material samples a texture (normal maps included), or a mesh has vertex colours
+  kTextures = 1u << 1,     // some material samples a texture (normal maps included), a mesh has vertex colours, or the environment is a map
   kPunctual = 1u << 2,     // directional, point or spot lights
   kEmissive = 1u << 3,     // emissive triangles
-  kEnvironment = 1u << 4,  // constant environment
+  kEnvironment = 1u << 4,  // environment light, constant or a map
   kFeatureCount = 5,
 };
 
@@ -21,7 +21,8 @@ constexpr bool has(unsigned mask, unsigned bit) { return (mask & bit) != 0; }
 inline unsigned feature_mask(const scenes::FeatureSet& f) {
   unsigned m = 0;
   if (f.specular) m |= kSpecular;
-  if (f.textures || f.normal_maps || f.vertex_colors) m |= kTextures;
+  // An environment map is a texture lookup per escaped ray, which the lanes do not do.
+  if (f.textures || f.normal_maps || f.vertex_colors || f.environment_map) m |= kTextures;
   if (f.directional_lights || f.point_lights || f.spot_lights) m |= kPunctual;
   if (f.emissive_meshes) m |= kEmissive;
   if (f.environment) m |= kEnvironment;

@@ -47,7 +47,8 @@ LightSampler::LightSampler(const scenes::Scene& scene, const EmbreeScene& bvh, g
   if (env > 0.0 && std::isfinite(env)) {
     environment_entry_ = int32_t(entries_.size());
     entries_.push_back({LightKind::Environment, 0});
-    weights.push_back(4.0 * pi * pi * r2 * env);  // pbrt-v4 UniformInfiniteLight::Phi
+    weights.push_back(4.0 * pi * pi * r2 * env);  // pbrt-v4 UniformInfiniteLight::Phi (of the map's mean)
+    if (scene.environment_map >= 0) environment_map_ = EnvironmentDistribution(scene.textures[size_t(scene.environment_map)]);
   }
   if (!weights.empty()) table_ = AliasTable(weights);
 }

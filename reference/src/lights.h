@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "embree_scene.h"
+#include "environment_distribution.h"
 #include "feature_mask.h"
 #include "giq/reference/alias_table.h"
 #include "giq/reference/sampling.h"
@@ -74,6 +75,12 @@ class LightSampler {
     return e < 0 ? 0.0f : table_.pmf(size_t(e));
   }
   float environment_pmf() const { return environment_entry_ < 0 ? 0.0f : table_.pmf(size_t(environment_entry_)); }
+  // The solid-angle pdf with which sample() finds the environment in direction w (unit), pick
+  // included: uniform over the sphere for a constant environment, the map's distribution
+  // (EnvironmentDistribution) for a map.
+  float environment_pdf(glm::vec3 w) const {
+    return environment_pmf() * (environment_map_.empty() ? kUniformSpherePdf : environment_map_.pdf(w));
+  }
 
  private:
   struct Entry {
@@ -87,6 +94,7 @@ class LightSampler {
   AliasTable table_;
   std::vector<std::vector<int32_t>> triangle_entry_;  // per mesh: triangle -> entry, or empty
   int32_t environment_entry_ = -1;
+  EnvironmentDistribution environment_map_;  // empty for a constant environment
 };
 
 // Radiance emitted by a point of an emissive material (KHR_materials_emissive_strength is
@@ -140,10 +148,17 @@ LightSample LightSampler::sample(glm::vec3 p, float u_pick, float u_alias, glm::
   }
   if constexpr (has(F, kEnvironment)) {
     if (e.kind == LightKind::Environment) {
-      s.wi = square_to_uniform_sphere(u);
       s.distance = std::numeric_limits<float>::infinity();
-      s.radiance = scene_.environment;
-      s.pdf = pick.pmf * kUniformSpherePdf;
+      if (environment_map_.empty()) {
+        s.wi = square_to_uniform_sphere(u);
+        s.radiance = scene_.environment;
+        s.pdf = pick.pmf * kUniformSpherePdf;
+      } else {
+        float pdf = 0.0f;
+        s.wi = environment_map_.sample(u, pdf);
+        s.radiance = scene_.environment_radiance(s.wi);
+        s.pdf = pick.pmf * pdf;
+      }
       return s;
     }
   }

@@ -88,8 +88,8 @@ class PathIntegrator {
       ++rays;
       if (!hit.valid()) {
         if constexpr (has(F, kEnvironment)) {
-          const float w = depth == 0 ? 1.0f : bsdf_hit_weight(prev_pdf, c_.lights.environment_pmf() * kUniformSpherePdf);
-          emitted_to += beta * w * c_.scene.environment;
+          const float w = depth == 0 ? 1.0f : bsdf_hit_weight(prev_pdf, c_.lights.environment_pdf(d));
+          emitted_to += beta * w * c_.scene.environment_radiance(d);
         }
         break;
       }

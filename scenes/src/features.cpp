@@ -11,6 +11,7 @@ std::vector<std::string> FeatureSet::names() const {
       {spot_lights, "spot_lights"},
       {emissive_meshes, "emissive_meshes"},
       {environment, "environment"},
+      {environment_map, "environment_map"},
       {specular, "specular"},
       {textures, "textures"},
       {normal_maps, "normal_maps"},

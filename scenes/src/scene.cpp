@@ -7,6 +7,7 @@
 
 #include "giq/base/error.h"
 #include "giq/base/hash.h"
+#include "giq/scenes/environment.h"
 #include "scene_source.h"
 
 namespace giq::scenes {
@@ -107,7 +108,8 @@ void Scene::derive() {
     features.point_lights |= l.type == LightType::Point;
     features.spot_lights |= l.type == LightType::Spot;
   }
-  features.environment = environment != glm::vec3(0.0f);
+  features.environment = environment != glm::vec3(0.0f) || environment_map >= 0;
+  features.environment_map = environment_map >= 0;
 
   for (uint32_t mi = 0; mi < meshes.size(); ++mi) {
     const Mesh& m = meshes[mi];
@@ -188,8 +190,41 @@ void Scene::add_light(const Light& light, const std::string& description) {
 
 void Scene::set_environment(glm::vec3 radiance, const std::string& description) {
   environment = radiance;
+  environment_map = -1;
   content_hash = Hasher().add(content_hash).add(" + ").add(description).hex();
   derive();
+}
+
+void Scene::set_environment_map(int width, int height, const std::vector<glm::vec3>& radiance, const std::string& description) {
+  Texture t;
+  t.name = "environment";
+  std::vector<glm::vec4> rgba;
+  rgba.reserve(radiance.size());
+  // The mean radiance over the sphere: texels weighted by their solid angle.
+  glm::dvec3 sum(0.0);
+  for (int y = 0; y < height; ++y) {
+    const double w = std::cos(std::numbers::pi * y / height) - std::cos(std::numbers::pi * (y + 1) / height);
+    for (int x = 0; x < width; ++x) {
+      const glm::vec3 c = radiance[size_t(y) * size_t(width) + size_t(x)];
+      rgba.emplace_back(c, 1.0f);
+      sum += w * glm::dvec3(c);
+    }
+  }
+  t.assign(width, height, rgba);
+  // Nearest texels, repeating round the horizon, clamped at the poles (scenes/environment.h).
+  t.filter = Filter::Nearest;
+  t.wrap_s = Wrap::Repeat;
+  t.wrap_t = Wrap::ClampToEdge;
+  textures.push_back(std::move(t));
+  environment_map = int(textures.size() - 1);
+  environment = glm::vec3(sum / (2.0 * width));
+  content_hash = Hasher().add(content_hash).add(" + ").add(description).hex();
+  derive();
+}
+
+glm::vec3 Scene::environment_radiance(glm::vec3 dir) const {
+  if (environment_map < 0) return environment;
+  return glm::vec3(textures[size_t(environment_map)].sample(equirect_uv(dir)));
 }
 
 void Scene::add_view(const View& view) {

@@ -3,6 +3,8 @@
 // SIGKILL followed by --resume, and bad input exits with code 2.
 
 #include <gtest/gtest.h>
+
+#include <limits>
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -267,6 +269,32 @@ TEST(ReferenceCli, ASceneWithoutLightIsRefusedUntilTheCommandLineGivesOne) {
   ASSERT_EQ(giq(args), 0);
   const std::string env_hash = giq::image::read_image(out).metadata.at("giq.scene_hash");
   EXPECT_NE(sun_hash, env_hash);
+  // An equirectangular map (a 8 x 4 OpenEXR): lit, under a hash of its own.
+  const fs::path map = work_dir() / "sky.exr", bad_map = work_dir() / "nan_sky.exr";
+  giq::image::Image sky(8, 4);
+  for (const char* c : {"R", "G", "B"}) {
+    float* p = sky.add_channel(c);
+    for (size_t k = 0; k < sky.pixel_count(); ++k) p[k] = k < 16 ? 2.0f : 0.1f;
+  }
+  giq::image::write_exr(sky, map);
+  fs::remove(out);
+  args.resize(args.size() - 2);
+  args.insert(args.end(), {"--env", map.string()});
+  ASSERT_EQ(giq(args), 0);
+  const giq::image::Image under_map = giq::image::read_image(out);
+  EXPECT_NE(under_map.metadata.at("giq.scene_hash"), env_hash);
+  sum = 0.0;
+  for (size_t k = 0; k < under_map.pixel_count(); ++k) sum += under_map.channel("G")[k];
+  EXPECT_GT(sum, 0.0);
+  // A map with a NaN, and a missing map: input errors, nothing written.
+  sky.channel("G")[5] = std::numeric_limits<float>::quiet_NaN();
+  giq::image::write_exr(sky, bad_map);
+  for (const fs::path& m : {bad_map, work_dir() / "no_such_sky.exr"}) {
+    fs::remove(out);
+    args.back() = m.string();
+    EXPECT_EQ(giq(args), 2) << m;
+    EXPECT_FALSE(fs::exists(out));
+  }
   // Malformed light options are input errors.
   for (const std::vector<std::string>& bad : {std::vector<std::string>{"--sun", "dir=0,0,0", "illuminance=1"},
                                               {"--sun", "dir=0,-1,0", "illuminance=-1"},

@@ -8,6 +8,8 @@
 #include <stdexcept>
 
 #include "giq/base/error.h"
+#include "giq/base/hash.h"
+#include "giq/image/io.h"
 
 namespace giq::cli {
 namespace {
@@ -135,13 +137,50 @@ glm::vec3 parse_env(const std::string& text) {
   return glm::vec3(v);
 }
 
+// An equirectangular HDR map (OpenEXR, Radiance .hdr, or any format giq reads) as RGB
+// radiance: every pixel finite and not negative, at least 2 x 1 pixels.
+struct EnvironmentMap {
+  int width = 0, height = 0;
+  std::vector<glm::vec3> radiance;
+  std::string hash;
+};
+EnvironmentMap read_environment_map(const std::string& path) {
+  const image::Image img = image::read_image(path);
+  EnvironmentMap m;
+  m.width = img.width(), m.height = img.height();
+  if (m.width < 2 || m.height < 1 || m.width > 16384 || m.height > 16384)
+    throw InputError(path, "--env", std::to_string(m.width) + "x" + std::to_string(m.height) + " map; expected 2 to 16384 pixels wide and 1 to 16384 high");
+  for (const char* c : {"R", "G", "B"})
+    if (!img.has_channel(c)) throw InputError(path, "--env", std::string("no ") + c + " channel; expected an RGB radiance map");
+  const float *r = img.channel("R"), *g = img.channel("G"), *b = img.channel("B");
+  Hasher h;
+  m.radiance.resize(img.pixel_count());
+  for (size_t i = 0; i < img.pixel_count(); ++i) {
+    const glm::vec3 v(r[i], g[i], b[i]);
+    if (!(v.r >= 0.0f && v.g >= 0.0f && v.b >= 0.0f && v.r < 3e38f && v.g < 3e38f && v.b < 3e38f))
+      throw InputError(path, "--env", "pixel (" + std::to_string(i % size_t(m.width)) + ", " + std::to_string(i / size_t(m.width)) +
+                                           ") is not a finite, non-negative radiance");
+    m.radiance[i] = v;
+  }
+  h.add(m.radiance.data(), m.radiance.size() * sizeof(glm::vec3));
+  if (m.width != 2 * m.height)
+    std::fprintf(stderr, "giq: warning: %s: %dx%d environment map; an equirectangular map is twice as wide as high, so this one is "
+                 "stretched\n", path.c_str(), m.width, m.height);
+  m.hash = h.hex();
+  return m;
+}
+
+bool looks_like_numbers(const std::string& text) {
+  return !text.empty() && text.find_first_not_of("0123456789.,+-eE") == std::string::npos;
+}
+
 }  // namespace
 
 void SceneSetup::add_options(CLI::App& cmd) {
   cmd.add_option("--camera", camera, "Camera in world coordinates: eye=x,y,z target=x,y,z [up=x,y,z] [fov=deg | ymag=m (orthographic, half height)], or auto [fov=deg]")
       ->expected(1, 4);
   cmd.add_option("--sun", sun, "Add a directional light: dir=x,y,z (the way it travels) illuminance=E [color=r,g,b]")->expected(2, 3);
-  cmd.add_option("--env", env, "Constant environment radiance r,g,b (or one number), replacing the scene's");
+  cmd.add_option("--env", env, "Environment replacing the scene's: a constant radiance r,g,b (or one number), or an equirectangular map FILE (.exr, .hdr; +Y up, -Z at the centre)");
 }
 
 sc::Scene SceneSetup::load(const std::filesystem::path& path) const {
@@ -159,7 +198,10 @@ sc::Scene SceneSetup::load(const std::filesystem::path& path) const {
     scene.add_light(l, "sun dir=" + numbers({l.direction.x, l.direction.y, l.direction.z}) + " illuminance=" +
                            numbers({l.intensity}) + " color=" + numbers({l.color.r, l.color.g, l.color.b}));
   }
-  if (!env.empty()) {
+  if (!env.empty() && !looks_like_numbers(env)) {
+    const EnvironmentMap m = read_environment_map(env);
+    scene.set_environment_map(m.width, m.height, m.radiance, "env map " + m.hash);
+  } else if (!env.empty()) {
     const glm::vec3 e = parse_env(env);
     scene.set_environment(e, "env " + numbers({e.r, e.g, e.b}));
   }

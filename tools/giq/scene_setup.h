@@ -9,6 +9,7 @@
 //   --sun dir=x,y,z illuminance=E [color=r,g,b]              a directional light; dir is the
 //                                                            way the light travels
 //   --env r,g,b  (or one number)                             constant environment radiance
+//   --env FILE                                               equirectangular radiance map
 
 #include <CLI/CLI.hpp>
 #include <filesystem>

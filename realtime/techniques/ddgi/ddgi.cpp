@@ -153,7 +153,7 @@ class Ddgi : public IndirectLight {
     in.timer.begin(cmd, "ddgi_trace");
     gpu::DdgiTracePush tp{};
     std::copy(rotation, rotation + 3, tp.rotation);
-    tp.environment = glm::vec4(in.scene.environment, 0.0f);
+    tp.environment = glm::vec4(in.scene.environment, float(in.scene.environment_map));
     tp.light_count = scene_gpu_.light_count();
     tp.area_light_count = uint32_t(frame.direct_light().area_lights().size());
     // The first frame has no irradiance to feed back.

@@ -38,7 +38,7 @@ struct GpuDdgiProbe {
 
 struct DdgiTracePush {  // ddgi_trace.comp
   vec4 rotation[3];   // rows of this frame's random rotation of the blended rays
-  vec4 environment;   // rgb constant environment radiance
+  vec4 environment;   // rgb constant environment radiance, w its map's texture or -1 (shaders/environment.glsl)
   uint light_count;   // punctual lights
   uint area_light_count;
   uint feedback;      // 1: hits add the volume's irradiance (multi-bounce)

@@ -7,7 +7,7 @@
 // plus the volume's own irradiance at the hit from the previous update (one more bounce per
 // frame; the albedo capped below 1 keeps the loop contracting). The hit's own emission is left
 // out: an emissive mesh's light reaches receivers through the shared direct pass (its area
-// light), and counting it here too would add it twice. Misses see the constant environment,
+// light), and counting it here too would add it twice. Misses see the environment (a map too),
 // which the direct pass does not light surfaces with: that light lands in the indirect layer.
 // Output per ray: radiance, and the hit distance, negative for the back of a one-sided
 // surface (a probe that sees many is inside geometry).
@@ -21,6 +21,7 @@
 #include "shaders/sampling.glsl"
 #include "shaders/lights.glsl"
 #include "shaders/polygon_irradiance.glsl"
+#include "shaders/environment.glsl"
 #include "passes/direct_light_shared.h"
 #include "passes/rsm_albedo.glsl"
 #include "techniques/ddgi/ddgi_shared.h"
@@ -92,7 +93,7 @@ void main() {
   vec3 org = ddgi_probe_position(probe);
   RayHit hit = trace_ray(org, dir, 1e30, false);
   if (hit.triangle == 0xffffffffu) {
-    rays[slot] = vec4(pc.environment.rgb, 3.0e38);
+    rays[slot] = vec4(environment_radiance(pc.environment, dir), 3.0e38);
     return;
   }
   HitNormals hn = hit_normals(hit.triangle, hit.u, hit.v, dir);

@@ -2,7 +2,7 @@
 // `pt`: progressive path tracer with the reference's light transport: next-event estimation
 // towards emissive triangles (chosen by power, sampled uniformly by area, solid-angle pdf)
 // combined with BRDF sampling by the power heuristic (Veach 1997, section 9.2.4), every
-// punctual light sampled at every vertex, a constant environment found by BRDF sampling,
+// punctual light sampled at every vertex, the environment (constant or a map) found by BRDF sampling,
 // Russian roulette after the third bounce. Samples accumulate across frames; the outputs are
 // the running means: direct (emission seen directly plus light reaching the first surface
 // after one reflection), indirect (the rest), their sum, and the variance of the mean.
@@ -13,6 +13,7 @@
 #include "shaders/surface.glsl"
 #include "shaders/camera.glsl"
 #include "shaders/lights.glsl"
+#include "shaders/environment.glsl"
 #include "pt_shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -82,7 +83,7 @@ PathResult trace_path(vec3 org, vec3 dir, inout Rng rng) {
     RayHit hit = trace_ray(org, dir, 1e30, false, depth == 0u);
     if (hit.triangle == 0xffffffffu) {
 #ifdef GIQ_ENVIRONMENT
-      vec3 env = throughput * pc.environment.rgb;
+      vec3 env = throughput * environment_radiance(pc.environment, dir);
       if (depth <= 1u) res.direct += env; else res.indirect += env;
 #endif
       break;

@@ -47,7 +47,7 @@ class PathTracer : public Technique {
     camera_ = in.camera;
     gpu::PtPush pc{};
     pc.camera = gpu::make_gpu_camera(in.camera);
-    pc.environment = glm::vec4(in.scene.environment, 0.0f);
+    pc.environment = glm::vec4(in.scene.environment, float(in.scene.environment_map));
     pc.width = width_;
     pc.height = height_;
     pc.samples_per_frame = 1;

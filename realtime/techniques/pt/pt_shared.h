@@ -11,7 +11,7 @@ using uint = uint32_t;
 
 struct PtPush {
   GpuCamera camera;
-  vec4 environment;        // constant environment radiance (rgb)
+  vec4 environment;        // constant environment radiance (rgb), w its map's texture or -1 (shaders/environment.glsl)
   uint width;
   uint height;
   uint first_sample;       // samples accumulated before this dispatch

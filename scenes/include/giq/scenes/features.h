@@ -12,7 +12,8 @@ struct FeatureSet {
   bool point_lights = false;
   bool spot_lights = false;
   bool emissive_meshes = false;
-  bool environment = false;  // constant environment radiance (extras)
+  bool environment = false;      // environment radiance: constant (extras, --env r,g,b) or a map
+  bool environment_map = false;  // an equirectangular map (--env FILE): Scene::environment_map
   bool specular = false;     // some material has a GGX lobe (Material::has_specular_lobe)
   bool textures = false;     // some material samples a texture
   bool normal_maps = false;

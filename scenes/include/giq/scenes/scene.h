@@ -107,7 +107,11 @@ class Scene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<Light> lights;
-  glm::vec3 environment{0.0f};  // constant environment radiance; 0 = none
+  // Environment radiance: constant, or from the equirectangular map textures[environment_map]
+  // (RGB radiance, nearest texel: scenes/environment.h), whose mean over the sphere is then
+  // `environment` (the power estimate of renderers' light selection). 0 and -1 = none.
+  glm::vec3 environment{0.0f};
+  int environment_map = -1;
   std::vector<View> views;      // glTF camera nodes first, then the views from extras
   Sequence sequence;
   std::vector<std::string> leak_regions;  // node names declared in extras
@@ -134,6 +138,9 @@ class Scene {
   // COLOR_0's alpha, through the alpha mode.
   float coverage(const Mesh& m, const glm::uvec3& t, float b1, float b2) const;
 
+  // Radiance arriving from direction `dir` (unit, pointing away from the scene).
+  glm::vec3 environment_radiance(glm::vec3 dir) const;
+
   // A view by name, or by index when `name_or_index` is a number; throws InputError naming
   // the available views when there is no such view.
   const View& view(std::string_view name_or_index) const;
@@ -145,6 +152,9 @@ class Scene {
   // e.g. "sun dir=0,-1,0 illuminance=3"); a view does not.
   void add_light(const Light& light, const std::string& description);
   void set_environment(glm::vec3 radiance, const std::string& description);
+  // An equirectangular map of RGB radiance (rows top first, width x height, finite and not
+  // negative) replacing the environment; the caller validates the pixels.
+  void set_environment_map(int width, int height, const std::vector<glm::vec3>& radiance, const std::string& description);
   void add_view(const View& view);
   const std::vector<Light>& added_lights() const { return added_lights_; }
   const std::vector<View>& added_views() const { return added_views_; }
