@@ -4,10 +4,9 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
-#include <atomic>
-#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -80,9 +79,6 @@ class TextureTable : public TextureDecoding {
     return derived_[key] = int(out_.size()) - 1;
   }
 
-  // Decodes every image the materials use, in parallel, each once, and fills the textures'
-  // texels. Checks and errors come in the order the materials asked for the images, so the
-  // first bad image is reported as a sequential load would.
   // Checks every image's header (errors now, in first-use order) and starts decoding them on
   // worker threads, one per core, while the caller goes on (the loader reads the geometry).
   void start() {
@@ -97,7 +93,13 @@ class TextureTable : public TextureDecoding {
     const size_t threads = std::min<size_t>(images_.size(), std::max(1u, std::thread::hardware_concurrency()));
     for (size_t t = 0; t < threads; ++t)
       workers_.emplace_back([this] {
-        for (size_t i; (i = next_.fetch_add(1)) < images_.size();) raw_[i] = decode(images_[i], headers_.at(images_[i]));
+        for (size_t i; (i = next_.fetch_add(1)) < images_.size();) {
+          try {
+            raw_[i] = decode(images_[i], headers_.at(images_[i]));
+          } catch (const std::exception& e) {  // out of memory: reported by finish() like any decoding failure
+            raw_[i].error = std::string("cannot decode the image (") + e.what() + ")";
+          }
+        }
       });
   }
 
@@ -105,15 +107,14 @@ class TextureTable : public TextureDecoding {
   // first-use order) is the error.
   void finish() override {
     join();
-    std::vector<Raw>& raw = raw_;
     std::map<int, size_t> slot;
     for (size_t i = 0; i < images_.size(); ++i) {
-      if (!raw[i].error.empty()) ctx_.fail(index_path("images", size_t(images_[i])), raw[i].error);
+      if (!raw_[i].error.empty()) ctx_.fail(index_path("images", size_t(images_[i])), raw_[i].error);
       slot[images_[i]] = i;
     }
     std::map<std::pair<int, bool>, std::shared_ptr<const std::vector<uint32_t>>> floats;
     for (const auto& r : requests_) {
-      Raw& d = raw[slot[r.image]];
+      Raw& d = raw_[slot[r.image]];
       Texture& tex = out_[r.texture];
       tex.width = d.width, tex.height = d.height;
       if (!d.sixteen) {
