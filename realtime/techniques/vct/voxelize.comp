@@ -7,10 +7,15 @@
 // coverage is exactly conservative (touching counts), needs no hardware conservative
 // rasterisation, and runs the same on lavapipe and on NVIDIA.
 // A voxel keeps the smallest index of the triangles overlapping it (imageAtomicMin): the
-// result does not depend on the order in which triangles are processed.
+// result does not depend on the order in which triangles are processed. Alpha-masked and BLEND
+// triangles (glTF 3.9.4) are tested at the point of their plane over the voxel's column
+// centre (clamped into the triangle): a cut-out there leaves the voxel to other triangles, a
+// BLEND surface fills it with probability alpha (a hash of the voxel and the triangle), as
+// the G-buffer and the shadow maps cut them out.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/scene.glsl"
+#include "shaders/textures.glsl"
 #include "techniques/vct/vct_shared.h"
 
 layout(local_size_x = 64) in;
@@ -73,12 +78,31 @@ void main() {
     float du = -n[u] / n[w], dv = -n[v] / n[w];
     float wmin = w00 + min(du, 0.0) + min(dv, 0.0), wmax = w00 + max(du, 0.0) + max(dv, 0.0);
     int w0 = max(lo[w], int(floor(wmin)) - 1), w1 = min(hi[w], int(floor(wmax)) + 1);
+#ifdef GIQ_ALPHA_MASK
+    // The plane's point over the column's centre, its barycentrics clamped into the triangle.
+    vec3 q;
+    q[u] = float(cu) + 0.5;
+    q[v] = float(cv) + 0.5;
+    q[w] = w00 + 0.5 * du + 0.5 * dv;
+    float nn = dot(n, n);
+    float b1 = clamp(dot(cross(q - a, c - a), n) / nn, 0.0, 1.0), b2 = clamp(dot(cross(b - a, q - a), n) / nn, 0.0, 1.0);
+    if (b1 + b2 > 1.0) {
+      float k = 1.0 / (b1 + b2);
+      b1 *= k;
+      b2 *= k;
+    }
+#endif
     for (int cw = w0; cw <= w1; ++cw) {
       ivec3 cell;
       cell[u] = cu;
       cell[v] = cv;
       cell[w] = cw;
-      if (triangle_box_overlap(vec3(cell) + 0.5, vec3(0.5), a, b, c, n)) imageAtomicMin(voxel_ids, cell, tri);
+      if (!triangle_box_overlap(vec3(cell) + 0.5, vec3(0.5), a, b, c, n)) continue;
+#ifdef GIQ_ALPHA_MASK
+      uvec3 uc = uvec3(cell);
+      if (alpha_cut(tri, b1, b2, alpha_hash_number(uc.x ^ pcg_hash(uc.y ^ pcg_hash(uc.z ^ pcg_hash(tri)))))) continue;
+#endif
+      imageAtomicMin(voxel_ids, cell, tri);
     }
   }
 }
