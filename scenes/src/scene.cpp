@@ -15,19 +15,35 @@ namespace {
 
 // Rec. ITU-R BT.709 relative luminance of linear RGB.
 
-// Mean of the emissive texture over a triangle: the triangle is split into k^2 congruent
-// sub-triangles (k even and at least the longest edge in texels) and the texture is sampled
-// at each sub-triangle's centroid. Exact for textures linear over the triangle, and for
-// nearest-filtered texels whose edges fall on the subdivision; converging to the area
-// average as k grows otherwise.
-glm::vec3 mean_emission(const Mesh& m, const glm::uvec3& t, const Texture& tex, bool second, int max_half_k) {
-  const std::vector<glm::vec2>& uvs = second ? m.uvs2 : m.uvs;
-  if (uvs.empty()) return glm::vec3(tex.sample(glm::vec2(0.0f)));
+// Longest edge of triangle t in texels of `tex` through UV set `uvs` (1 without UVs).
+float texel_edge(const std::vector<glm::vec2>& uvs, const glm::uvec3& t, const Texture& tex) {
+  if (uvs.empty()) return 1.0f;
   const glm::vec2 a = uvs[t.x], b = uvs[t.y], c = uvs[t.z];
   const glm::vec2 size(float(tex.width), float(tex.height));
   const float edge = std::max({glm::length((b - a) * size), glm::length((c - b) * size), glm::length((a - c) * size)});
+  return std::isfinite(edge) ? edge : 1.0f;
+}
+
+}  // namespace
+
+// Mean emitted radiance over a triangle: emission (factor x emissive texture) times coverage
+// (alpha modes: what a ray that finds the point meets, Scene::coverage). The triangle is split
+// into k^2 congruent sub-triangles (k even and at least the longest edge in texels of the
+// textures involved) and both are evaluated at each sub-triangle's centroid. Exact for
+// textures linear over the triangle, and for nearest-filtered texels whose edges fall on the
+// subdivision; converging to the area average as k grows otherwise.
+glm::vec3 Scene::mean_emitted(const Mesh& m, const glm::uvec3& t, int max_half_k) const {
+  const Material& mat = materials[size_t(m.material)];
+  const Texture* tex = mat.emissive_texture >= 0 && size_t(mat.emissive_texture) < textures.size() ? &textures[size_t(mat.emissive_texture)] : nullptr;
+  const bool covered = mat.alpha_mode != AlphaMode::Opaque;
+  if (!tex && !covered) return mat.emissive;
+  const std::vector<glm::vec2>& uvs = mat.uv2_slots & kEmissiveSlot ? m.uvs2 : m.uvs;
+  float edge = tex ? texel_edge(uvs, t, *tex) : 1.0f;
+  if (covered && mat.base_color_texture >= 0 && size_t(mat.base_color_texture) < textures.size())
+    edge = std::max(edge, texel_edge(mat.uv2_slots & kBaseColorSlot ? m.uvs2 : m.uvs, t, textures[size_t(mat.base_color_texture)]));
   // Clamped as a float: a huge UV edge would overflow the conversion to int.
-  const int k = 2 * int(std::clamp(std::ceil(0.5f * (std::isfinite(edge) ? edge : 1.0f)), 1.0f, float(max_half_k)));
+  const int k = 2 * int(std::clamp(std::ceil(0.5f * edge), 1.0f, float(max_half_k)));
+  const glm::vec2 a = uvs.empty() ? glm::vec2(0.0f) : uvs[t.x], b = uvs.empty() ? a : uvs[t.y], c = uvs.empty() ? a : uvs[t.z];
   glm::dvec3 sum(0.0);
   int count = 0;
   // Sub-triangles of a k-subdivision: "upward" (i, j) and "downward" ones, in barycentric
@@ -35,17 +51,17 @@ glm::vec3 mean_emission(const Mesh& m, const glm::uvec3& t, const Texture& tex, 
   for (int i = 0; i < k; ++i)
     for (int j = 0; j < k - i; ++j) {
       auto at = [&](double u, double v) {
-        const glm::vec2 uv = a + float(u / k) * (b - a) + float(v / k) * (c - a);
-        sum += glm::dvec3(glm::vec3(tex.sample(uv)));
+        glm::vec3 e(1.0f);
+        if (tex) e = glm::vec3(tex->sample(a + float(u / k) * (b - a) + float(v / k) * (c - a)));
+        if (covered) e *= coverage(m, t, float(u / k), float(v / k));
+        sum += glm::dvec3(e);
         ++count;
       };
       at(i + 1.0 / 3.0, j + 1.0 / 3.0);
       if (i + j + 1 < k) at(i + 2.0 / 3.0, j + 2.0 / 3.0);
     }
-  return glm::vec3(sum / double(count));
+  return mat.emissive * glm::vec3(sum / double(count));
 }
-
-}  // namespace
 
 void Scene::derive_area_lights() {
   area_lights.clear();
@@ -128,7 +144,6 @@ void Scene::derive() {
     features.double_sided |= mat.double_sided;
     features.one_sided |= !mat.double_sided;
     if (!mat.is_emissive()) continue;
-    const Texture* tex = mat.emissive_texture >= 0 && size_t(mat.emissive_texture) < textures.size() ? &textures[size_t(mat.emissive_texture)] : nullptr;
     // k^2 <= 2^24 / triangles samples per triangle, so averaging stays bounded (about 2^24
     // lookups per mesh) however many large triangles a mesh has.
     const int max_half_k = std::clamp(int(std::sqrt(double(1 << 22) / double(m.triangles.size()))), 1, 32);
@@ -140,7 +155,7 @@ void Scene::derive() {
       e.mesh = mi;
       e.triangle = ti;
       e.area = 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
-      e.radiance = tex ? mat.emissive * mean_emission(m, t, *tex, mat.uv2_slots & kEmissiveSlot, max_half_k) : mat.emissive;
+      e.radiance = mean_emitted(m, t, max_half_k);
       if (!(e.radiance.r > 0.0f || e.radiance.g > 0.0f || e.radiance.b > 0.0f) || !(e.area > 0.0f)) continue;
       // A Lambertian emitter of radiance L and area A emits pi * A * L (per side).
       e.power = float(std::numbers::pi * e.area * luminance(e.radiance) * (mat.double_sided ? 2.0 : 1.0));

@@ -48,6 +48,34 @@ TEST(Scene, EmissiveTrianglePowerIsPiAreaLuminance) {
   }
 }
 
+// An emitter's mean radiance carries its coverage: what a ray that finds it meets (BLEND:
+// alpha; MASK: 1 or 0; COLOR_0's alpha interpolated, so the mean over a triangle of a linear
+// alpha is exact at the sub-triangle centroids). The area light's intensity follows.
+TEST(Scene, EmitterRadianceIsWeightedByCoverage) {
+  Scene s = emissive_quad(true);
+  s.materials[0].alpha_mode = AlphaMode::Blend;
+  s.materials[0].base_color.a = 0.4f;
+  s.derive();
+  ASSERT_EQ(s.emissive_triangles.size(), 2u);
+  for (const auto& e : s.emissive_triangles) {
+    EXPECT_NEAR(e.radiance.r, 0.4f, 1e-6f);
+    EXPECT_NEAR(e.radiance.b, 1.2f, 1e-6f);
+  }
+  EXPECT_NEAR(s.area_lights[0].intensity.g, 2.0f * 0.4f * 2.0f, 1e-5f);
+  // COLOR_0 alpha 0 at x = 0 to 1 at x = 2: each triangle's mean alpha is its centroid's.
+  s.meshes[0].colors = {{1, 1, 1, 0}, {1, 1, 1, 1}, {1, 1, 1, 1}, {1, 1, 1, 0}};
+  s.derive();
+  const float centroid_alpha[2] = {(0.0f + 1.0f + 1.0f) / 3.0f, (0.0f + 1.0f + 0.0f) / 3.0f};
+  for (int k = 0; k < 2; ++k) EXPECT_NEAR(s.emissive_triangles[size_t(k)].radiance.r, 0.4f * centroid_alpha[k], 1e-5f) << k;
+  // MASK below the cutoff: no emitter at all, and no light.
+  s.meshes[0].colors.clear();
+  s.materials[0].alpha_mode = AlphaMode::Mask;
+  s.materials[0].alpha_cutoff = 0.5f;
+  s.derive();
+  EXPECT_TRUE(s.emissive_triangles.empty());
+  EXPECT_EQ(s.stats.total_light_power, 0.0);
+}
+
 TEST(Scene, EachEmissiveMeshIsOneAreaLight) {
   for (bool two : {false, true}) {
     const Scene s = emissive_quad(two);

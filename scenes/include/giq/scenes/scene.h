@@ -53,7 +53,7 @@ struct EmissiveTriangle {
   uint32_t mesh = 0;      // index into Scene::meshes
   uint32_t triangle = 0;  // index into that mesh's triangles
   float area = 0.0f;
-  glm::vec3 radiance{0.0f};  // mean emitted radiance over the triangle (texture averaged)
+  glm::vec3 radiance{0.0f};  // mean emitted radiance over the triangle (texture and coverage averaged: Scene::mean_emitted)
   float power = 0.0f;        // pi * area * luminance(radiance), times 2 when double-sided
 };
 
@@ -137,6 +137,10 @@ class Scene {
   // material's baseColorFactor.a times the base colour texture's alpha (with UVs) times
   // COLOR_0's alpha, through the alpha mode.
   float coverage(const Mesh& m, const glm::uvec3& t, float b1, float b2) const;
+
+  // Mean radiance emitted over triangle t of mesh m, times its coverage (alpha modes);
+  // EmissiveTriangle::radiance. At most (2 max_half_k)^2 lookups.
+  glm::vec3 mean_emitted(const Mesh& m, const glm::uvec3& t, int max_half_k = 32) const;
 
   // Radiance arriving from direction `dir` (unit, pointing away from the scene).
   glm::vec3 environment_radiance(glm::vec3 dir) const;
