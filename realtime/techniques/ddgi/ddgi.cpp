@@ -232,18 +232,19 @@ class Ddgi : public IndirectLight {
  private:
   // The grid: `probe_grid` probes along the scene's largest side, as many at the same spacing
   // along the others, centred on the bounds (cell-centred: a box whose side is a whole number
-  // of spacings gets probes half a spacing inside its walls, not on them). Spacing grows
-  // until every probe's data fits the memory budget.
+  // of spacings gets probes half a spacing inside its walls, not on them), and `probe_padding`
+  // more on each side of every axis. Spacing grows until every probe's data fits the memory
+  // budget.
   void fit_volume(const TechniqueCreateInfo& ci, const ParameterValues& p) {
     const scenes::Bounds& bounds = ci.scene.bounds;
-    const glm::vec3 extent = bounds.extent();
     const uint64_t budget = uint64_t(p.get("probe_budget_mb") * double(1 << 20));
     const uint64_t per_probe = probe_bytes(irradiance_texels_, distance_texels_, rays_);
     float spacing = bounds.largest_side() / float(p.get_int("probe_grid"));
+    const uint32_t padding = uint32_t(p.get_int("probe_padding"));
     glm::uvec3 counts;
     for (;;) {
       for (int a = 0; a < 3; ++a)
-        counts[a] = std::max(1u, uint32_t(std::ceil(double(extent[a]) / spacing - 1e-3)));
+        counts[a] = std::max(1u, uint32_t(std::ceil(double(bounds.extent()[a]) / spacing - 1e-3))) + 2u * padding;
       const uint64_t total = uint64_t(counts.x) * counts.y * counts.z;
       if (total * per_probe <= budget) break;
       if (total == 1)
@@ -291,6 +292,9 @@ TechniqueInfo ddgi_technique() {
       {{"probe_grid", 8, 2, 64, true,
         "probes along the scene's largest side (spacing = largest side / probe_grid; the other axes at the "
         "same spacing)"},
+       {"probe_padding", 0, 0, 4, true,
+        "probe spacings added beyond the scene's bounds on every side: 0 fits the bounds (a room), 1 or more puts "
+        "probes around an object alone in space"},
        {"probe_budget_mb", 256, 1, 4096, false,
         "largest memory for the probes' maps and rays, MiB; the spacing grows until they fit"},
        {"rays_per_probe", 256, 64, 1024, true,
