@@ -26,10 +26,11 @@ float build_cdf(const float* f, int n, float* cdf) {
   return float(sum / n);
 }
 
-// The bin of u in a CDF of n bins and u's continuous position in [0, n).
-float sample_continuous(const float* cdf, int n, float u, int& bin) {
+// u's continuous position in [0, n) in a CDF of n bins; `bin` (if given) gets its bin.
+float sample_continuous(const float* cdf, int n, float u, int* bin_out = nullptr) {
   const float* it = std::upper_bound(cdf, cdf + n + 1, u);
-  bin = std::clamp(int(it - cdf) - 1, 0, n - 1);
+  const int bin = std::clamp(int(it - cdf) - 1, 0, n - 1);
+  if (bin_out) *bin_out = bin;
   const float width = cdf[bin + 1] - cdf[bin];
   const float t = width > 0.0f ? std::clamp((u - cdf[bin]) / width, 0.0f, 1.0f) : 0.5f;
   return std::min(float(bin) + t, std::nextafter(float(n), 0.0f));
@@ -53,10 +54,9 @@ EnvironmentDistribution::EnvironmentDistribution(const scenes::Texture& map)
 }
 
 glm::vec3 EnvironmentDistribution::sample(glm::vec2 u, float& pdf) const {
-  int row = 0, column = 0;
-  const float v = sample_continuous(marginal_cdf_.data(), height_, u.y, row) / float(height_);
-  const float x = sample_continuous(&conditional_cdf_[size_t(row) * size_t(width_ + 1)], width_, u.x, column) / float(width_);
-  (void)column;
+  int row = 0;
+  const float v = sample_continuous(marginal_cdf_.data(), height_, u.y, &row) / float(height_);
+  const float x = sample_continuous(&conditional_cdf_[size_t(row) * size_t(width_ + 1)], width_, u.x) / float(width_);
   const glm::vec3 w = scenes::equirect_direction({x, v});
   // The pdf of the direction as pdf() and the radiance lookup see it (the texel of w's own
   // coordinates, which rounding can move across a texel edge from the sampled one).

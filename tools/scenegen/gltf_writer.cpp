@@ -135,8 +135,7 @@ glm::dquat rotation_from_minus_z(glm::dvec3 direction) {
   return canonical(glm::dquat(1.0 + c, axis.x, axis.y, axis.z));
 }
 
-int GltfWriter::add_accessor(const void* data, size_t bytes, int component_type, size_t count,
-                             const char* type, std::optional<int> target, Json min, Json max) {
+int GltfWriter::add_buffer_view(const void* data, size_t bytes, std::optional<int> target) {
   // glTF 2.0 §3.6.2.4: an accessor's offset must be a multiple of its component size; 4-byte
   // aligned views satisfy every component type used here.
   while (buffer_.size() % 4 != 0) buffer_.push_back(0);
@@ -148,9 +147,13 @@ int GltfWriter::add_accessor(const void* data, size_t bytes, int component_type,
   const auto* p = static_cast<const uint8_t*>(data);
   buffer_.insert(buffer_.end(), p, p + bytes);
   buffer_views_.push_back(std::move(view));
+  return static_cast<int>(buffer_views_.size() - 1);
+}
 
+int GltfWriter::add_accessor(const void* data, size_t bytes, int component_type, size_t count,
+                             const char* type, std::optional<int> target, Json min, Json max) {
   Json acc;
-  acc["bufferView"] = buffer_views_.size() - 1;
+  acc["bufferView"] = add_buffer_view(data, bytes, target);
   acc["componentType"] = component_type;
   acc["count"] = count;
   acc["type"] = type;
@@ -219,16 +222,9 @@ int GltfWriter::add_texture(const std::string& name, int width, int height, cons
   if (width < 1 || height < 1 || rgba.size() != size_t(width) * size_t(height) * 4)
     throw std::logic_error(name + ": texel count does not match the size");
   const std::vector<uint8_t> png = encode_png(width, height, rgba);
-  while (buffer_.size() % 4 != 0) buffer_.push_back(0);
-  Json view;
-  view["buffer"] = 0;
-  view["byteOffset"] = buffer_.size();
-  view["byteLength"] = png.size();
-  buffer_.insert(buffer_.end(), png.begin(), png.end());
-  buffer_views_.push_back(std::move(view));
   Json image;
   image["name"] = name;
-  image["bufferView"] = buffer_views_.size() - 1;
+  image["bufferView"] = add_buffer_view(png.data(), png.size(), std::nullopt);
   image["mimeType"] = "image/png";
   images_.push_back(std::move(image));
   Json texture;

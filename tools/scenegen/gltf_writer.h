@@ -130,6 +130,8 @@ class GltfWriter {
   double sequence_fps() const { return sequence_ ? (*sequence_)["fps"].get<double>() : 0.0; }
 
  private:
+  // Appends bytes to the buffer as one 4-byte aligned bufferView; returns its index.
+  int add_buffer_view(const void* data, size_t bytes, std::optional<int> target);
   int add_accessor(const void* data, size_t bytes, int component_type, size_t count,
                    const char* type, std::optional<int> target, Json min = {}, Json max = {});
   int add_vec3_accessor(const std::vector<glm::dvec3>& values, std::optional<int> target,
