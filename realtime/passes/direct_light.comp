@@ -93,7 +93,7 @@ void main() {
     // drops it too.
     vec3 ng = normalize(cross(tb - ta, tc - ta)) * (r.back ? -1.0 : 1.0);
     // Textured materials are looked up at the G-buffer point (deferred texturing).
-    if (mat.emissive.w != 0.0) radiance += emission_at(mat, r.tri, r.bary.x, r.bary.y);
+    if (mat.emissive.w != 0.0) radiance += emission_at(mat, r.tri, r.bary.x, r.bary.y, r.footprint);
     Surface s = receiver_surface(r);
     float normal_offset = pc.normal_offset;
     int pcf = int(pc.pcf_radius);

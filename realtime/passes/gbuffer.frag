@@ -33,8 +33,10 @@ void main() {
   // Cut-outs are no surface: the triangles behind them show through (glTF 2.0, 3.9.4).
   if (alpha_cut(tri, bary.x, bary.y, alpha_pixel_number(gl_FragCoord.xy, tri))) discard;
 #endif
-  HitNormals hn = hit_normals(tri, bary.x, bary.y, d);
+  // The pixel's footprint on the surface: mip selection for its textures (texture_lod).
+  float footprint = pixel_footprint(pc.camera, gl_FragCoord.xy, pc.size, p, ng);
+  HitNormals hn = hit_normals(tri, bary.x, bary.y, d, footprint);
   out_position = vec4(p, 1.0);
-  out_normal = vec4(hn.ns, 0.0);
+  out_normal = vec4(hn.ns, footprint);
   out_ids = uvec4(tri + 1u, t.v.w, t.extra.y, denom > 0.0 ? 1u : 0u);
 }

@@ -7,7 +7,10 @@
 // Targets (RGBA32F unless noted, GENERAL layout after record()):
 //   position: xyz local-frame position, w = 1 where a surface was hit, 0 elsewhere
 //   normal:   xyz shading normal as the reference's first hit has it (interpolated,
-//             normal-mapped, turned to the viewer's side; shaders/surface.glsl), w = 0
+//             normal-mapped, turned to the viewer's side; shaders/surface.glsl), w = the
+//             pixel's footprint on the surface (pixel_footprint, shaders/camera.glsl): the
+//             distance to the neighbouring pixels' points, which selects the mip levels of
+//             the textures looked up there (texture_lod, shaders/textures.glsl)
 // Alpha-masked cut-outs are no surface: the rasteriser discards them, the ray caster passes
 // through them.
 //   ids (RGBA32UI): x = triangle + 1 (0 = nothing), y = material, z = object id, w = 1 back face

@@ -40,8 +40,9 @@ void main() {
   float denom = dot(d, ng);
   vec3 p = abs(denom) > 1e-12 ? o + (dot(a - o, ng) / denom) * d : o + (tmin + hit.t) * d;
   bool back = denom > 0.0;
-  HitNormals hn = hit_normals(hit.triangle, hit.u, hit.v, d);
+  float footprint = pixel_footprint(pc.camera, vec2(px) + 0.5, pc.size, p, ng);
+  HitNormals hn = hit_normals(hit.triangle, hit.u, hit.v, d, footprint);
   imageStore(out_position, px, vec4(p, 1.0));
-  imageStore(out_normal, px, vec4(hn.ns, 0.0));
+  imageStore(out_normal, px, vec4(hn.ns, footprint));
   imageStore(out_ids, px, uvec4(hit.triangle + 1u, t.v.w, t.extra.y, back ? 1u : 0u));
 }

@@ -21,6 +21,7 @@ struct Receiver {
   vec3 x;      // local-frame position
   vec3 n;      // shading normal, on the viewer's side (passes/gbuffer.h)
   vec2 bary;   // barycentrics on the triangle's plane (deferred texturing); 0 without textures
+  float footprint;  // the pixel's footprint on the surface, for mip selection (texture_lod)
 };
 
 Receiver load_receiver(ivec2 px) {
@@ -34,9 +35,12 @@ Receiver load_receiver(ivec2 px) {
   r.x = vec3(0.0);
   r.n = vec3(0.0);
   r.bary = vec2(0.0);
+  r.footprint = 0.0;
   if (!r.lit) return r;
   r.x = imageLoad(gb_position, px).xyz;
-  r.n = imageLoad(gb_normal, px).xyz;
+  vec4 n = imageLoad(gb_normal, px);
+  r.n = n.xyz;
+  r.footprint = n.w;
 #ifdef GIQ_SURFACE_TEXTURES
   vec3 ta, tb, tc;
   triangle_vertices(r.tri, ta, tb, tc);
@@ -45,7 +49,8 @@ Receiver load_receiver(ivec2 px) {
   return r;
 }
 
-// The receiver's material at its G-buffer point, textures looked up again there.
-Surface receiver_surface(Receiver r) { return hit_material(r.tri, r.bary.x, r.bary.y, r.n); }
+// The receiver's material at its G-buffer point, textures looked up again there at the
+// pixel's mip levels.
+Surface receiver_surface(Receiver r) { return hit_material(r.tri, r.bary.x, r.bary.y, r.n, r.footprint); }
 
 #endif

@@ -29,6 +29,23 @@ vec3 camera_ray_origin(GpuCamera cam, vec2 pixel, vec2 size) {
   return cam.position.xyz + (camera_orthographic(cam) ? camera_plane(cam, pixel, size) : vec3(0.0));
 }
 
+// How far apart on the surface the rays of neighbouring pixels land: the larger of the
+// distances from p (on the plane through p with normal n) to where the rays through
+// pixel + (1, 0) and pixel + (0, 1) meet that plane (ray differentials by finite differences,
+// Igehy 1999; a pixel's footprint side as GPUs take it for mip selection: the longer of the
+// two screen-axis derivatives). 1e30 where a neighbour's ray runs parallel to the plane.
+float pixel_footprint(GpuCamera cam, vec2 pixel, vec2 size, vec3 p, vec3 n) {
+  float f = 0.0;
+  for (int axis = 0; axis < 2; ++axis) {
+    vec2 q = pixel + (axis == 0 ? vec2(1.0, 0.0) : vec2(0.0, 1.0));
+    vec3 o = camera_ray_origin(cam, q, size), d = camera_ray_direction(cam, q, size);
+    float den = dot(d, n);
+    if (abs(den) < 1e-12) return 1e30;
+    f = max(f, length(o + (dot(p - o, n) / den) * d - p));
+  }
+  return min(f, 1e30);
+}
+
 // The inverse: the image point (in pixels, as camera_ray_direction takes it) where the point
 // p appears, and its distance along forward; z > 0 when p is in front of the camera.
 vec3 camera_project(GpuCamera cam, vec3 p, vec2 size) {

@@ -95,9 +95,10 @@ struct GpuMaterial {
 };
 
 // A texture: its words from `first`, row-major, first row = v 0, exactly as scenes::Texture
-// holds them: one word a texel (8-bit RGBA, R in the low byte) or four (float RGBA bits).
+// holds them: one word a texel (8-bit RGBA, R in the low byte) or four (float RGBA bits); then
+// its mip levels, each max(1, size >> level) a side (shaders/texture_mips.comp).
 struct GpuTexture {
-  uvec4 info;    // x unused, y width, z height, w wrap, filter and format (GIQ_WRAP_*, GIQ_FILTER_*, GIQ_TEXELS_*)
+  uvec4 info;    // x mip levels (1: level 0 only), y width, z height, w wrap, filter and format (GIQ_WRAP_*, GIQ_FILTER_*, GIQ_TEXELS_*)
   uvec4 texels;  // xy the device address of the first texel word (low, high), zw unused
 };
 

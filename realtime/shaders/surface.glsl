@@ -33,8 +33,9 @@ vec2 plane_barycentrics(vec3 p, vec3 a, vec3 b, vec3 c) {
   return vec2(u, v);
 }
 
-// Normals of triangle `tri` at barycentrics (b1, b2), seen along the unit direction `dir`.
-HitNormals hit_normals(uint tri, float b1, float b2, vec3 dir) {
+// Normals of triangle `tri` at barycentrics (b1, b2), seen along the unit direction `dir`;
+// `footprint` selects the normal map's mip level as texture_lod takes it (0: level 0).
+HitNormals hit_normals(uint tri, float b1, float b2, vec3 dir, float footprint) {
   GpuTriangle t = scene_triangles[tri];
   GpuMaterial m = scene_materials[t.v.w];
   vec3 p0, p1, p2;
@@ -82,7 +83,8 @@ HitNormals hit_normals(uint tri, float b1, float b2, vec3 dir) {
       tg /= tl;
       vec3 n0 = normalize(ns);
       vec3 bt = sign * cross(n0, tg);
-      vec3 n = texture_sample(m.textures.w, triangle_uv(m, GIQ_SLOT_NORMAL, tri, b1, b2)).xyz * 2.0 - 1.0;  // [0,1] -> [-1,1]
+      float lod = texture_lod(texture_lod(tri, footprint), m, GIQ_SLOT_NORMAL, m.textures.w);
+      vec3 n = texture_sample(m.textures.w, triangle_uv(m, GIQ_SLOT_NORMAL, tri, b1, b2), lod).xyz * 2.0 - 1.0;  // [0,1] -> [-1,1]
       n.x *= m.mask.z;
       n.y *= m.mask.z;
       ns = tg * n.x + bt * n.y + n0 * n.z;
@@ -103,28 +105,33 @@ HitNormals hit_normals(uint tri, float b1, float b2, vec3 dir) {
   h.ns = ns;
   return h;
 }
+HitNormals hit_normals(uint tri, float b1, float b2, vec3 dir) { return hit_normals(tri, b1, b2, dir, 0.0); }
 
 // The BRDF parameters of triangle `tri`'s material at barycentrics (b1, b2), with shading
 // normal n: the material's factors times its textures (glTF 2.0 metallic-roughness: G =
 // roughness, B = metallic; KHR_materials_specular: specularTexture A, specularColorTexture
-// RGB).
-Surface hit_material(uint tri, float b1, float b2, vec3 n) {
+// RGB); `footprint` selects mip levels as texture_lod takes it (0: level 0, as every ray).
+Surface hit_material(uint tri, float b1, float b2, vec3 n, float footprint) {
   GpuMaterial m = scene_materials[scene_triangles[tri].v.w];
   Surface s = make_surface(m, n);
 #ifdef GIQ_SURFACE_TEXTURES
   vec2 uv = triangle_uv(tri, b1, b2, false), uv2 = m.textures2.z != 0 ? triangle_uv(tri, b1, b2, true) : uv;
-  if (m.textures.x >= 0) s.base_color *= texture_sample(m.textures.x, reads_uv2(m, GIQ_SLOT_BASE_COLOR) ? uv2 : uv).rgb;
+  TextureLod lod = texture_lod(tri, footprint);
+#define GIQ_LOOKUP(slot, index) texture_sample(index, reads_uv2(m, slot) ? uv2 : uv, texture_lod(lod, m, slot, index))
+  if (m.textures.x >= 0) s.base_color *= GIQ_LOOKUP(GIQ_SLOT_BASE_COLOR, m.textures.x).rgb;
   if (m.textures.y >= 0) {
-    vec4 mr = texture_sample(m.textures.y, reads_uv2(m, GIQ_SLOT_METALLIC_ROUGHNESS) ? uv2 : uv);
+    vec4 mr = GIQ_LOOKUP(GIQ_SLOT_METALLIC_ROUGHNESS, m.textures.y);
     s.metallic = clamp(m.params.x * mr.b, 0.0, 1.0);
     float r = clamp(m.params.y * mr.g, 0.0, 1.0);
     s.alpha = max(r * r, 1e-3);
   }
-  if (m.textures2.x >= 0) s.specular *= texture_sample(m.textures2.x, reads_uv2(m, GIQ_SLOT_SPECULAR) ? uv2 : uv).a;
-  if (m.textures2.y >= 0) s.specular_color *= texture_sample(m.textures2.y, reads_uv2(m, GIQ_SLOT_SPECULAR_COLOR) ? uv2 : uv).rgb;
+  if (m.textures2.x >= 0) s.specular *= GIQ_LOOKUP(GIQ_SLOT_SPECULAR, m.textures2.x).a;
+  if (m.textures2.y >= 0) s.specular_color *= GIQ_LOOKUP(GIQ_SLOT_SPECULAR_COLOR, m.textures2.y).rgb;
+#undef GIQ_LOOKUP
   s.base_color *= triangle_color(tri, b1, b2).rgb;  // COLOR_0 (reference make_surface)
 #endif
   return s;
 }
+Surface hit_material(uint tri, float b1, float b2, vec3 n) { return hit_material(tri, b1, b2, n, 0.0); }
 
 #endif

@@ -51,7 +51,7 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
   // the resources need, not the 64 MiB blocks around them); measured after the first frame,
   // since passes may create resources when they first record.
   const uint64_t memory_before = ctx.allocator().bytes_in_use();
-  SceneGpu scene_gpu(ctx, posed);
+  SceneGpu scene_gpu(ctx, compiler, posed);
   const uint64_t memory_scene = ctx.allocator().bytes_in_use();
   std::unique_ptr<Technique> technique =
       info.create({ctx, compiler, posed, scene_gpu, options.width, options.height, params});

@@ -7,6 +7,7 @@
 
 #include "giq/base/error.h"
 #include "giq/realtime/context.h"
+#include "giq/realtime/shader.h"
 #include "shaders/scene_shared.h"
 
 namespace giq::realtime {
@@ -67,11 +68,22 @@ TexelPacking pack_texels(const std::vector<uint64_t>& words, uint64_t chunk_word
   return p;
 }
 
-SceneGpu::SceneGpu(Context& ctx, const scenes::Scene& scene) : ctx_(&ctx), features_(scene.features) {
-  upload_materials(scene);
+uint32_t mip_levels(uint32_t width, uint32_t height) { return uint32_t(std::bit_width(std::max({width, height, 1u}))); }
+
+uint64_t mip_chain_texels(uint32_t width, uint32_t height, uint32_t levels) {
+  uint64_t n = 0;
+  for (uint32_t l = 0; l < levels; ++l) n += uint64_t(std::max(1u, width >> l)) * std::max(1u, height >> l);
+  return n;
+}
+
+SceneGpu::SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& scene)
+    : ctx_(&ctx), features_(scene.features) {
+  std::vector<uint32_t> levels;
+  upload_materials(scene, levels);
   upload_geometry(scene, flatten(scene));
   previous_vertices_ = Buffer::storage(ctx, vertices_host_);
   upload_lights(scene);
+  make_mips(compiler, scene, levels);
 }
 
 SceneChange SceneGpu::update(const scenes::Scene& posed) {
@@ -167,7 +179,7 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat) {
 }
 
 // Materials and textures do not move: uploaded once.
-void SceneGpu::upload_materials(const scenes::Scene& scene) {
+void SceneGpu::upload_materials(const scenes::Scene& scene, std::vector<uint32_t>& levels) {
   using namespace gpu;
   Context& ctx = *ctx_;
   std::vector<GpuTexture> textures;
@@ -185,9 +197,17 @@ void SceneGpu::upload_materials(const scenes::Scene& scene) {
     VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &m3};
     vkGetPhysicalDeviceProperties2(ctx.physical_device(), &p2);
     const uint64_t chunk_bytes = std::min<uint64_t>(kTexelChunkBytes, m3.maxMemoryAllocationSize);
+    // Mip levels where the sampler asks for them, for the G-buffer's primary hits
+    // (docs/realtime.md): a third more texels. The environment map is read by rays only.
     std::vector<uint64_t> sizes;
-    for (const auto& t : scene.textures)
-      sizes.push_back(t.valid() ? uint64_t(t.width) * uint64_t(t.height) * scenes::Texture::words_per_texel(t.format) : 0);
+    for (size_t i = 0; i < scene.textures.size(); ++i) {
+      const auto& t = scene.textures[i];
+      const bool mips = t.valid() && t.mip_maps && int(i) != scene.environment_map;
+      levels.push_back(mips ? mip_levels(uint32_t(t.width), uint32_t(t.height)) : 1u);
+      sizes.push_back(t.valid() ? mip_chain_texels(uint32_t(t.width), uint32_t(t.height), levels.back()) *
+                                      scenes::Texture::words_per_texel(t.format)
+                                : 0);
+    }
     const TexelPacking packing = pack_texels(sizes, chunk_bytes / sizeof(uint32_t));
     for (size_t i = 0; i < sizes.size(); ++i)
       if (packing.chunk[i] < 0)
@@ -206,14 +226,14 @@ void SceneGpu::upload_materials(const scenes::Scene& scene) {
       GpuTexture g;
       const bool valid = sizes[i] > 0;
       // A texture without texels samples as 0, like scenes::Texture::sample.
-      g.info = glm::uvec4(0u, valid ? uint32_t(t.width) : 0u, valid ? uint32_t(t.height) : 0u,
+      g.info = glm::uvec4(levels[i], valid ? uint32_t(t.width) : 0u, valid ? uint32_t(t.height) : 0u,
                           wrap_code(t.wrap_s) | wrap_code(t.wrap_t) << 2 |
                               (t.filter == scenes::Filter::Linear ? GIQ_FILTER_LINEAR : GIQ_FILTER_NEAREST) << 4 |
                               format_code(t.format) << 5);
       if (valid) {
         Buffer& chunk = texel_chunks_[size_t(packing.chunk[i])];
         const uint64_t offset = packing.first_word[i] * sizeof(uint32_t);
-        chunk.upload(t.words->data(), sizes[i] * sizeof(uint32_t), offset);
+        chunk.upload(t.words->data(), t.words->size() * sizeof(uint32_t), offset);
         const VkDeviceAddress a = chunk.address() + offset;
         g.texels = glm::uvec4(uint32_t(a), uint32_t(a >> 32), 0u, 0u);
       }
@@ -243,6 +263,28 @@ void SceneGpu::upload_materials(const scenes::Scene& scene) {
   materials_ = Buffer::storage(ctx, materials);
   textures_ = Buffer::storage(ctx, textures);
   decode_ = Buffer::storage(ctx, table);
+}
+
+void SceneGpu::make_mips(ShaderCompiler& compiler, const scenes::Scene& scene, const std::vector<uint32_t>& levels) {
+  const uint32_t most = levels.empty() ? 1u : *std::max_element(levels.begin(), levels.end());
+  if (most <= 1) return;
+  const Pipeline pipeline = Pipeline::compute(*ctx_, compiler.compile("shaders/texture_mips.comp"), binding_types(),
+                                              2 * sizeof(uint32_t));
+  // Level by level, every texture at once: level l reads level l - 1, written before the barrier.
+  ctx_->submit_and_wait([&](VkCommandBuffer cmd) {
+    pipeline.bind(cmd);
+    pipeline.push_descriptors(cmd, descriptors());
+    for (uint32_t level = 1; level < most; ++level) {
+      for (size_t i = 0; i < levels.size(); ++i) {
+        if (level >= levels[i]) continue;
+        const uint32_t push[2] = {uint32_t(i), level};
+        pipeline.push_constants(cmd, push, sizeof(push));
+        const auto& t = scene.textures[i];
+        pipeline.dispatch_2d(cmd, std::max(1u, uint32_t(t.width) >> level), std::max(1u, uint32_t(t.height) >> level));
+      }
+      full_barrier(cmd);
+    }
+  });
 }
 
 bool SceneGpu::upload_lights(const scenes::Scene& scene) {

@@ -61,6 +61,9 @@ class TextureTable : public TextureDecoding {
       if (s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) tex.filter = Filter::Nearest;
       else if (s.magFilter == -1 || s.magFilter == TINYGLTF_TEXTURE_FILTER_LINEAR) tex.filter = Filter::Linear;
       else ctx_.fail(sw + ".magFilter", "is " + std::to_string(s.magFilter) + "; expected 9728 (NEAREST) or 9729 (LINEAR)");
+      if (s.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST || s.minFilter == TINYGLTF_TEXTURE_FILTER_LINEAR) tex.mip_maps = false;
+      else if (s.minFilter != -1 && (s.minFilter < TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST || s.minFilter > TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR))
+        ctx_.fail(sw + ".minFilter", "is " + std::to_string(s.minFilter) + "; expected 9728, 9729 or 9984 to 9987 (glTF 2.0, 5.26)");
     }
     requests_.push_back({out_.size(), t.source, srgb});
     out_.push_back(std::move(tex));

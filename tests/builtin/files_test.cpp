@@ -19,7 +19,9 @@ using nlohmann::json;
 
 namespace {
 
-const std::vector<std::string> kScenes = {"cornell", "leak", "sunroom", "movinglight"};
+const std::vector<std::string> kScenes = {"cornell", "leak", "sunroom", "movinglight", "atrium"};
+// Scenes with curved surfaces, smooth-shaded: vertex normals of the surface, not of the face.
+const std::set<std::string> kSmooth = {"atrium"};
 
 fs::path scene_path(const std::string& name) {
   return fs::path(GIQ_SCENES_DIR) / (name + ".gltf");
@@ -113,8 +115,11 @@ TEST_P(BuiltinFile, NormalsAreUnitAndAgreeWithTheWinding) {
         const glm::dvec3 g = glm::cross(b - a, c - a);
         ASSERT_GT(glm::length(g), 1e-8) << "degenerate triangle in " << mesh.at("name");
         // Flat shading: all three vertices carry the counter-clockwise face normal (§3.7.2.1).
+        // Smooth shading: within 30 degrees of it (the atrium's coarsest curve, a curtain's
+        // fold of 8 segments, turns its normals by up to 20 degrees across a triangle).
+        const double least = kSmooth.count(GetParam()) ? std::cos(30.0 * M_PI / 180.0) : 1.0 - 1e-6;
         for (int k = 0; k < 3; ++k)
-          EXPECT_GT(glm::dot(glm::normalize(g), glm::dvec3(nrm[idx[t + k]])), 1.0 - 1e-6)
+          EXPECT_GT(glm::dot(glm::normalize(g), glm::dvec3(nrm[idx[t + k]])), least)
               << mesh.at("name") << " triangle " << t / 3;
       }
     }

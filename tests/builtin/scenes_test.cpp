@@ -50,7 +50,11 @@ FeatureSet features(std::initializer_list<bool FeatureSet::*> flags) {
 // leak: 2 rooms of 5 quads + the thin wall's 6 faces = 16 quads; sunroom: 5 inner walls, the
 // window wall (4 quads around the opening), the reveal (4), the exterior (5 + 4 around the
 // opening) and the copper box (6) = 28 quads; movinglight: cornell without its light.
-// Every material is one-sided; only the copper box has a specular lobe.
+// Every material is one-sided; only the copper box has a specular lobe. atrium
+// (AtriumDetail::builtin()): floor and walls 5 x 2^2 quads, ceiling 4, sacristy 6 x 1, 12
+// columns of 16 x 2 quads, 10 arches of 4 grids of 12 x 2, 3 curtains of 2 sheets of 48 x 2:
+// 1950 quads; every surface textured and normal-mapped, its materials with a specular lobe
+// (dielectric, textured roughness), the curtains' double-sided.
 const Expected kExpected[] = {
     {"cornell", 32, 0, 2, "front", 0, 1,
      features({&FeatureSet::emissive_meshes, &FeatureSet::one_sided})},
@@ -60,6 +64,9 @@ const Expected kExpected[] = {
      features({&FeatureSet::directional_lights, &FeatureSet::specular, &FeatureSet::one_sided})},
     {"movinglight", 30, 1, 2, "front", 0, 60,
      features({&FeatureSet::point_lights, &FeatureSet::animation, &FeatureSet::one_sided})},
+    {"atrium", 3900, 1, 4, "nave", 6, 1,
+     features({&FeatureSet::directional_lights, &FeatureSet::specular, &FeatureSet::textures, &FeatureSet::normal_maps,
+               &FeatureSet::double_sided, &FeatureSet::one_sided})},
 };
 
 class BuiltinScene : public testing::TestWithParam<Expected> {};

@@ -89,7 +89,7 @@ TEST(Bvh, EveryTriangleIsInExactlyOneLeafAndBoxesContainTheirTriangles) {
 // that is not a tie, and on more than 0.1% edge ties.
 void compare_with_embree(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& scene, int n_inside, int n_outside) {
 
-  SceneGpu gpu(ctx, scene);
+  SceneGpu gpu(ctx, compiler, scene);
   const FlatGeometry& g = gpu.geometry();
   EmbreeScene embree(g);
   RayQuery query(ctx, compiler, gpu);
@@ -178,7 +178,7 @@ TEST_P(BuiltinBvhTest, AgreesWithEmbree) {
   compare_with_embree(*ctx, *compiler, s, 12000, 4000);
 }
 
-INSTANTIATE_TEST_SUITE_P(BuiltinScenes, BuiltinBvhTest, ::testing::Values("cornell", "leak", "movinglight", "sunroom"));
+INSTANTIATE_TEST_SUITE_P(BuiltinScenes, BuiltinBvhTest, ::testing::Values("cornell", "leak", "movinglight", "sunroom", "atrium"));
 
 }  // namespace
 }  // namespace giq::realtime

@@ -114,8 +114,11 @@ TEST(RealtimeCli, RendersAssetTexturesAtTheirRealSize) {
                         "illuminance=2 --camera auto --width 16 --height 16 --out '" + out.string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(slurp(out / "timings.json"));
-  // Four textures of 2048^2 words plus the 512-word decode table.
-  EXPECT_NEAR(j["gpu_memory_mb"]["textures"].get<double>(), (4.0 * n * n + 512.0) * 4.0 / (1 << 20), 1e-9);
+  // Four textures of 2048^2 words, each with its mip chain down to 1 x 1 (a sum of
+  // 2048^2 / 4^l over 12 levels: (4^12 - 1) / 3 words), plus the 512-word decode table.
+  const double chain = (std::pow(4.0, 12) - 1.0) / 3.0;
+  ASSERT_EQ(n, 2048);
+  EXPECT_NEAR(j["gpu_memory_mb"]["textures"].get<double>(), (4.0 * chain + 512.0) * 4.0 / (1 << 20), 1e-9);
   const giq::image::Image img = giq::image::read_image(out / "frame_0000.exr");
   double sum = 0.0;
   for (size_t i = 0; i < img.pixel_count(); ++i) sum += img.channel("G")[i];

@@ -401,7 +401,7 @@ TEST_P(DdgiSceneTest, RendersFiniteIndirectLightAndComposesTheBeauty) {
   EXPECT_GT(indirect, 0.0) << GetParam();
 }
 
-INSTANTIATE_TEST_SUITE_P(BuiltinScenes, DdgiSceneTest, ::testing::Values("cornell", "leak", "movinglight", "sunroom"));
+INSTANTIATE_TEST_SUITE_P(BuiltinScenes, DdgiSceneTest, ::testing::Values("cornell", "leak", "movinglight", "sunroom", "atrium"));
 
 TEST_F(DdgiTest, RenderingTwiceGivesTheSameBits) {
   const scenes::Scene scene = builtin("cornell");

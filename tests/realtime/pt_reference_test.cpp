@@ -123,7 +123,7 @@ TEST_F(PtReferenceCases, EnvironmentMapAgreesWithinNoise) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltinScenes, PtReferenceTest,
-                         ::testing::Values("cornell", "leak", "movinglight", "sunroom"));
+                         ::testing::Values("cornell", "leak", "movinglight", "sunroom", "atrium"));
 
 }  // namespace
 }  // namespace giq::realtime

@@ -29,7 +29,7 @@ struct Frame {
 // Records the G-buffer with motion vectors for each (pose, camera) in turn; returns the last.
 Frame gbuffer_sequence(Context& ctx, ShaderCompiler& compiler, const std::vector<scenes::Scene>& poses,
                        const std::vector<scenes::Camera>& cameras, uint32_t size, bool ray_traced) {
-  SceneGpu gpu(ctx, poses[0]);
+  SceneGpu gpu(ctx, compiler, poses[0]);
   GBufferPass gbuffer(ctx, compiler, gpu, poses[0].features, size, size,
                       ray_traced ? GBufferBuilder::RayTraced : GBufferBuilder::Raster);
   gbuffer.enable_motion_vectors();
@@ -100,7 +100,7 @@ TEST_F(SequenceTest, MotionVectorsFollowMovingGeometry) {
   const scenes::Camera cam = box.views[0].camera;
   const Frame f = gbuffer_sequence(*ctx, *compiler, {box, moved}, {cam, cam}, 64, false);
   // Which mesh a pixel shows: from the triangle id the G-buffer stores.
-  SceneGpu gpu(*ctx, moved);
+  SceneGpu gpu(*ctx, *compiler, moved);
   GBufferPass gb(*ctx, *compiler, gpu, moved.features, 64, 64);
   GpuTimer timer(*ctx);
   ctx->submit_and_wait([&](VkCommandBuffer cmd) {
@@ -128,7 +128,7 @@ TEST_F(SequenceTest, UpdateReportsWhatMoved) {
   l.position = {0.0f, 0.5f, 0.0f};
   s.lights = {l};
   s.derive();
-  SceneGpu gpu(*ctx, s);
+  SceneGpu gpu(*ctx, *compiler, s);
   EXPECT_EQ(gpu.update(s), SceneChange::None);
   scenes::Scene lit = s;
   lit.lights[0].position.x = 0.25f;

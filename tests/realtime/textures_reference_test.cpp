@@ -181,7 +181,7 @@ TEST_F(TexturesReferenceTest, GBufferNormalsAreTheReferenceFirstHitNormals) {
   const scenes::Scene s = textured_plane();
   const int size = 48;
   const image::Image ref = reference(s, size, 1);
-  SceneGpu gpu(*ctx, s);
+  SceneGpu gpu(*ctx, *compiler, s);
   for (bool ray_traced : {false, true}) {
     GpuTimer timer(*ctx);
     GBufferPass gb(*ctx, *compiler, gpu, s.features, size, size,

@@ -23,7 +23,7 @@ class UpsampleTest : public test::VulkanTest {
   template <class F>
   std::vector<float> run(const scenes::Scene& scene, uint32_t size, uint32_t k, bool blur, F value,
                          std::vector<float>* normals_out = nullptr) {
-    SceneGpu gpu(*ctx, scene);
+    SceneGpu gpu(*ctx, *compiler, scene);
     GBufferPass gbuffer(*ctx, *compiler, gpu, scene.features, size, size);
     UpsamplePass up(*ctx, *compiler, size, size, k, blur);
     GpuTimer timer(*ctx);

@@ -73,7 +73,7 @@ TEST_P(VctSceneTest, RendersFiniteIndirectLightAndComposesTheBeauty) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltinScenes, VctSceneTest,
-                         ::testing::Values("cornell", "leak", "movinglight", "sunroom"));
+                         ::testing::Values("cornell", "leak", "movinglight", "sunroom", "atrium"));
 
 TEST_F(VctTest, CornellIndirectLightIsWithinMeasuredBoundsOfTheReference) {
   const scenes::Scene scene = builtin("cornell");

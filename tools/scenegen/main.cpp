@@ -24,6 +24,7 @@ std::vector<BuiltinScene> all_scenes() {
   scenes.push_back(make_leak());
   scenes.push_back(make_sunroom());
   scenes.push_back(make_movinglight());
+  scenes.push_back(make_atrium(AtriumDetail::builtin()));
   return scenes;
 }
 

@@ -29,6 +29,9 @@ struct AtriumDetail {
   int curtain_folds = 240, curtain_rows = 120, panel = 64;
   // The same hall at a few thousand triangles and 16² textures (tests).
   static AtriumDetail small() { return {4, 16, 12, 2, 8, 12, 4, 2}; }
+  // The built-in scene (scenes/atrium.gltf): 3,900 triangles and 64² textures, so that the
+  // textures are minified in its views at the gate's resolution, as in the large one at 1080p.
+  static AtriumDetail builtin() { return {4, 64, 16, 2, 12, 48, 2, 2}; }
 };
 BuiltinScene make_atrium(const AtriumDetail& detail);
 

@@ -44,9 +44,18 @@ struct TexelPacking {
 };
 TexelPacking pack_texels(const std::vector<uint64_t>& words, uint64_t chunk_words);
 
+// Mip levels of a width x height texture down to 1 x 1, each side max(1, side >> level)
+// (shaders/textures.glsl's mip_size), and the texels of levels 0..levels-1 together.
+uint32_t mip_levels(uint32_t width, uint32_t height);
+uint64_t mip_chain_texels(uint32_t width, uint32_t height, uint32_t levels);
+
+class ShaderCompiler;
+
 class SceneGpu {
  public:
-  SceneGpu(Context& ctx, const scenes::Scene& scene);
+  // Textures whose sampler asks for mip maps get their levels made on the GPU
+  // (shaders/texture_mips.comp), hence the compiler.
+  SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& scene);
 
   // Brings the buffers to `posed` (the same scene at another time: same meshes, materials and
   // lights, moved) and says what moved. The vertices before the call become previous_vertices().
@@ -68,12 +77,13 @@ class SceneGpu {
   // The FeatureSet the scene was uploaded for; passes compile their shaders with its defines.
   const scenes::FeatureSet& features() const { return features_; }
   uint32_t texture_count() const { return texture_count_; }
-  uint64_t texture_bytes() const { return texture_bytes_; }  // texel buffers and decode table
+  uint64_t texture_bytes() const { return texture_bytes_; }  // texel buffers (mip levels included) and decode table
   // The largest texel buffer SceneGpu makes (smaller where the device's largest allocation is).
   static constexpr uint64_t kTexelChunkBytes = 1ull << 30;
 
  private:
-  void upload_materials(const scenes::Scene& scene);
+  void upload_materials(const scenes::Scene& scene, std::vector<uint32_t>& mip_levels);
+  void make_mips(ShaderCompiler& compiler, const scenes::Scene& scene, const std::vector<uint32_t>& mip_levels);
   void upload_geometry(const scenes::Scene& scene, FlatGeometry flat);
   bool upload_lights(const scenes::Scene& scene);  // false when nothing changed
 

@@ -40,7 +40,10 @@ struct Texture {
   std::shared_ptr<const std::vector<uint32_t>> words;
   Wrap wrap_s = Wrap::Repeat;
   Wrap wrap_t = Wrap::Repeat;
-  Filter filter = Filter::Linear;  // magnification filter; no mip-mapping (docs/scene-format.md)
+  Filter filter = Filter::Linear;  // magnification filter (docs/scene-format.md)
+  // The sampler's minification filter asks for mip maps (or, unset, leaves it to giq): the
+  // real-time G-buffer's primary hits then read mip levels; every ray reads level 0 only.
+  bool mip_maps = true;
 
   static uint32_t words_per_texel(TexelFormat f) { return f == TexelFormat::Rgba32F ? 4u : 1u; }
   // True when `words` holds width x height texels.
