@@ -179,9 +179,6 @@ TEST(ScoreCli, BadInputExitsTwoWithOneLine) {
   image::Image ref = reference();
   image::write_exr(ref, d / "ref.exr");
   image::write_exr(test::rgb_image(W + 1, H, [](int, int, int) { return 0.5f; }), d / "wide.exr");
-  auto rgba = test::rgb_image(W, H, [](int, int, int) { return 0.5f; });
-  rgba.add_channel("A", 1.0f);
-  image::write_exr(rgba, d / "rgba.exr");
   image::write_exr(test::rgb_image(W, H, [](int, int, int) { return 0.5f; }), d / "beauty_only.exr");
   fs::create_directories(d / "o");
   image::write_exr(test::rgb_image(W, H, [](int, int, int) { return 0.25f; }), d / "o" / "abs_error.exr");
@@ -192,11 +189,18 @@ TEST(ScoreCli, BadInputExitsTwoWithOneLine) {
   const std::string base = "score --ref " + (d / "ref.exr").string() + " --out " + (d / "o").string() + " --test ";
   const Case cases[] = {
       {base + (d / "wide.exr").string(), "wide.exr"},                                // size mismatch
-      {base + (d / "rgba.exr").string(), "rgba.exr"},                                // channel counts
       {base + (d / "beauty_only.exr").string() + " --layer indirect", "indirect"},   // missing layer
       {base + (d / "missing.exr").string(), "missing.exr"},                          // no such file
       {base + (d / "ref.exr").string() + " --frames 3", "--frames"},                  // bad frames
       {base + (d / "ref.exr").string() + " --step-frame -7", "--step-frame"},         // was ignored
+      {base + (d / "ref.exr").string() + " --crop 20,0,10,4", "--crop"},              // beyond the image
+      {base + (d / "ref.exr").string() + " --crop 1,2,3", "--crop"},                  // not x,y,w,h
+      {base + (d / "ref.exr").string() + " --tonemap filmic", "--tonemap"},           // no such curve
+      {base + (d / "ref.exr").string() + " --test-encoding linear", "--test-encoding"},  // an EXR is linear
+      {base + (d / "ref.exr").string() + " --fail relmse", "--fail"},                 // no level
+      {base + (d / "ref.exr").string() + " --fail 'mse<=0.1' --warn 'mse<=0.2'", "--warn"},  // warn beyond fail
+      {base + (d / "ref.exr").string() + " --fail 'relmsee<=0.1'", "relmsee"},          // no such metric
+      {base + (d / "ref.exr").string() + " --test-layer direct", "direct"},           // the test has no such layer
       // An input inside the output folder, where the maps would replace it.
       {"score --ref " + (d / "ref.exr").string() + " --test " + (d / "o" / "abs_error.exr").string() + " --out " +
            (d / "o").string(),
@@ -366,4 +370,180 @@ TEST(ScoreCli, AScoreReplacesThePreviousOneAsAWholeAndAConcurrentOneIsRefused) {
   EXPECT_NE(refused.err.find("another giq process is writing to this folder"), std::string::npos) << refused.err;
   EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
   EXPECT_EQ(test::slurp(out / "metrics.json"), before);
+}
+
+namespace {
+
+// The tone curves written out here from their sources, independently of metrics/display.cpp.
+double curve(const std::string& name, double x) {
+  if (name == "clamp") return std::min(x, 1.0);
+  if (name == "reinhard") return x / (1.0 + x);
+  if (name == "aces") return std::clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+  auto h = [](double v) {
+    const double A = 0.15, B = 0.50, C = 0.10, D = 0.20, E = 0.02, F = 0.30;
+    return ((v * (A * v + C * B) + D * E) / (v * (A * v + B) + D * F)) - E / F;
+  };
+  return h(x) / h(11.2);  // hable
+}
+
+}  // namespace
+
+// An engine's screenshot: the reference's radiance (0 to 8, HDR), exposed by -1 stop, through
+// the engine's tone curve, sRGB-encoded to 8 bits. Scored with the same --tonemap and
+// --exposure, only the 8-bit rounding is left: at most half a code step in linear light per
+// channel (the largest step, between codes 254 and 255, bounds it), no warning, and a
+// brightness ratio of 1 within that rounding. Without the tone curve the same PNG is an
+// LDR image against HDR radiance, which is said, and the error is far larger.
+TEST(ScoreCli, ToneMappedScreenshotIsScoredUnderTheSameCurve) {
+  const fs::path d = fresh_dir("tonemap");
+  image::Image ref = test::rgb_image(W, H, [](int x, int y, int k) { return 8.0f * test::hash01(x, y, k); });
+  // A golden's noise small enough to resolve 8-bit rounding.
+  test::add_layer(ref, "variance", [](int, int, int) { return 1e-10f; });
+  image::write_exr(ref, d / "ref.exr");
+  const double half_step = 0.5 * (1.0 - image::srgb_decode(254.0f / 255.0f));
+  for (const std::string name : {"clamp", "reinhard", "aces", "hable"}) {
+    std::vector<unsigned char> px(size_t(W) * H * 3);
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x)
+        for (int k = 0; k < 3; ++k) {
+          const double v = curve(name, 0.5 * ref.at(k == 0 ? "R" : k == 1 ? "G" : "B", x, y));
+          px[(size_t(y) * W + size_t(x)) * 3 + size_t(k)] = (unsigned char)std::lround(255.0 * image::srgb_encode(float(v)));
+        }
+    image::write_png_rgb8(d / (name + ".png"), W, H, 3, px.data());
+    const CliRun r = giq_run("score --ref " + (d / "ref.exr").string() + " --test " + (d / (name + ".png")).string() +
+                                 " --tonemap " + name + " --exposure -1 --out " + (d / name).string() + " --json",
+                             d);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_LE(j["metrics"]["mae"]["value"].get<double>(), half_step) << name;
+    EXPECT_LE(j["metrics"]["mse"]["value"].get<double>(), half_step * half_step) << name;
+    EXPECT_NEAR(j["metrics"]["mean_luminance_ratio"].get<double>(), 1.0, 0.02) << name;
+    EXPECT_EQ(j["warnings"], json::array()) << name;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+    EXPECT_EQ(j["inputs"]["display"]["tone_curve"], name);
+    EXPECT_EQ(j["inputs"]["dynamic_range"], "ldr");
+    if (name != "aces") continue;
+    const CliRun raw = giq_run("score --ref " + (d / "ref.exr").string() + " --test " + (d / "aces.png").string() +
+                                   " --out " + (d / "raw").string() + " --json",
+                               d);
+    ASSERT_EQ(raw.code, 0) << raw.err;
+    const json jr = json::parse(raw.out);
+    ASSERT_EQ(jr["warnings"].size(), 2u) << jr["warnings"];  // LDR against HDR, and the brightness
+    EXPECT_NE(jr["warnings"][0].get<std::string>().find("low-dynamic-range"), std::string::npos);
+    EXPECT_NE(raw.err.find("warning: the test is a low-dynamic-range image"), std::string::npos) << raw.err;
+    EXPECT_GT(jr["metrics"]["mse"]["value"].get<double>(), 100.0 * j["metrics"]["mse"]["value"].get<double>());
+  }
+}
+
+// Exposure alone keeps the comparison HDR and scales the reference's radiance by 2^ev and its
+// variance (the noise floor) by 4^ev; a test twice as bright as the reference then matches
+// with --exposure 1, and without it the brightness ratio is reported.
+TEST(ScoreCli, ExposureScalesRadianceAndNoiseAndTheRatioIsReported) {
+  const fs::path d = fresh_dir("exposure");
+  const image::Image ref = reference();
+  image::write_exr(ref, d / "ref.exr");
+  image::Image twice = test::rgb_image(W, H, [&](int x, int y, int k) { return 2.0f * ref.at(k == 0 ? "R" : k == 1 ? "G" : "B", x, y); });
+  image::write_exr(twice, d / "twice.exr");
+  const std::string base = "score --ref " + (d / "ref.exr").string() + " --test " + (d / "twice.exr").string() + " --json --out ";
+  const CliRun plain = giq_run(base + (d / "plain").string(), d);
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  const json jp = json::parse(plain.out);
+  EXPECT_NEAR(jp["metrics"]["mean_luminance_ratio"].get<double>(), 2.0, 1e-6);
+  ASSERT_EQ(jp["warnings"].size(), 1u);
+  EXPECT_NE(jp["warnings"][0].get<std::string>().find("2.000000 times"), std::string::npos) << jp["warnings"][0];
+  const CliRun exposed = giq_run(base + (d / "exposed").string() + " --exposure 1", d);
+  ASSERT_EQ(exposed.code, 0) << exposed.err;
+  const json je = json::parse(exposed.out);
+  EXPECT_EQ(je["metrics"]["mse"]["value"].get<double>(), 0.0);  // x 2 is exact in float
+  EXPECT_EQ(je["metrics"]["mean_luminance_ratio"].get<double>(), 1.0);
+  // An error of 0 lies below the golden's noise floor (1e-6 x 4): only that is said.
+  ASSERT_EQ(je["warnings"].size(), 1u) << je["warnings"];
+  EXPECT_NE(je["warnings"][0].get<std::string>().find("too noisy"), std::string::npos);
+  EXPECT_EQ(je["inputs"]["dynamic_range"], "hdr");
+  EXPECT_NEAR(je["metrics"]["noise_floor"]["value"].get<double>(), 4.0 * jp["metrics"]["noise_floor"]["value"].get<double>(), 1e-12);
+  // 683 lm/W between photometric and radiometric units is named.
+  image::write_exr(test::rgb_image(W, H, [&](int x, int y, int k) { return 683.0f * ref.at(k == 0 ? "R" : k == 1 ? "G" : "B", x, y); }),
+                   d / "lumens.exr");
+  const CliRun units = giq_run("score --ref " + (d / "ref.exr").string() + " --test " + (d / "lumens.exr").string() +
+                                   " --json --out " + (d / "units").string(), d);
+  ASSERT_EQ(units.code, 0) << units.err;
+  EXPECT_NE(json::parse(units.out)["warnings"][0].get<std::string>().find("683"), std::string::npos);
+}
+
+// A black reference and one too noisy to resolve the error are each said once; an identical
+// pair says nothing.
+TEST(ScoreCli, BlackOrNoisyReferencesAreSaid) {
+  const fs::path d = fresh_dir("doubtful");
+  image::write_exr(test::rgb_image(W, H, [](int, int, int) { return 0.0f; }), d / "black.exr");
+  image::write_exr(test::rgb_image(W, H, [](int x, int y, int k) { return 0.5f + 0.01f * test::hash01(x, y, k); }), d / "test.exr");
+  image::Image noisy = test::rgb_image(W, H, [](int, int, int) { return 0.5f; });
+  test::add_layer(noisy, "variance", [](int, int, int) { return 1.0f; });
+  image::write_exr(noisy, d / "noisy.exr");
+  auto warnings = [&](const std::string& ref, const std::string& test_file, const std::string& out) {
+    const CliRun r = giq_run("score --ref " + (d / ref).string() + " --test " + (d / test_file).string() + " --json --out " +
+                                 (d / out).string(), d);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return json::parse(r.out)["warnings"];
+  };
+  const json black = warnings("black.exr", "test.exr", "b");
+  ASSERT_EQ(black.size(), 1u) << black;
+  EXPECT_NE(black[0].get<std::string>().find("black"), std::string::npos);
+  const json noisy_w = warnings("noisy.exr", "test.exr", "n");
+  ASSERT_EQ(noisy_w.size(), 1u) << noisy_w;
+  EXPECT_NE(noisy_w[0].get<std::string>().find("too noisy"), std::string::npos);
+  EXPECT_EQ(warnings("test.exr", "test.exr", "same"), json::array());
+}
+
+// --fail and --warn bound any catalogue metric: exit 0 when every fail level holds (warn
+// levels only mark), 1 when one does not, and the table marks which.
+TEST(ScoreCli, BoundsSetTheExitCode) {
+  const fs::path d = fresh_dir("bounds");
+  const image::Image ref = reference();
+  image::write_exr(ref, d / "ref.exr");
+  image::write_exr(test::rgb_image(W, H, [&](int x, int y, int k) { return ref.at(k == 0 ? "R" : k == 1 ? "G" : "B", x, y) + 0.1f; }),
+                   d / "tech.exr");
+  const std::string base = "score --ref " + (d / "ref.exr").string() + " --test " + (d / "tech.exr").string() + " --out ";
+  // mse is 0.01 (T - R = 0.1 everywhere).
+  const CliRun pass = giq_run(base + (d / "p").string() + " --fail 'mse<=0.02' --fail 'ssim>=0.1'", d);
+  EXPECT_EQ(pass.code, 0) << pass.out << pass.err;
+  EXPECT_NE(pass.out.find("PASS"), std::string::npos);
+  const CliRun warn = giq_run(base + (d / "w").string() + " --fail 'mse<=0.02' --warn 'mse<=0.005'", d);
+  EXPECT_EQ(warn.code, 0) << warn.out;
+  EXPECT_NE(warn.out.find("WARN"), std::string::npos);
+  const CliRun fail = giq_run(base + (d / "f").string() + " --fail 'mse<=0.005' --fail 'psnr>=10'", d);
+  EXPECT_EQ(fail.code, 1) << fail.out;
+  EXPECT_NE(fail.out.find("mse <= 0.005"), std::string::npos) << fail.out;
+  EXPECT_NE(fail.out.find("FAIL"), std::string::npos);
+  const CliRun json_fail = giq_run(base + (d / "j").string() + " --fail 'mse<=0.005' --json", d);
+  EXPECT_EQ(json_fail.code, 1);
+  EXPECT_EQ(json::parse(json_fail.out)["bounds"][0]["status"], "FAIL");
+}
+
+// An engine's indirect-only buffer, saved as its image's beauty, against the reference's
+// indirect layer; a region of both; an alpha channel, which is ignored.
+TEST(ScoreCli, SeparateLayersCropAndAlpha) {
+  const fs::path d = fresh_dir("layers");
+  const image::Image ref = reference();
+  image::write_exr(ref, d / "ref.exr");
+  image::Image engine = test::rgb_image(W, H, [&](int x, int y, int k) {
+    const float v = ref.at(k == 0 ? "indirect.R" : k == 1 ? "indirect.G" : "indirect.B", x, y);
+    return x < 4 ? v + 1.0f : v;  // wrong in the first four columns only
+  });
+  engine.add_channel("A", 0.25f);
+  image::write_exr(engine, d / "engine.exr");
+  const std::string base = "score --ref " + (d / "ref.exr").string() + " --test " + (d / "engine.exr").string() +
+                           " --ref-layer indirect --json --out ";
+  const CliRun whole = giq_run(base + (d / "whole").string(), d);
+  ASSERT_EQ(whole.code, 0) << whole.err;
+  const json jw = json::parse(whole.out);
+  EXPECT_NEAR(jw["metrics"]["mae"]["value"].get<double>(), 4.0 / W, 1e-6);  // 1 in 4 of W columns
+  EXPECT_EQ(jw["inputs"]["layer"], "indirect");
+  EXPECT_EQ(jw["inputs"]["test_layer"], "beauty");
+  const CliRun cropped = giq_run(base + (d / "crop").string() + " --crop 4,2,12,10", d);
+  ASSERT_EQ(cropped.code, 0) << cropped.err;
+  const json jc = json::parse(cropped.out);
+  EXPECT_EQ(jc["metrics"]["mse"]["value"].get<double>(), 0.0);
+  EXPECT_EQ(jc["inputs"]["width"], 12);
+  EXPECT_EQ(jc["inputs"]["height"], 10);
+  EXPECT_EQ(jc["inputs"]["crop"], json({4, 2, 12, 10}));
 }

@@ -58,7 +58,9 @@ void check_pair(const image::Image& reference, const std::string& reference_file
     throw InputError(test_file, "size",
                      std::to_string(test.width()) + "x" + std::to_string(test.height()) + ", expected the reference's " +
                          std::to_string(reference.width()) + "x" + std::to_string(reference.height()) + " (" +
-                         reference_file + ")");
+                         reference_file + "); render the reference at the test's size (giq reference --width " +
+                         std::to_string(test.width()) + " --height " + std::to_string(test.height()) +
+                         "), or save the test at the reference's");
   const auto rc = layer_channel_set(reference, layer), tc = layer_channel_set(test, layer);
   if (rc.size() != tc.size()) {
     auto join = [](const std::vector<std::string>& v) {

@@ -156,11 +156,29 @@ json score(const ScoreRequest& request) {
   } else {
     if (is_pattern(req.reference))
       throw InputError(req.reference, "--ref", "a reference pattern needs a technique pattern and --frames");
-    const image::Image ref = detail::read_input(req.reference);
-    const image::Image test = detail::read_input(req.test);
-    const bool hdr = image::is_exr_file(req.reference) && image::is_exr_file(req.test);
-    result = detail::score_image(ref, req.reference, test, req.test, hdr, req);
+    const image::Image ref = detail::read_input(req.reference, detail::Side::Reference, req);
+    const image::Image test = detail::read_input(req.test, detail::Side::Test, req);
+    result = detail::score_image(ref, req.reference, test, req.test, detail::compares_hdr(req.reference, req.test, req), req);
   }
+  // What was done to the inputs beyond reading them, and what makes the result doubtful.
+  const std::string first_test = sequence ? frame_path(req.test, req.frames->first) : req.test;
+  const std::string first_ref = is_pattern(req.reference) ? frame_path(req.reference, req.frames->first) : req.reference;
+  const bool ref_hdr = image::is_exr_file(first_ref), test_hdr = image::is_exr_file(first_test);
+  json& inputs = result["inputs"];
+  if (req.test_layer && *req.test_layer != req.layer) inputs["test_layer"] = req.test_layer->empty() ? "beauty" : *req.test_layer;
+  if (req.crop) inputs["crop"] = {req.crop->x, req.crop->y, req.crop->width, req.crop->height};
+  if (!test_hdr) inputs["test_encoding"] = req.test_encoding == TestEncoding::Srgb ? "srgb" : "linear";
+  if (req.display.active()) inputs["display"] = req.display.to_json();
+  json warnings = json::array();
+  if (ref_hdr && !test_hdr && req.display.curve == ToneCurve::None)
+    warnings.push_back("the test is a low-dynamic-range image and the reference HDR, and no tone curve was given: "
+                       "everything brighter than 1 in the reference (emitters, highlights) is clipped in the test and "
+                       "counts as error; give the engine's tone curve and exposure (--tonemap, --exposure) or score a "
+                       "linear EXR of its lighting buffer (docs/own-engine.md)");
+  const json& found = sequence ? result["last_frame"] : result;
+  for (const auto& w : found.value("warnings", json::array())) warnings.push_back(w);
+  if (sequence && result["last_frame"].contains("warnings")) result["last_frame"].erase("warnings");
+  result["warnings"] = warnings;
   result["giq_version"] = giq::version();
   result["definitions"] = "docs/metrics.md";
   if (!req.scene.empty()) result["inputs"]["scene"] = req.scene;

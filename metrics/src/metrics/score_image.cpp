@@ -1,5 +1,7 @@
 #include "score_image.h"
 
+#include <cmath>
+
 #include "flip_valid.h"
 #include "giq/base/error.h"
 #include "giq/image/io.h"
@@ -32,8 +34,6 @@ json leak_region_json(const LeakRegion& g, const std::string& region, const json
 }
 
 }  // namespace
-
-image::Image read_input(const std::string& file) { return image::read_image(file); }
 
 json score_image(const image::Image& ref, const std::string& ref_file, const image::Image& test,
                  const std::string& test_file, bool hdr, const ScoreRequest& req) {
@@ -135,6 +135,31 @@ json score_image(const image::Image& ref, const std::string& ref_file, const ima
   }
   m["leak"] = lj;
   out["metrics"] = m;
+
+  // --- what makes the scores doubtful (score() adds the ones about the files)
+  double sum_r = 0.0, sum_t = 0.0;
+  for (size_t i = 0; i < r.pixel_count(); ++i)
+    if (r.finite(i) && t.finite(i)) sum_r += r.luminance(i), sum_t += t.luminance(i);
+  json warnings = json::array();
+  if (!(sum_r > 0.0)) {
+    warnings.push_back("the reference is black (mean luminance " + std::to_string(sum_r / double(r.pixel_count())) +
+                       "): relative metrics are undefined and only absolute ones (mse, mae, leak_absolute) mean "
+                       "something; if light was expected, check the camera (position, handedness, units) and the lights");
+  } else {
+    const double ratio = sum_t / sum_r;
+    out["metrics"]["mean_luminance_ratio"] = number(ratio);
+    if (!(ratio >= 0.8 && ratio <= 1.25)) {
+      std::string w = "the test's mean luminance is " + std::to_string(ratio) +
+                      " times the reference's: an exposure or unit mismatch, or light missing or added over much of the image";
+      if (std::abs(std::log(ratio / 683.0)) < 0.1 || std::abs(std::log(ratio * 683.0)) < 0.1)
+        w += " (683 lm/W is the factor between photometric and radiometric light units, KHR_lights_punctual)";
+      warnings.push_back(w + "; for a mismatch, --exposure scales the reference (docs/own-engine.md)");
+    }
+  }
+  if (m["relmse"].value("unresolved", false))
+    warnings.push_back("the reference is too noisy to resolve the error (relmse below 3 times its noise floor): render it "
+                       "with more samples");
+  out["warnings"] = warnings;
 
   // --- maps, one at a time so at most one extra plane is resident
   if (req.write_maps) {

@@ -16,7 +16,15 @@ nlohmann::json score_image(const image::Image& reference, const std::string& ref
 
 nlohmann::json score_sequence(const ScoreRequest& request);
 
-// Reads an image file with a clear error, and tells whether it is linear HDR (EXR).
-image::Image read_input(const std::string& file);
+// An input as the metrics see it (score_input.cpp): read with a clear error, its compared
+// layer (the request's layer, or test_layer for the test) under the reference layer's channel
+// names, with the reference's variance layer for it and its objectId; cropped, the test's
+// 8-bit encoding read as asked, the display transform applied to the reference and to an HDR
+// test; every other channel (alpha included) dropped.
+enum class Side { Reference, Test };
+image::Image read_input(const std::string& file, Side side, const ScoreRequest& request);
+// Whether the pair is compared as HDR (HDR-FLIP): both files EXR and no tone curve making
+// them display-referred.
+bool compares_hdr(const std::string& reference_file, const std::string& test_file, const ScoreRequest& request);
 
 }  // namespace giq::metrics::detail

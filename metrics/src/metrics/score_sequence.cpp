@@ -36,10 +36,10 @@ json score_sequence(const ScoreRequest& req) {
   const json io = {"reference:" + layer_name, "test:" + layer_name};
   auto ref_file = [&](int f) { return frame_path(req.reference, f); };
   auto test_file = [&](int f) { return frame_path(req.test, f); };
-  const bool hdr = image::is_exr_file(ref_file(first)) && image::is_exr_file(test_file(first));
+  const bool hdr = compares_hdr(ref_file(first), test_file(first), req);
 
   std::optional<image::Image> static_ref;
-  if (!per_frame_ref) static_ref = read_input(req.reference);
+  if (!per_frame_ref) static_ref = read_input(req.reference, Side::Reference, req);
 
   // --- pass 1 (references only): the step frame and the changed region, for lag90
   json lag = {{"value_frames", nullptr}, {"definition", "lag90"}};
@@ -62,7 +62,7 @@ json score_sequence(const ScoreRequest& req) {
       double best = -1.0;
       std::optional<image::Image> prev;
       for (int f = first; f <= last; ++f) {
-        image::Image cur = read_input(ref_file(f));
+        image::Image cur = read_input(ref_file(f), Side::Reference, req);
         const RgbLayer c = rgb_layer(cur, req.layer, ref_file(f));
         if (prev) {
           if (cur.width() != prev->width() || cur.height() != prev->height())
@@ -74,8 +74,8 @@ json score_sequence(const ScoreRequest& req) {
       }
       lag["step_frame_source"] = "detected: largest mean |Y_R,t - Y_R,t-1|";
     }
-    const image::Image before = read_input(ref_file(first + t0 - 1));
-    const image::Image after = read_input(ref_file(last));
+    const image::Image before = read_input(ref_file(first + t0 - 1), Side::Reference, req);
+    const image::Image after = read_input(ref_file(last), Side::Reference, req);
     const auto vb = variance_of(before, req.layer, ref_file(first + t0 - 1));
     const auto va = variance_of(after, req.layer, ref_file(last));
     region = changed_region(rgb_layer(before, req.layer, ref_file(first + t0 - 1)), vb ? &*vb : nullptr,
@@ -97,9 +97,9 @@ json score_sequence(const ScoreRequest& req) {
   json per_frame = json::array(), last_frame;
   int width = 0, height = 0;
   for (int f = first; f <= last; ++f) {
-    image::Image test = read_input(test_file(f));
+    image::Image test = read_input(test_file(f), Side::Test, req);
     std::optional<image::Image> ref_frame;
-    if (per_frame_ref) ref_frame = read_input(ref_file(f));
+    if (per_frame_ref) ref_frame = read_input(ref_file(f), Side::Reference, req);
     const image::Image& ref = per_frame_ref ? *ref_frame : *static_ref;
     const std::string rf = per_frame_ref ? ref_file(f) : req.reference;
     check_pair(ref, rf, test, test_file(f), req.layer);

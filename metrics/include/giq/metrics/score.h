@@ -17,7 +17,18 @@
 #include <string>
 #include <vector>
 
+#include "giq/metrics/display.h"
+
 namespace giq::metrics {
+
+// A region of both images, in pixels from the top-left corner.
+struct Crop {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
+// How an 8-bit (PNG, JPEG) test image's values are to be read: as sRGB-encoded (decoded to
+// linear, the default and what screenshots are) or as linear values stored as they are.
+enum class TestEncoding { Srgb, Linear };
 
 struct ScoreRequest {
   // Image files, or printf-style patterns with one %d / %0Nd for sequences. A reference without
@@ -25,7 +36,13 @@ struct ScoreRequest {
   std::string reference;
   std::string test;
   std::optional<std::pair<int, int>> frames;  // A..B inclusive, for patterns
-  std::string layer;                          // "" = beauty
+  std::string layer;                          // "" = beauty; the reference's layer
+  std::optional<std::string> test_layer;      // the test's, when it differs ("" = beauty)
+  // Images from outside giq (docs/own-engine.md): a region of both, the test's 8-bit
+  // encoding, and the display transform applied to the reference (and an HDR test).
+  std::optional<Crop> crop;
+  TestEncoding test_encoding = TestEncoding::Srgb;
+  DisplayTransform display;
   std::filesystem::path out_dir;              // metrics.json, maps, strip
   // Leak regions declared by the scene (objectId values) and where they came from.
   std::vector<uint32_t> leak_object_ids;
@@ -37,7 +54,10 @@ struct ScoreRequest {
 };
 
 // Runs everything, writes <out_dir>/metrics.json (atomically) and returns its content.
-// Throws InputError for bad input (missing file or layer, size or channel mismatch).
+// Throws InputError for bad input (missing file or layer, size or channel mismatch). A result
+// that is probably meaningless (an LDR test against an HDR reference without a tone curve,
+// a brightness ratio suggesting an exposure or unit mismatch, a black or too noisy
+// reference) is scored anyway and says why in metrics.json's "warnings".
 nlohmann::json score(const ScoreRequest& request);
 
 // A fixed-width table of the headline values of a metrics.json, for humans.
