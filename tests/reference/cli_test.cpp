@@ -345,3 +345,62 @@ TEST(ReferenceCli, AnExistingCheckpointIsNeverDiscardedSilently) {
 }
 
 }  // namespace
+
+namespace {
+
+giq::test::Outcome giq_captured(const std::string& args) {
+  return giq::test::run_captured(giq::test::shell_quote(GIQ_BINARY) + " " + args, work_dir() / "captured");
+}
+
+}  // namespace
+
+// A camera given in an engine's frame and units (docs/own-engine.md, "Cameras") renders the
+// same image as the same camera given in glTF's: Unreal's (x, y, z) centimetres is glTF's
+// (y, z, -x) / 100, Unity's (x, y, z) is (x, y, -z). A horizontal field of view at the image's
+// aspect is the vertical 2 atan(tan(h/2) / aspect). Each mistake gets its own message.
+TEST(ReferenceCli, CamerasInAnEnginesFrameAndEachMistakeSaid) {
+  const std::string scene = giq::test::shell_quote((fs::path(GIQ_SCENES_DIR) / "cornell.gltf").string());
+  const std::string common = "reference --scene " + scene + " --spp 8 --seed 3 --width 24 --height 16 ";
+  auto render = [&](const std::string& camera, const std::string& name) {
+    const fs::path out = work_dir() / (name + ".exr");
+    const auto r = giq_captured(common + "--camera " + camera + " --out " + giq::test::shell_quote(out.string()));
+    EXPECT_EQ(r.exit_code, 0) << camera << "\n" << r.err;
+    return giq::image::read_image(out);
+  };
+  // Cornell's front camera, 39.3 degrees vertical (24 x 16 pixels: aspect 1.5).
+  const double vfov = 2.0 * std::atan(12.5 / 35.0) * 180.0 / M_PI;
+  const double hfov = 2.0 * std::atan(std::tan(0.5 * vfov * M_PI / 180.0) * 1.5) * 180.0 / M_PI;
+  char fov[64], hfov_arg[64];
+  std::snprintf(fov, sizeof fov, "fov=%.9g", vfov);
+  std::snprintf(hfov_arg, sizeof hfov_arg, "hfov=%.9g", hfov);
+  const auto gltf = render(std::string("eye=0.278,0.273,-0.8 target=0.278,0.273,0 ") + fov, "gltf");
+  const auto unreal = render(std::string("eye=80,27.8,27.3 target=0,27.8,27.3 frame=unreal ") + fov, "unreal");
+  const auto unity = render(std::string("eye=0.278,0.273,0.8 target=0.278,0.273,0 handedness=left ") + hfov_arg, "unity");
+  const auto mm = render(std::string("eye=278,273,-800 target=278,273,0 units=mm ") + fov, "mm");
+  for (const auto* other : {&unreal, &unity, &mm}) {
+    // The same rays to float precision: the same paths, up to a last-bit difference in a
+    // direction that may move a rare path; means differ by far less than their noise.
+    double diff = 0.0, sum = 0.0;
+    for (const char* c : {"R", "G", "B"})
+      for (size_t i = 0; i < gltf.pixel_count(); ++i)
+        diff += std::abs(double(gltf.channel(c)[i]) - other->channel(c)[i]), sum += gltf.channel(c)[i];
+    EXPECT_LT(diff, 1e-3 * sum);
+  }
+  // A camera looking away from the box: black, said so, and no "rel.err 0%".
+  const auto away = giq_captured(common + "--camera eye=0.278,0.273,-0.8 target=0.278,0.273,-2 --out " +
+                                 giq::test::shell_quote((work_dir() / "away.exr").string()));
+  EXPECT_EQ(away.exit_code, 0) << away.err;
+  EXPECT_NE(away.err.find("black in every pixel"), std::string::npos) << away.err;
+  EXPECT_NE(away.out.find("rel.err n/a"), std::string::npos) << away.out;
+  EXPECT_EQ(gltf.pixel_count(), 24u * 16u);
+  std::vector<std::string> messages;
+  for (const char* mistake : {"fov=0", "fov=39deg", "hfov=50 fov=30", "target=0.278,0.273,-0.8", "frame=blender",
+                              "units=km", "handedness=up", "fov=30 ymag=1", "focal=35"}) {
+    const auto r = giq_captured(common + "--camera eye=0.278,0.273,-0.8 target=0.278,0.273,0 " + mistake + " --out " +
+                                giq::test::shell_quote((work_dir() / "bad.exr").string()));
+    EXPECT_EQ(r.exit_code, 2) << mistake;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(std::find(messages.begin(), messages.end(), r.err), messages.end()) << "the same message twice: " << r.err;
+    messages.push_back(r.err);
+  }
+}

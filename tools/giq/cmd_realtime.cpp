@@ -95,7 +95,7 @@ int run(const RealtimeArgs& a) {
   if (a.scene.empty()) throw InputError("", "--scene", "a scene is required (a .gltf/.glb path)");
   if (a.out.empty()) throw InputError("", "--out", "an output folder is required");
   if (a.setup.has_camera() && a.view_option->count() > 0) throw InputError("", "--view/--camera", "give a view or a camera, not both");
-  const scenes::Scene scene = a.setup.load(resolve_scene(a.scene));
+  const scenes::Scene scene = a.setup.load(resolve_scene(a.scene), double(a.width) / double(a.height));
   if (const rt::TechniqueInfo& info = rt::find_technique(a.technique); scene.features.environment && !info.lights_with_environment)
     std::fprintf(stderr,
                  "giq: warning: %s: technique %s does not light surfaces with the environment (it shows it as background "
@@ -122,10 +122,12 @@ int run(const RealtimeArgs& a) {
   if (ec) throw InputError(out.string(), "--out", "cannot create the folder: " + ec.message());
   const bool tty = isatty(fileno(stderr));
   int written = 0;
+  bool warned_black = false;
   const nlohmann::json timings = rt::render_sequence(ctx, compiler, scene, o, [&](rt::RenderedFrame& f) {
     if (!a.no_images) {
       image::write_exr(f.image, out / frame_file(f.frame));
     }
+    if (!warned_black) warned_black = warn_if_black(f.image, (out / frame_file(f.frame)).string());
     ++written;
     if (tty) std::fprintf(stderr, "\rframe %d/%d  %.3f ms GPU", written, a.frames, f.timing.gpu_ms);
   });

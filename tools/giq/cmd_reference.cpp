@@ -168,7 +168,7 @@ int run(const Options& o) {
   if (!(o.checkpoint_interval > 0.0)) throw InputError("", "--checkpoint-interval", "must be a positive number of seconds");
 
   if (o.resume && o.overwrite) throw InputError("", "--resume/--overwrite", "give one of them, not both");
-  const sc::Scene scene = o.setup.load(o.scene);
+  const sc::Scene scene = o.setup.load(o.scene, double(o.settings.width) / double(o.settings.height));
   const auto [first, last] = frame_range(o, scene);
   // Every output and checkpoint is checked before the first sample: a render of hours must not
   // fail at its end, overwrite its scene, or discard another render's saved progress.
@@ -220,9 +220,13 @@ int run(const Options& o) {
     image::write_exr(img, out, exr_options(img, o.half));
     fs::remove(po.checkpoint);
     const uint64_t nonfinite = r.film.nonfinite_samples();
-    std::printf("reference %s: %dx%d, view %s, frame %d, %u spp, %.2f s%s, rel.err %.3g%%, %llu non-finite samples\n",
+    // A black image has no relative error to speak of: say so rather than 0%.
+    const bool black = warn_if_black(img, out.string());
+    char rel[32] = "n/a (black image)";
+    if (!black) std::snprintf(rel, sizeof rel, "%.3g%%", 100.0 * r.film.relative_standard_error());
+    std::printf("reference %s: %dx%d, view %s, frame %d, %u spp, %.2f s%s, rel.err %s, %llu non-finite samples\n",
                 out.string().c_str(), settings.width, settings.height, meta.view.c_str(), f, r.spp, r.elapsed_seconds,
-                r.resumed ? " (resumed)" : "", 100.0 * r.film.relative_standard_error(), (unsigned long long)nonfinite);
+                r.resumed ? " (resumed)" : "", rel, (unsigned long long)nonfinite);
     std::fflush(stdout);
   }
   return 0;

@@ -42,11 +42,56 @@ double parse_number(const std::string& option, const std::string& key, const std
   return x;
 }
 
-double parse_fov(const std::string& value) {
-  const double fov = parse_number("--camera", "fov", value, 0.0, 180.0, "a vertical field of view in degrees in (0, 180)");
-  if (fov == 0.0 || fov == 180.0) throw InputError("", "--camera", "fov=" + value + " must be a vertical field of view in degrees in (0, 180)");
+// fov= (vertical) or hfov= (horizontal), in degrees.
+double parse_fov(const std::string& key, const std::string& value) {
+  const std::string what = key == "hfov" ? "a horizontal" : "a vertical";
+  char* end = nullptr;
+  const double fov = std::strtod(value.c_str(), &end);
+  if (value.empty() || end == value.c_str() || *end != '\0')
+    throw InputError("", "--camera", key + "=" + value + " is not a number; give " + what +
+                                         " field of view in degrees as a plain number, e.g. " + key + "=39");
+  if (!(fov > 0.0 && fov < 180.0))
+    throw InputError("", "--camera", key + "=" + value + " must be " + what + " field of view in degrees, in (0, 180)");
   return fov;
 }
+
+// An engine's world frame (docs/own-engine.md, "Cameras"): a point or direction given in it
+// becomes glTF's (right-handed, +Y up) by to_gltf, and its length unit metres by `metres`.
+struct EngineFrame {
+  const char* name;
+  glm::dmat3 to_gltf;  // columns: where the engine's x, y and z axes go
+  double metres;       // its default length unit, in metres
+};
+const EngineFrame kFrames[] = {
+    {"gltf", glm::dmat3(1.0), 1.0},
+    {"godot", glm::dmat3(1.0), 1.0},
+    // Left-handed, Y up, Z forward: (x, y, z) -> (x, y, -z).
+    {"unity", glm::dmat3(glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, -1)), 1.0},
+    // Left-handed, Z up, X forward, Y right, centimetres: (x, y, z) -> (y, z, -x).
+    {"unreal", glm::dmat3(glm::dvec3(0, 0, -1), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0)), 0.01},
+};
+
+const EngineFrame& parse_frame(const std::string& key, const std::string& value) {
+  if (key == "handedness") {
+    if (value == "right") return kFrames[0];
+    if (value == "left") return kFrames[2];
+    throw InputError("", "--camera", "handedness=" + value +
+                                         " must be right (glTF, Godot) or left (Y up, as Unity; for Unreal's Z up give frame=unreal)");
+  }
+  for (const EngineFrame& f : kFrames)
+    if (value == f.name) return f;
+  throw InputError("", "--camera", "frame=" + value + " must be gltf, godot, unity or unreal");
+}
+
+double parse_units(const std::string& value) {
+  if (value == "m") return 1.0;
+  if (value == "cm") return 0.01;
+  if (value == "mm") return 0.001;
+  if (value == "in") return 0.0254;
+  if (value == "ft") return 0.3048;
+  throw InputError("", "--camera", "units=" + value + " must be m, cm, mm, in or ft (the unit of eye= and target=)");
+}
+
 
 sc::Camera look_at(glm::dvec3 eye, glm::dvec3 target, glm::dvec3 up, double fov_deg, const sc::Scene& scene) {
   try {
@@ -64,7 +109,7 @@ sc::Camera auto_camera(const std::vector<std::string>& args, const sc::Scene& sc
   for (size_t i = 1; i < args.size(); ++i) {
     const KeyValue kv = split(args[i]);
     if (kv.key != "fov") throw InputError("", "--camera", "'" + args[i] + "' is not fov=deg; after 'auto' only fov may follow");
-    fov = parse_fov(kv.value);
+    fov = parse_fov("fov", kv.value);
   }
   if (scene.bounds.empty()) throw InputError(scene.path.string(), "--camera", "auto needs geometry to frame; the scene has none");
   const glm::dvec3 centre = scene.origin + glm::dvec3(scene.bounds.centre());
@@ -77,26 +122,47 @@ sc::Camera auto_camera(const std::vector<std::string>& args, const sc::Scene& sc
   return look_at(eye, centre, glm::dvec3(0.0, 1.0, 0.0), fov, scene);
 }
 
-sc::Camera parse_camera(const std::vector<std::string>& args, const sc::Scene& scene) {
+sc::Camera parse_camera(const std::vector<std::string>& args, const sc::Scene& scene, double aspect) {
   if (args.front() == "auto") return auto_camera(args, scene);
   glm::dvec3 eye, target, up(0.0, 1.0, 0.0);
-  double fov = 45.0, ymag = 0.0;
-  bool has_eye = false, has_target = false, has_fov = false;
+  double fov = 45.0, hfov = 0.0, ymag = 0.0, units = 0.0;
+  bool has_eye = false, has_target = false, has_up = false, has_fov = false;
+  const EngineFrame* frame = &kFrames[0];
+  std::string frame_key;
   for (const std::string& a : args) {
     const KeyValue kv = split(a);
     if (kv.key == "eye") eye = parse_vec3("--camera", kv.key, kv.value), has_eye = true;
     else if (kv.key == "target") target = parse_vec3("--camera", kv.key, kv.value), has_target = true;
-    else if (kv.key == "up") up = parse_vec3("--camera", kv.key, kv.value);
-    else if (kv.key == "fov") fov = parse_fov(kv.value), has_fov = true;
-    else if (kv.key == "ymag") {
-      ymag = parse_number("--camera", "ymag", kv.value, 0.0, 1e30, "an orthographic half height in metres, > 0");
-      if (!(ymag > 0.0)) throw InputError("", "--camera", "ymag=" + kv.value + " must be an orthographic half height in metres, > 0");
-    } else throw InputError("", "--camera", "'" + a + "' is not one of eye=x,y,z target=x,y,z up=x,y,z fov=deg ymag=m, or auto");
+    else if (kv.key == "up") up = parse_vec3("--camera", kv.key, kv.value), has_up = true;
+    else if (kv.key == "fov") fov = parse_fov("fov", kv.value), has_fov = true;
+    else if (kv.key == "hfov") hfov = parse_fov("hfov", kv.value);
+    else if (kv.key == "units") units = parse_units(kv.value);
+    else if (kv.key == "frame" || kv.key == "handedness") {
+      if (!frame_key.empty()) throw InputError("", "--camera", "give one of frame= and handedness=, once");
+      frame = &parse_frame(kv.key, kv.value), frame_key = kv.key;
+    } else if (kv.key == "ymag") {
+      ymag = parse_number("--camera", "ymag", kv.value, 0.0, 1e30, "an orthographic half height, > 0");
+      if (!(ymag > 0.0)) throw InputError("", "--camera", "ymag=" + kv.value + " must be an orthographic half height, > 0");
+    } else {
+      throw InputError("", "--camera",
+                       "'" + a + "' is not one of eye=x,y,z target=x,y,z up=x,y,z fov=deg hfov=deg ymag=m "
+                                 "frame=gltf|godot|unity|unreal handedness=right|left units=m|cm|mm|in|ft, or auto");
+    }
   }
   if (!has_eye || !has_target) throw InputError("", "--camera", "needs both eye=x,y,z and target=x,y,z, or auto");
-  if (has_fov && ymag > 0.0) throw InputError("", "--camera", "fov= (perspective) and ymag= (orthographic) exclude each other; give one");
+  if (has_fov && hfov > 0.0) throw InputError("", "--camera", "fov= (vertical) and hfov= (horizontal) exclude each other; give one");
+  if ((has_fov || hfov > 0.0) && ymag > 0.0)
+    throw InputError("", "--camera", "a field of view (perspective) and ymag= (orthographic) exclude each other; give one");
+  if (eye == target) throw InputError("", "--camera", "eye and target are the same point; the camera needs a direction to look in");
+  // The engine's frame and unit to glTF's metres; its up axis unless up= is given.
+  const double scale = units > 0.0 ? units : frame->metres;
+  eye = frame->to_gltf * eye * scale;
+  target = frame->to_gltf * target * scale;
+  up = has_up ? frame->to_gltf * up : glm::dvec3(0.0, 1.0, 0.0);
+  // The vertical field of view with the horizontal one at the image's aspect ratio.
+  if (hfov > 0.0) fov = 2.0 * std::atan(std::tan(0.5 * hfov * std::numbers::pi / 180.0) / aspect) * 180.0 / std::numbers::pi;
   sc::Camera c = look_at(eye, target, up, fov, scene);
-  c.ymag = float(ymag);
+  c.ymag = float(ymag * scale);
   return c;
 }
 
@@ -177,13 +243,16 @@ bool looks_like_numbers(const std::string& text) {
 }  // namespace
 
 void SceneSetup::add_options(CLI::App& cmd) {
-  cmd.add_option("--camera", camera, "Camera in world coordinates: eye=x,y,z target=x,y,z [up=x,y,z] [fov=deg | ymag=m (orthographic, half height)], or auto [fov=deg]")
-      ->expected(1, 4);
+  cmd.add_option("--camera", camera,
+                 "Camera in world coordinates: eye=x,y,z target=x,y,z [up=x,y,z] [fov=deg (vertical) | hfov=deg | "
+                 "ymag=m (orthographic, half height)] [frame=gltf|godot|unity|unreal | handedness=right|left] "
+                 "[units=m|cm|mm|in|ft], or auto [fov=deg] (docs/own-engine.md)")
+      ->expected(1, 8);
   cmd.add_option("--sun", sun, "Add a directional light: dir=x,y,z (the way it travels) illuminance=E [color=r,g,b]")->expected(2, 3);
   cmd.add_option("--env", env, "Environment replacing the scene's: a constant radiance r,g,b (or one number), or an equirectangular map FILE (.exr, .hdr; +Y up, -Z at the centre)");
 }
 
-sc::Scene SceneSetup::load(const std::filesystem::path& path) const {
+sc::Scene SceneSetup::load(const std::filesystem::path& path, double aspect) const {
   sc::Scene scene = sc::load(path);
   for (const std::string& w : scene.warnings) std::fprintf(stderr, "giq: warning: %s: %s\n", path.string().c_str(), w.c_str());
   // Described by the parsed values, so that two spellings of one light name the same scene.
@@ -212,10 +281,27 @@ sc::Scene SceneSetup::load(const std::filesystem::path& path) const {
   if (!camera.empty()) {
     sc::View view;
     view.name = kCameraView;
-    view.camera = parse_camera(camera, scene);
+    view.camera = parse_camera(camera, scene, aspect);
     scene.add_view(view);
   }
   return scene;
+}
+
+bool warn_if_black(const image::Image& image, const std::string& what) {
+  if (!image.has_layer("")) return false;
+  const auto names = image.layer_channels("");
+  for (const auto& n : names) {
+    const float* c = image.channel(n);
+    for (size_t i = 0; i < image.pixel_count(); ++i)
+      if (std::isfinite(c[i]) && c[i] != 0.0f) return false;
+  }
+  std::fprintf(stderr,
+               "giq: warning: %s is black in every pixel. Likely causes: the camera looks away from the scene or sits "
+               "inside a closed mesh (check eye= and target=; an engine's coordinates need frame=unity|unreal or "
+               "handedness=left, and its units units=cm|mm: docs/own-engine.md), the lights are blocked or behind "
+               "one-sided surfaces, or the view sees only the back of one-sided surfaces\n",
+               what.c_str());
+  return true;
 }
 
 }  // namespace giq::cli

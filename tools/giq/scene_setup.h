@@ -5,6 +5,9 @@
 // would be black.
 //
 //   --camera eye=x,y,z target=x,y,z [up=x,y,z] [fov=deg]    world coordinates, vertical fov
+//            [hfov=deg] [frame=unity|unreal|.. | handedness=left] [units=cm|..]
+//                                                            an engine's frame and units, a
+//                                                            horizontal fov at the image's aspect
 //   --camera auto [fov=deg]                                  frames the scene's bounds
 //   --sun dir=x,y,z illuminance=E [color=r,g,b]              a directional light; dir is the
 //                                                            way the light travels
@@ -16,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "giq/image/image.h"
 #include "giq/scenes/scene.h"
 
 namespace giq::cli {
@@ -31,8 +35,14 @@ struct SceneSetup {
   void add_options(CLI::App& cmd);
   bool has_camera() const { return !camera.empty(); }
   // Loads the scene, prints its warnings on stderr, adds --sun, --env and the --camera view
-  // (kCameraView), then throws InputError when the scene has no light at all.
-  scenes::Scene load(const std::filesystem::path& path) const;
+  // (kCameraView; aspect = width / height of the image, for hfov=), then throws InputError
+  // when the scene has no light at all.
+  scenes::Scene load(const std::filesystem::path& path, double aspect) const;
 };
+
+// When every pixel of the image's beauty is 0 (or not finite), prints one warning on stderr
+// naming the likely causes (a camera looking away or inside geometry, an engine's frame or
+// units not converted, lights blocked) and returns true.
+bool warn_if_black(const image::Image& image, const std::string& what);
 
 }  // namespace giq::cli
