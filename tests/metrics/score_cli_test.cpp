@@ -547,3 +547,32 @@ TEST(ScoreCli, SeparateLayersCropAndAlpha) {
   EXPECT_EQ(jc["inputs"]["height"], 10);
   EXPECT_EQ(jc["inputs"]["crop"], json({4, 2, 12, 10}));
 }
+
+// metrics.json names its inputs relative to its own folder (schema version 2), so the folder
+// of scores and inputs can be moved as a whole and reported from any working directory.
+TEST(ScoreCli, InputPathsAreRelativeToMetricsJsonAndTheReportWorksFromAnywhere) {
+  const fs::path d = fresh_dir("relative");
+  const image::Image ref = reference();
+  fs::create_directories(d / "work" / "engine");
+  image::write_exr(ref, d / "work" / "ref.exr");
+  image::write_exr(test::rgb_image(W, H, [&](int x, int y, int k) { return ref.at(k == 0 ? "R" : k == 1 ? "G" : "B", x, y) * 0.9f; }),
+                   d / "work" / "engine" / "shot.exr");
+  auto in_dir = [&](const fs::path& cwd, const std::string& args) {
+    const std::string cmd = "cd " + test::shell_quote(cwd.string()) + " && " + test::shell_quote(GIQ_BINARY) + " " + args +
+                            " >" + test::shell_quote((d / "out.txt").string()) + " 2>&1";
+    return test::exit_code(std::system(cmd.c_str()));
+  };
+  ASSERT_EQ(in_dir(d / "work", "score --ref ref.exr --test engine/shot.exr --out scores/shot"), 0) << test::slurp(d / "out.txt");
+  const json j = json::parse(test::slurp(d / "work" / "scores" / "shot" / "metrics.json"));
+  EXPECT_EQ(j["schema_version"], 2);
+  EXPECT_EQ(j["inputs"]["reference"], "../../ref.exr");
+  EXPECT_EQ(j["inputs"]["test"], "../../engine/shot.exr");
+  // The table still names them as typed.
+  EXPECT_NE(test::slurp(d / "out.txt").find("engine/shot.exr  vs  ref.exr"), std::string::npos) << test::slurp(d / "out.txt");
+  fs::rename(d / "work", d / "moved");
+  ASSERT_EQ(in_dir("/", "report " + test::shell_quote((d / "moved" / "scores").string())), 0) << test::slurp(d / "out.txt");
+  const std::string html = test::slurp(d / "moved" / "scores" / "report.html");
+  size_t pngs = 0;
+  for (size_t p = 0; (p = html.find("src=\"data:image/png;base64,", p)) != std::string::npos; ++p) ++pngs;
+  EXPECT_GE(pngs, 3u);  // the reference, the test and at least one error map
+}

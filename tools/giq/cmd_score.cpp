@@ -144,7 +144,11 @@ int run_score(const ScoreArgs& a) {
     }
     std::cout << result.dump(2) << '\n';
   } else {
-    std::cout << metrics::format_table(result);
+    // The table names the inputs as typed; metrics.json holds them relative to itself.
+    json shown = result;
+    shown["inputs"]["reference"] = a.reference;
+    shown["inputs"]["test"] = a.test;
+    std::cout << metrics::format_table(shown);
     if (!outcomes.empty()) std::cout << " bounds\n";
     for (const auto& o : outcomes) {
       char value[32] = "n/a";

@@ -50,7 +50,10 @@ std::string png_uri(const image::Image& img, const std::string& layer, float exp
 
 // A path written into metrics.json: as given (relative to where giq score ran) when it
 // exists, else relative to the metrics.json folder.
-fs::path locate(const std::string& p, const fs::path& beside) {
+// An input path of a metrics.json in folder `beside`: relative to that folder from schema
+// version 2 on (metrics/score.h), as typed before, where the working directory came first.
+fs::path locate(const std::string& p, const fs::path& beside, int schema_version) {
+  if (schema_version >= 2) return fs::path(p).is_absolute() ? fs::path(p) : beside / p;
   if (fs::exists(p)) return p;
   return beside / p;
 }
@@ -143,11 +146,12 @@ Comparison comparison(const fs::path& file, const fs::path& root, int max_frames
   const bool sequence = j.contains("sequence") && in.contains("frames");
   int last = 0;
   if (sequence) c.first_frame = in["frames"][0], last = in["frames"][1];
+  const int schema = j.value("schema_version", 1);
   auto ref_path = [&](int f) {
-    return locate(ref.find('%') != std::string::npos ? frame_file(ref, f) : ref, dir);
+    return locate(ref.find('%') != std::string::npos ? frame_file(ref, f) : ref, dir, schema);
   };
   auto test_path = [&](int f) {
-    return locate(test.find('%') != std::string::npos ? frame_file(test, f) : test, dir);
+    return locate(test.find('%') != std::string::npos ? frame_file(test, f) : test, dir, schema);
   };
 
   const image::Image r = image::read_image(ref_path(last));

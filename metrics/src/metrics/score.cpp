@@ -99,6 +99,16 @@ const json* at_path(const json& root, std::string_view dotted) {
 
 bool is_pattern(const std::string& path) { return parse_pattern(path).begin != std::string::npos; }
 
+std::string path_from_output(const std::string& path, const std::filesystem::path& out_dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path from = fs::absolute(out_dir, ec).lexically_normal();
+  const fs::path to = fs::absolute(path, ec).lexically_normal();
+  if (ec) return path;
+  const fs::path r = to.lexically_relative(from);
+  return r.empty() ? to.string() : r.generic_string();
+}
+
 std::string frame_path(const std::string& pattern, int frame) {
   const Conversion c = parse_pattern(pattern);
   if (c.begin == std::string::npos) return unescape(pattern);
@@ -180,9 +190,21 @@ json score(const ScoreRequest& request) {
   if (sequence && result["last_frame"].contains("warnings")) result["last_frame"].erase("warnings");
   result["warnings"] = warnings;
   result["giq_version"] = giq::version();
+  result["schema_version"] = kMetricsSchemaVersion;
   result["definitions"] = "docs/metrics.md";
-  if (!req.scene.empty()) result["inputs"]["scene"] = req.scene;
-  if (req.frame_ms) result["inputs"]["frame_ms"] = *req.frame_ms, result["inputs"]["timings"] = req.timings;
+  // Paths relative to metrics.json's folder, so that the folder can move with its inputs and
+  // be read from any working directory (giq report).
+  const auto relative = [&](const std::string& p) { return path_from_output(p, request.out_dir); };
+  inputs["reference"] = relative(req.reference);
+  inputs["test"] = relative(req.test);
+  if (!req.scene.empty()) inputs["scene"] = relative(req.scene);
+  if (req.frame_ms) {
+    // "file:key" (gate::FrameTime::key): the file part is a path.
+    const size_t colon = req.timings.rfind(':');
+    inputs["frame_ms"] = *req.frame_ms;
+    inputs["timings"] = colon == std::string::npos ? relative(req.timings)
+                                                   : relative(req.timings.substr(0, colon)) + req.timings.substr(colon);
+  }
   write_file_atomically(req.out_dir / "metrics.json", result.dump(2) + "\n");
   folder.publish(previous_outputs(request.out_dir / "metrics.json"));
   return result;

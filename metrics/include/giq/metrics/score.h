@@ -60,6 +60,13 @@ struct ScoreRequest {
 // reference) is scored anyway and says why in metrics.json's "warnings".
 nlohmann::json score(const ScoreRequest& request);
 
+// metrics.json's layout version: 2 stores the input paths (inputs.reference, test, scene,
+// timings) relative to the file's own folder; 1 stored them as given on the command line.
+inline constexpr int kMetricsSchemaVersion = 2;
+
+// `path` as seen from folder `out_dir` (a relative path when one exists, else absolute).
+std::string path_from_output(const std::string& path, const std::filesystem::path& out_dir);
+
 // A fixed-width table of the headline values of a metrics.json, for humans.
 std::string format_table(const nlohmann::json& metrics);
 
