@@ -130,16 +130,31 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{CASE_PREFIX R"("bounds": {"relmse": 1}}, {"name": "a", "scene": "s", "technique": "t",
                         "bounds": {"relmse": 1}}]})",
             "cases[1].name", "unique"},
-        Bad{R"({"version": 1, "cases": [{"name": "a/b", "scene": "s", "technique": "t", "bounds": {"x": 1}}]})",
+        Bad{R"({"version": 1, "cases": [{"name": "a/b", "scene": "s", "technique": "t", "bounds": {"relmse": 1}}]})",
             "cases[0].name", "folders"},
         // Once an internal error: a folder name longer than the file system allows.
         Bad{R"({"version": 1, "cases": [{"name": ")" + std::string(300, 'a') +
-                R"(", "scene": "s", "technique": "t", "bounds": {"x": 1}}]})",
+                R"(", "scene": "s", "technique": "t", "bounds": {"relmse": 1}}]})",
             "cases[0].name", "expected at most 128"},
         // Once an internal error: nlohmann's number overflow.
         Bad{CASE_PREFIX R"("bounds": {"relmse": 1e999}}]})", "JSON", "number overflow"},
-        Bad{R"({"version": 1, "cases": [{"name": "a", "technique": "t", "bounds": {"x": 1}}]})",
-            "cases[0].scene", "missing"}));
+        Bad{R"({"version": 1, "cases": [{"name": "a", "technique": "t", "bounds": {"relmse": 1}}]})",
+            "cases[0].scene", "missing"},
+        // A typo in a metric's name, once a FAIL of every run ("metrics.json has no metric").
+        Bad{CASE_PREFIX R"("bounds": {"flip_maen": 0.1}}]})", "cases[0].bounds.flip_maen", "not a metric"},
+        // Test images from outside giq instead of a technique: one or the other, no parameters,
+        // no frame time, a pattern exactly when there is a frame range.
+        Bad{CASE_PREFIX R"("test": "shot.png", "bounds": {"relmse": 1}}]})", "cases[0].test", "not both"},
+        Bad{R"({"version": 1, "cases": [{"name": "a", "scene": "s", "bounds": {"relmse": 1}}]})", "cases[0].technique",
+            "or test"},
+        Bad{R"({"version": 1, "cases": [{"name": "a", "scene": "s", "test": "x.png", "parameters": {"k": 1},
+            "bounds": {"relmse": 1}}]})", "cases[0].parameters", "need a technique"},
+        Bad{R"({"version": 1, "cases": [{"name": "a", "scene": "s", "test": "x.png",
+            "bounds": {"gpu_ms": {"fail": 1, "device": "H200"}}}]})", "cases[0].bounds.gpu_ms", "needs a technique"},
+        Bad{R"({"version": 1, "cases": [{"name": "a", "scene": "s", "test": "x.png", "frames": "0:3",
+            "bounds": {"relmse": 1}}]})", "cases[0].test", "frame pattern"},
+        Bad{R"({"version": 1, "cases": [{"name": "a", "scene": "s", "test": "x_%04d.png",
+            "bounds": {"relmse": 1}}]})", "cases[0].test", "frame range"}));
 
 TEST(GateConfig, DeeplyNestedInputIsAnErrorNotACrash) {
   // 100 000 nested arrays where the cases go: once a crash (the stack of a recursive walk).

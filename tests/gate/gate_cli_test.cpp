@@ -189,11 +189,18 @@ TEST_F(GateCli, ProvesTheGateCanFail) {
   XML_ParserFree(p);
   EXPECT_NE(
       xml.find(
-          "<testsuites name=\"giq gate\" tests=\"7\" failures=\"4\" errors=\"0\" skipped=\"1\""),
+          "<testsuites name=\"giq gate\" tests=\"7\" failures=\"2\" errors=\"2\" skipped=\"1\""),
       std::string::npos)
       << xml;
   EXPECT_NE(xml.find("<testcase classname=\"giq.gate.bright\" name=\"flip_mean\""),
             std::string::npos);
+  // A crash and missing frames are errors (no verdict on the technique), not failures; every
+  // testcase carries its share of its case's time.
+  EXPECT_NE(xml.find("<error message=\"ERROR: the case could not be rendered or scored, so relmse (bound &lt;= 0.05) "
+                     "has no value: score: giq score failed (exit 134"),
+            std::string::npos)
+      << xml;
+  EXPECT_EQ(xml.find("time=\"0\""), std::string::npos) << xml;
   EXPECT_NE(slurp(dir_ / "out" / "gate-summary.md").find("| bright | flip_mean | 0.3 |"),
             std::string::npos);
   EXPECT_TRUE(fs::exists(dir_ / "out" / "cases" / "bright" / "score" /
@@ -294,3 +301,36 @@ TEST_F(GateCli, StillGoldenServesEveryFrameOfAStaticScene) {
 }
 
 }  // namespace
+
+// A case with image files from outside giq instead of a technique: scored against its golden
+// with no render; a missing file is an error of that case. Typos in a technique's name, its
+// parameters or the view stop the gate before any work (exit 2, one line).
+TEST_F(GateCli, ImageFilesFromOutsideAreGatedAndConfigTyposStopIt) {
+  config(json::array({
+      {{"name", "engine"}, {"test", "shots/engine.exr"}, {"bounds", {{"relmse", 0.05}}}},
+      {{"name", "missing"}, {"test", "shots/absent.exr"}, {"bounds", {{"relmse", 0.05}}}},
+  }));
+  ASSERT_EQ(update().code, 0);
+  fs::create_directories(dir_ / "shots");
+  fs::copy_file(dir_ / "refs" / "cornell_0_f0-0" / "frame_0000.exr", dir_ / "shots" / "engine.exr");
+  const Result r = gate();
+  EXPECT_EQ(r.code, 1) << r.out << r.err;
+  EXPECT_EQ(status("engine", "relmse").rfind("PASS", 0), 0u) << status("engine", "relmse");
+  EXPECT_NE(status("missing", "relmse").find("absent.exr"), std::string::npos) << status("missing", "relmse");
+  EXPECT_EQ(calls("realtime --scene"), 0);
+  EXPECT_EQ(calls("shots/engine.exr"), 1);
+  const std::string xml = slurp(dir_ / "out" / "gate-report.xml");
+  EXPECT_NE(xml.find("tests=\"2\" failures=\"0\" errors=\"1\""), std::string::npos) << xml;
+
+  for (const json& typo : {json{{"name", "a"}, {"technique", "dirct"}, {"bounds", {{"relmse", 1}}}},
+                           json{{"name", "a"}, {"technique", "direct"}, {"parameters", {{"pcf_radius", 9}}}, {"bounds", {{"relmse", 1}}}},
+                           json{{"name", "a"}, {"technique", "direct"}, {"parameters", {{"pcf_raduis", 1}}}, {"bounds", {{"relmse", 1}}}},
+                           json{{"name", "a"}, {"technique", "direct"}, {"view", "back"}, {"bounds", {{"relmse", 1}}}}}) {
+    config(json::array({typo}));
+    const Result t = gate();
+    EXPECT_EQ(t.code, 2) << typo << t.err;
+    EXPECT_EQ(std::count(t.err.begin(), t.err.end(), '\n'), 1) << t.err;
+    EXPECT_NE(t.err.find("cases.a."), std::string::npos) << t.err;
+  }
+  EXPECT_EQ(calls("realtime --scene"), 0);
+}

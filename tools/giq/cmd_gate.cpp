@@ -52,6 +52,7 @@ int run_gate(const GateArgs& a) {
   const fs::path out = a.out;
   check_output_folder(out, {config.file}, "--out");
   fs::create_directories(out);
+  check_cases(tools, cases, out / "techniques.log");
   const bool tty = ::isatty(STDERR_FILENO) != 0;
 
   std::vector<CaseRun> runs(cases.size());
@@ -78,6 +79,7 @@ int run_gate(const GateArgs& a) {
                {"scene", cases[i]->scene.string()},
                {"view", cases[i]->view},
                {"technique", cases[i]->technique},
+               {"test", cases[i]->test.string()},
                {"frames", {cases[i]->first_frame, cases[i]->last_frame}},
                {"layer", cases[i]->layer},
                {"dir", fs::relative(runs[i].dir, out).generic_string()},

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -13,8 +14,10 @@
 #include "giq/base/json.h"
 #include "giq/base/version.h"
 #include "giq/image/io.h"
+#include "giq/metrics/score.h"
 #include "giq/scenes/scene.h"
 #include "subprocess.h"
+#include "technique_listing.h"
 
 namespace giq::cli {
 namespace {
@@ -100,6 +103,31 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
       golden_files[name] = h;
     const std::string binary_hash = gate::file_hash(t.giq);
 
+    const fs::path score = run.dir / "score";
+    std::vector<std::string> sc = {t.giq.string(), "score"};
+    // A still golden is one image that giq score compares with every frame of the range.
+    const std::string ref_frames = c.golden.still ? frame_file(c.first_frame) : kFramePattern;
+    const std::string ref = (golden / (c.sequence() ? ref_frames : frame_file(c.first_frame))).string();
+    if (!c.test.empty()) {
+      // Images from outside giq: scored as they are; a changed file scores again.
+      json test_files = json::object();
+      for (int f = c.first_frame; f <= c.last_frame; ++f) {
+        const fs::path p = c.sequence() ? fs::path(metrics::frame_path(c.test.string(), f)) : c.test;
+        if (!fs::is_regular_file(p)) throw InputError(p.string(), "test", "no such image file");
+        test_files[p.string()] = gate::file_hash(p);
+      }
+      sc.insert(sc.end(), {"--ref", ref, "--test", c.test.string()});
+      if (c.sequence()) sc.insert(sc.end(), {"--frames", frame_range(c.first_frame, c.last_frame)});
+      sc.insert(sc.end(), {"--layer", c.layer, "--scene", c.scene.string(), "--out", score.string()});
+      const std::string problem = run_cached_step(
+          sc, score, log, "giq score", {{"argv", sc}, {"giq", binary_hash}, {"golden", golden_files}, {"test", test_files}},
+          t.rerender);
+      if (!problem.empty()) throw InputError("", "score", problem);
+      run.evidence.metrics = read_json(score / "metrics.json");
+      run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return run;
+    }
+
     // Technique images: frames A..B are the measured frames after A warm-up frames.
     std::vector<std::string> rt = realtime_args(t, c);
     const fs::path tech = run.dir / "technique";
@@ -124,18 +152,11 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
         throw InputError((tech / frame_file(f)).string(), "",
                          "giq realtime did not write this frame");
 
-    const fs::path score = run.dir / "score";
-    std::vector<std::string> sc = {t.giq.string(), "score"};
-    // A still golden is one image that giq score compares with every frame of the range.
-    const std::string ref_frames =
-        c.golden.still ? frame_file(c.first_frame) : kFramePattern;
     if (c.sequence())
-      sc.insert(sc.end(), {"--ref", (golden / ref_frames).string(), "--test",
-                           (tech / kFramePattern).string(), "--frames",
+      sc.insert(sc.end(), {"--ref", ref, "--test", (tech / kFramePattern).string(), "--frames",
                            frame_range(c.first_frame, c.last_frame)});
     else
-      sc.insert(sc.end(), {"--ref", (golden / frame_file(c.first_frame)).string(),
-                           "--test", (tech / frame_file(c.first_frame)).string()});
+      sc.insert(sc.end(), {"--ref", ref, "--test", (tech / frame_file(c.first_frame)).string()});
     sc.insert(sc.end(), {"--layer", c.layer, "--scene", c.scene.string(), "--timings",
                          (tech / "timings.json").string(), "--out", score.string()});
     problem = run_cached_step(sc, score, log, "giq score",
@@ -251,6 +272,45 @@ Toolchain toolchain(const CaseOptions& o) {
   t.device = o.device;
   t.rerender = o.rerender;
   return t;
+}
+
+void check_cases(const Toolchain& t, const std::vector<const gate::Case*>& cases, const fs::path& log) {
+  std::vector<TechniqueParameters> registered;
+  bool listed = false;
+  std::map<fs::path, scenes::Scene> scenes_by_path;
+  for (const gate::Case* c : cases) {
+    const std::string at = "cases." + c->name;
+    if (!c->technique.empty()) {
+      if (!listed) registered = list_techniques(t.giq, log), listed = true;
+      const auto tech = std::find_if(registered.begin(), registered.end(),
+                                     [&](const TechniqueParameters& p) { return p.name == c->technique; });
+      if (tech == registered.end()) {
+        std::string names;
+        for (const auto& r : registered) names += (names.empty() ? "" : ", ") + r.name;
+        throw InputError("", at + ".technique", "'" + c->technique + "' is not registered; expected one of " + names);
+      }
+      for (const auto& [name, value] : c->parameters) {
+        const auto p = std::find_if(tech->parameters.begin(), tech->parameters.end(),
+                                    [&](const ParameterInfo& i) { return i.name == name; });
+        if (p == tech->parameters.end()) {
+          std::string names;
+          for (const auto& i : tech->parameters) names += (names.empty() ? "" : ", ") + i.name;
+          throw InputError("", at + ".parameters." + name, "'" + c->technique + "' has no such parameter; it has " + names);
+        }
+        if (value < p->min_value || value > p->max_value || (p->integer && value != std::floor(value)))
+          throw InputError("", at + ".parameters." + name,
+                           std::to_string(value) + " is outside its range [" + std::to_string(p->min_value) + ", " +
+                               std::to_string(p->max_value) + "]" + (p->integer ? " of integers" : ""));
+      }
+    }
+    auto it = scenes_by_path.find(c->scene);
+    if (it == scenes_by_path.end()) it = scenes_by_path.emplace(c->scene, scenes::load(c->scene)).first;
+    try {
+      it->second.view(c->view);
+    } catch (const InputError& e) {
+      throw InputError(c->scene.string(), at + ".view", e.message());
+    }
+  }
 }
 
 std::vector<const gate::Case*> load_cases(const CaseOptions& o, gate::Config& config) {

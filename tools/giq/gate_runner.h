@@ -49,6 +49,11 @@ Toolchain toolchain(const CaseOptions& o);
 // a pattern that selects nothing.
 std::vector<const gate::Case*> load_cases(const CaseOptions& o, gate::Config& config);
 
+// Config mistakes found before any work (InputError, exit 2) rather than as failing cases: a
+// technique the giq binary does not register, a parameter it does not declare or outside its
+// range, a view the scene does not have. `log` receives the technique listing's output.
+void check_cases(const Toolchain& tools, const std::vector<const gate::Case*>& cases, const std::filesystem::path& log);
+
 struct CaseRun {
   gate::Evidence evidence;
   double seconds = 0.0;

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 // ordered_json keeps the file's order, so cases and bounds are reported in the order written.
 using json = nlohmann::ordered_json;
 
-const std::set<std::string> kCaseKeys = {"name",       "scene",  "view",  "technique",
+const std::set<std::string> kCaseKeys = {"name",       "scene",  "view",  "technique",  "test",
                                          "parameters", "frames", "layer", "resolution",
                                          "golden",     "timing", "bounds"};
 
@@ -100,6 +100,10 @@ class Parser {
         c.view = v.is_number_integer() ? std::to_string(integer(v, f, 0, 1 << 20)) : string(v, f);
       } else if (key == "technique") {
         c.technique = string(v, f);
+      } else if (key == "test") {
+        // An image file, or a frame pattern such as shots/frame_%04d.exr, from outside giq.
+        const fs::path p = string(v, f);
+        c.test = p.is_absolute() ? p : (file_.parent_path() / p).lexically_normal();
       } else if (key == "parameters") {
         c.parameters.clear();
         for (const auto& [pk, pv] : object(v, f).items())
@@ -163,6 +167,13 @@ class Parser {
   }
 
   Bound bound(const std::string& metric, const json& v, const std::string& f) const {
+    // A short name must be the catalogue's (a typo would otherwise fail every run as a
+    // missing metric); a dotted path into metrics.json is taken as written.
+    if (metric.find('.') == std::string::npos && !metrics::find_metric_info(metric)) {
+      std::string known;
+      for (const auto& m : metrics::kMetricCatalogue) known += (known.empty() ? "" : ", ") + std::string(m.name);
+      fail(f, "'" + metric + "' is not a metric; expected one of " + known + ", or a dotted path in metrics.json");
+    }
     Bound b;
     b.metric = metric;
     b.better = default_direction(metric);
@@ -201,8 +212,18 @@ class Parser {
   void finish(Case& c, const std::string& at) const {
     if (c.name.empty()) fail(at + ".name", "missing; every case needs a unique name");
     if (c.scene.empty()) fail(at + ".scene", "missing; expected a .gltf/.glb path");
-    if (c.technique.empty())
-      fail(at + ".technique", "missing; expected a technique name (giq realtime --list)");
+    if (c.technique.empty() == c.test.empty())
+      fail(at + (c.technique.empty() ? ".technique" : ".test"),
+           c.technique.empty() ? "missing; expected a technique name (giq realtime --list) or test, an image file or pattern"
+                               : "a case has a technique or test images, not both");
+    if (!c.test.empty()) {
+      if (!c.parameters.empty()) fail(at + ".parameters", "technique parameters need a technique; this case scores test images");
+      if (c.needs_timing()) fail(at + ".bounds.gpu_ms", "a frame time needs a technique to render; this case scores test images");
+      const bool pattern = c.test.string().find('%') != std::string::npos;
+      if (pattern != c.sequence())
+        fail(at + ".test", pattern ? "a frame pattern needs a frame range \"A:B\" (frames)"
+                                   : "a frame range needs a frame pattern such as shot_%04d.exr");
+    }
     if (c.view.empty()) c.view = "0";
     if (!c.golden.spp && !c.golden.rel_error) c.golden.spp = 256;
     if (c.bounds.empty())

@@ -67,6 +67,7 @@ std::vector<Outcome> evaluate(const Case& c, const Evidence& ev) {
       out.push_back(o);
     };
     if (!ev.problem.empty()) {
+      o.error = true;
       fail(ev.problem);
       continue;
     }

@@ -23,17 +23,19 @@ std::string value_text(const Outcome& o) {
 }
 
 struct Counts {
-  int tests = 0, failures = 0, skipped = 0;
+  int tests = 0, failures = 0, errors = 0, skipped = 0;
   void add(const Outcome& o) {
     ++tests;
-    if (o.fails_gate)
+    if (o.error)
+      ++errors;
+    else if (o.fails_gate)
       ++failures;
     else if (o.status == Status::Skip || o.status == Status::Unresolved)
       ++skipped;
   }
   std::string attributes() const {
     return "tests=\"" + std::to_string(tests) + "\" failures=\"" + std::to_string(failures) +
-           "\" errors=\"0\" skipped=\"" + std::to_string(skipped) + "\"";
+           "\" errors=\"" + std::to_string(errors) + "\" skipped=\"" + std::to_string(skipped) + "\"";
   }
 };
 
@@ -66,13 +68,21 @@ std::string junit_xml(const std::vector<Outcome>& outcomes,
     const double t = time.count(name) ? time[name] : 0.0;
     x << "  <testsuite name=\"" << xml_escape(name) << "\" " << c.attributes() << " time=\""
       << seconds(t) << "\">\n";
+    // The case's wall time (rendering and scoring serve all its bounds) shared among them,
+    // so that the testcases add up to the suite.
+    const double each = by_case[name].empty() ? 0.0 : t / double(by_case[name].size());
     for (const Outcome* o : by_case[name]) {
       x << "    <testcase classname=\"giq.gate." << xml_escape(name) << "\" name=\""
-        << xml_escape(o->metric) << "\" time=\"0\">\n";
-      const std::string detail = std::string(to_string(o->status)) + ": " + o->metric + " = " +
-                                 value_text(*o) + ", bound " + o->bound +
-                                 (o->message.empty() ? "" : "; " + o->message);
-      if (o->fails_gate) {
+        << xml_escape(o->metric) << "\" time=\"" << seconds(each) << "\">\n";
+      const std::string detail =
+          o->error ? "ERROR: the case could not be rendered or scored, so " + o->metric + " (bound " + o->bound +
+                         ") has no value: " + o->message
+                   : std::string(to_string(o->status)) + ": " + o->metric + " = " + value_text(*o) + ", bound " +
+                         o->bound + (o->message.empty() ? "" : "; " + o->message);
+      if (o->error) {
+        x << "      <error message=\"" << xml_escape(detail) << "\" type=\"ERROR\">" << xml_escape(detail)
+          << "</error>\n";
+      } else if (o->fails_gate) {
         x << "      <failure message=\"" << xml_escape(detail) << "\" type=\""
           << to_string(o->status) << "\">" << xml_escape(detail) << "</failure>\n";
       } else if (o->status == Status::Skip || o->status == Status::Unresolved) {

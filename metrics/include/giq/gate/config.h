@@ -62,6 +62,9 @@ struct Case {
   std::filesystem::path scene;  // resolved against the config file's folder
   std::string view;
   std::string technique;
+  // Instead of a technique: image files from outside giq (an engine's), one file or a frame
+  // pattern (%04d) for a range, resolved against the config file's folder.
+  std::filesystem::path test;
   std::vector<std::pair<std::string, double>> parameters;  // sorted by name
   int first_frame = 0, last_frame = 0;
   std::string layer = "beauty";

@@ -30,6 +30,9 @@ struct Outcome {
   std::string bound;    // e.g. "<= 0.08 (warn 0.05)"
   std::string message;  // why, for anything but a plain PASS
   bool fails_gate = false;
+  // The case could not be rendered or scored (a crash, a missing file, a stale golden): no
+  // verdict on the technique, reported as an error rather than a failure (JUnit <error>).
+  bool error = false;
 };
 
 // What the gate has for one case. `problem` says why there is nothing to evaluate (a render
