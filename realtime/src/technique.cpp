@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "giq/base/error.h"
+#include "giq/base/suggest.h"
 
 namespace giq::realtime {
 
@@ -24,8 +25,10 @@ ParameterValues::ParameterValues(const std::vector<Parameter>& declared, const s
       if (d.name == name) p = &d;
     if (!p) {
       std::string names;
-      for (const auto& d : declared) names += (names.empty() ? "" : ", ") + d.name;
-      throw InputError("", "--param", "unknown parameter '" + name + "'; expected one of: " + (names.empty() ? "(none)" : names));
+      std::vector<std::string> known;
+      for (const auto& d : declared) names += (names.empty() ? "" : ", ") + d.name, known.push_back(d.name);
+      throw InputError("", "--param", "unknown parameter '" + name + "'; expected one of: " + (names.empty() ? "(none)" : names) +
+                                          did_you_mean(name, known));
     }
     double v = 0.0;
     size_t used = 0;
@@ -76,8 +79,10 @@ const TechniqueInfo& find_technique(std::string_view name) {
   for (const auto& t : techniques())
     if (t.name == name) return t;
   std::string names;
-  for (const auto& t : techniques()) names += (names.empty() ? "" : ", ") + t.name;
-  throw InputError("", "--technique", "unknown technique '" + std::string(name) + "'; expected one of: " + names);
+  std::vector<std::string> known;
+  for (const auto& t : techniques()) names += (names.empty() ? "" : ", ") + t.name, known.push_back(t.name);
+  throw InputError("", "--technique", "unknown technique '" + std::string(name) + "'; expected one of: " + names +
+                                          did_you_mean(name, known));
 }
 
 }  // namespace giq::realtime

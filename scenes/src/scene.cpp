@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "giq/base/error.h"
+#include "giq/base/suggest.h"
 #include "giq/base/hash.h"
 #include "giq/scenes/environment.h"
 #include "scene_source.h"
@@ -259,8 +260,11 @@ const View& Scene::view(std::string_view name_or_index) const {
     if (i < views.size()) return views[i];
   }
   std::string available;
-  for (size_t i = 0; i < views.size(); ++i) available += (i ? ", " : "") + std::to_string(i) + " \"" + views[i].name + "\"";
-  throw InputError(path.string(), "view", "no view \"" + std::string(name_or_index) + "\"; available: " + (available.empty() ? "(none)" : available));
+  std::vector<std::string> known;
+  for (size_t i = 0; i < views.size(); ++i)
+    available += (i ? ", " : "") + std::to_string(i) + " \"" + views[i].name + "\"", known.push_back(views[i].name);
+  throw InputError(path.string(), "view", "no view \"" + std::string(name_or_index) + "\"; available: " +
+                                              (available.empty() ? "(none)" : available) + did_you_mean(name_or_index, known));
 }
 
 }  // namespace giq::scenes

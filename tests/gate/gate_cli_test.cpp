@@ -331,6 +331,7 @@ TEST_F(GateCli, ImageFilesFromOutsideAreGatedAndConfigTyposStopIt) {
     EXPECT_EQ(t.code, 2) << typo << t.err;
     EXPECT_EQ(std::count(t.err.begin(), t.err.end(), '\n'), 1) << t.err;
     EXPECT_NE(t.err.find("cases.a."), std::string::npos) << t.err;
+    if (typo["technique"] == "dirct") EXPECT_NE(t.err.find("did you mean 'direct'"), std::string::npos) << t.err;
   }
   EXPECT_EQ(calls("realtime --scene"), 0);
 }

@@ -201,6 +201,8 @@ TEST(ScoreCli, BadInputExitsTwoWithOneLine) {
       {base + (d / "ref.exr").string() + " --fail 'mse<=0.1' --warn 'mse<=0.2'", "--warn"},  // warn beyond fail
       {base + (d / "ref.exr").string() + " --fail 'relmsee<=0.1'", "relmsee"},          // no such metric
       {base + (d / "ref.exr").string() + " --test-layer direct", "direct"},           // the test has no such layer
+      {base + (d / "ref.exr").string() + " --tonemp aces", "did you mean '--tonemap'"},  // a typo in an option
+      {base + (d / "ref.exr").string() + " --fail 'flip_maen<=1'", "did you mean 'flip_mean'"},  // in a metric
       // An input inside the output folder, where the maps would replace it.
       {"score --ref " + (d / "ref.exr").string() + " --test " + (d / "o" / "abs_error.exr").string() + " --out " +
            (d / "o").string(),

@@ -14,6 +14,7 @@
 #include "integer_check.h"
 #include "output_guard.h"
 #include "giq/base/error.h"
+#include "giq/base/suggest.h"
 #include "giq/base/frames.h"
 #include "giq/base/json.h"
 #include "giq/gate/evaluation.h"
@@ -62,9 +63,10 @@ std::vector<gate::Bound> parse_bounds(const std::vector<std::string>& fail, cons
     const std::string name = text.substr(0, op);
     if (name.find('.') == std::string::npos && !metrics::find_metric_info(name)) {
       std::string known;
-      for (const auto& m : metrics::kMetricCatalogue) known += (known.empty() ? "" : ", ") + std::string(m.name);
+      std::vector<std::string> names;
+      for (const auto& m : metrics::kMetricCatalogue) known += (known.empty() ? "" : ", ") + std::string(m.name), names.emplace_back(m.name);
       throw InputError("", flag, "'" + name + "' is not a metric; expected one of " + known +
-                                     " or a dotted path in metrics.json (docs/metrics.md)");
+                                     " or a dotted path in metrics.json (docs/metrics.md)" + did_you_mean(name, names));
     }
     const auto better = text[op] == '<' ? metrics::Better::Lower : metrics::Better::Higher;
     auto it = std::find_if(bounds.begin(), bounds.end(), [&](const gate::Bound& b) { return b.metric == name; });

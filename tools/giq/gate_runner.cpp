@@ -10,6 +10,7 @@
 
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
+#include "giq/base/suggest.h"
 #include "giq/base/frames.h"
 #include "giq/base/json.h"
 #include "giq/base/version.h"
@@ -286,16 +287,20 @@ void check_cases(const Toolchain& t, const std::vector<const gate::Case*>& cases
                                      [&](const TechniqueParameters& p) { return p.name == c->technique; });
       if (tech == registered.end()) {
         std::string names;
-        for (const auto& r : registered) names += (names.empty() ? "" : ", ") + r.name;
-        throw InputError("", at + ".technique", "'" + c->technique + "' is not registered; expected one of " + names);
+        std::vector<std::string> known;
+        for (const auto& r : registered) names += (names.empty() ? "" : ", ") + r.name, known.push_back(r.name);
+        throw InputError("", at + ".technique",
+                         "'" + c->technique + "' is not registered; expected one of " + names + did_you_mean(c->technique, known));
       }
       for (const auto& [name, value] : c->parameters) {
         const auto p = std::find_if(tech->parameters.begin(), tech->parameters.end(),
                                     [&](const ParameterInfo& i) { return i.name == name; });
         if (p == tech->parameters.end()) {
           std::string names;
-          for (const auto& i : tech->parameters) names += (names.empty() ? "" : ", ") + i.name;
-          throw InputError("", at + ".parameters." + name, "'" + c->technique + "' has no such parameter; it has " + names);
+          std::vector<std::string> known;
+          for (const auto& i : tech->parameters) names += (names.empty() ? "" : ", ") + i.name, known.push_back(i.name);
+          throw InputError("", at + ".parameters." + name,
+                           "'" + c->technique + "' has no such parameter; it has " + names + did_you_mean(name, known));
         }
         if (value < p->min_value || value > p->max_value || (p->integer && value != std::floor(value)))
           throw InputError("", at + ".parameters." + name,

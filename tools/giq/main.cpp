@@ -8,7 +8,29 @@
 
 #include "command.h"
 #include "giq/base/error.h"
+#include "giq/base/suggest.h"
 #include "giq/base/version.h"
+
+namespace {
+
+// "did you mean" for the first argument CLI11 could not place: an option of the subcommand
+// that was being parsed, or a subcommand.
+std::string suggestion(const CLI::App& app) {
+  const CLI::App* deepest = &app;
+  while (!deepest->get_subcommands().empty()) deepest = deepest->get_subcommands().front();
+  std::vector<std::string> names;
+  for (const CLI::Option* o : deepest->get_options())
+    for (const std::string& l : o->get_lnames()) names.push_back("--" + l);
+  for (const CLI::App* sub : deepest->get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+  for (const std::string& extra : deepest->remaining()) {
+    const std::string name = extra.substr(0, extra.find('='));
+    const std::string nearest = giq::nearest_name(name, names);
+    if (!nearest.empty()) return "; for '" + name + "' did you mean '" + nearest + "'?";
+  }
+  return "";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"giq: scores real-time global illumination against path-traced ground truth", "giq"};
@@ -37,7 +59,7 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // One line, like every other input error (CLI11's own report adds a second).
-    std::cerr << "giq: error: " << e.what() << '\n';
+    std::cerr << "giq: error: " << e.what() << suggestion(app) << '\n';
     return 2;
   } catch (const giq::InputError& e) {
     std::cerr << "giq: error: " << e.what() << '\n';

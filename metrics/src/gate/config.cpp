@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "giq/base/error.h"
+#include "giq/base/suggest.h"
 #include "giq/base/json.h"
 #include "giq/base/frames.h"
 
@@ -171,8 +172,10 @@ class Parser {
     // missing metric); a dotted path into metrics.json is taken as written.
     if (metric.find('.') == std::string::npos && !metrics::find_metric_info(metric)) {
       std::string known;
-      for (const auto& m : metrics::kMetricCatalogue) known += (known.empty() ? "" : ", ") + std::string(m.name);
-      fail(f, "'" + metric + "' is not a metric; expected one of " + known + ", or a dotted path in metrics.json");
+      std::vector<std::string> names;
+      for (const auto& m : metrics::kMetricCatalogue) known += (known.empty() ? "" : ", ") + std::string(m.name), names.emplace_back(m.name);
+      fail(f, "'" + metric + "' is not a metric; expected one of " + known + ", or a dotted path in metrics.json" +
+                  did_you_mean(metric, names));
     }
     Bound b;
     b.metric = metric;
