@@ -56,6 +56,7 @@ image::Image reference_image(const Film& film, const RenderSettings& settings, c
   img.metadata["giq.scene_hash"] = meta.scene_hash;
   img.metadata["giq.view"] = meta.view;
   img.metadata["giq.camera"] = describe_camera(meta.camera);
+  if (!meta.camera_given.empty()) img.metadata["giq.camera_given"] = meta.camera_given;
   img.metadata["giq.frame"] = std::to_string(meta.frame);
   img.metadata["giq.spp"] = std::to_string(film.min_samples());
   img.metadata["giq.seed"] = std::to_string(settings.seed);

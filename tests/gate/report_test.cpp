@@ -55,6 +55,7 @@ class Report : public testing::Test {
                 {"layer", "beauty"},
                 {"scene", kHostileScene}}},
               {"metrics", {{"relmse", {{"value", 0.25}}}, {"flip", {{"mean", {{"value", 0.1}}}}}}},
+              {"warnings", {"the test's mean luminance is <2> times the reference's"}},
               {"maps",
                {{"abs_error",
                  {{"png", "abs_error.png"},
@@ -121,12 +122,20 @@ TEST_F(Report, EscapesTextFromFilesAndEmbedsImages) {
   EXPECT_EQ(html.find("http://"), std::string::npos);
   EXPECT_EQ(html.find("https://"), std::string::npos);
   EXPECT_EQ(html.find("src=\"file:"), std::string::npos);
-  // Two panes + a map for the image comparison, 2 panes and 3 + 3 flip-book frames for the
-  // sequence.
+  // Two panes, their A/B pair and a map for the image comparison; 2 panes, their A/B pair and
+  // 3 + 3 flip-book frames for the sequence.
   size_t pngs = 0;
   for (size_t p = 0; (p = html.find("src=\"data:image/png;base64,", p)) != std::string::npos; ++p)
     ++pngs;
-  EXPECT_EQ(pngs, 3u + 2u + 6u);
+  EXPECT_EQ(pngs, 5u + 4u + 6u);
+  // The summary: a row per comparison, each headline metric with its unit and direction; the
+  // score's warnings, escaped, in its section and counted in the summary.
+  EXPECT_NE(html.find("<h2>Summary</h2>"), std::string::npos);
+  EXPECT_NE(html.find("relmse<br><span class=\"hint\">1, lower is better</span>"), std::string::npos);
+  EXPECT_NE(html.find("flip_mean<br>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"num UNRESOLVED\">0.01 (unresolved)</td>"), std::string::npos);
+  EXPECT_NE(html.find("warning: the test&#39;s mean luminance is &lt;2&gt; times"), std::string::npos);
+  EXPECT_NE(html.find("1 warning(s)"), std::string::npos);
   EXPECT_NE(html.find("class=\"flipbook\""), std::string::npos);
   EXPECT_NE(html.find("unresolved"), std::string::npos);
   EXPECT_EQ(giq("report " + (dir_ / "absent").string()), 2);

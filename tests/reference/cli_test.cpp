@@ -377,6 +377,9 @@ TEST(ReferenceCli, CamerasInAnEnginesFrameAndEachMistakeSaid) {
   const auto unreal = render(std::string("eye=80,27.8,27.3 target=0,27.8,27.3 frame=unreal ") + fov, "unreal");
   const auto unity = render(std::string("eye=0.278,0.273,0.8 target=0.278,0.273,0 handedness=left ") + hfov_arg, "unity");
   const auto mm = render(std::string("eye=278,273,-800 target=278,273,0 units=mm ") + fov, "mm");
+  // The header keeps the camera as given, beside the camera the renderer used.
+  EXPECT_EQ(unreal.metadata.at("giq.camera_given"), std::string("eye=80,27.8,27.3 target=0,27.8,27.3 frame=unreal ") + fov);
+  EXPECT_EQ(unreal.metadata.at("giq.camera"), gltf.metadata.at("giq.camera"));
   for (const auto* other : {&unreal, &unity, &mm}) {
     // The same rays to float precision: the same paths, up to a last-bit difference in a
     // direction that may move a rare path; means differ by far less than their noise.

@@ -193,6 +193,10 @@ int run(const Options& o) {
     const sc::View& v = posed.view(o.setup.has_camera() ? kCameraView : o.view.empty() ? "0" : o.view);
     meta.camera = v.camera;
     meta.view = v.name;
+    for (const std::string& a : o.setup.camera) {
+      if (!meta.camera_given.empty()) meta.camera_given += ' ';
+      meta.camera_given += a;
+    }
     const fs::path out = frame_path(o.out, f, first != last);
     if (out.has_parent_path()) fs::create_directories(out.parent_path());
     const ref::Renderer renderer(posed, meta.camera, settings);

@@ -192,6 +192,13 @@ Comparison comparison(const fs::path& file, const fs::path& root, int max_frames
     add_metric_rows(c, j["metrics"], "");
   }
   if (j.contains("maps")) add_maps(c, j["maps"], dir, root, file);
+  for (const metrics::MetricInfo& info : metrics::kMetricCatalogue)
+    if (info.headline && info.scope != metrics::Scope::Timing)
+      if (const auto v = gate::find_metric(j, std::string(info.name)); v && v->value)
+        c.headline.emplace_back(std::string(info.name), *v);
+  if (in.contains("frame_ms") && in["frame_ms"].is_number()) c.gpu_ms = in["frame_ms"].get<double>();
+  for (const json& w : j.value("warnings", json::array()))
+    if (w.is_string()) c.warnings.push_back(w.get<std::string>());
   return c;
 }
 

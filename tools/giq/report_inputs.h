@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "giq/gate/metric_lookup.h"
+
 namespace giq::cli {
 
 struct ColourScale {
@@ -35,6 +37,11 @@ struct Comparison {
   std::vector<std::string> reference_frames, technique_frames;  // flip-book (sequences)
   int first_frame = 0;
   std::vector<std::pair<std::string, std::string>> metrics;  // name, value (with notes)
+  // The headline metrics of the catalogue present in metrics.json (short name -> value, with
+  // its unresolved flag) and the technique's frame time, for the summary table.
+  std::vector<std::pair<std::string, gate::MetricValue>> headline;
+  std::optional<double> gpu_ms;
+  std::vector<std::string> warnings;  // metrics.json's: why a score may be meaningless
 };
 
 struct Sweep {

@@ -1,5 +1,6 @@
 #include "report_page.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -8,6 +9,7 @@
 #include "giq/base/version.h"
 #include "giq/gate/escape.h"
 #include "giq/gate/sweep_table.h"
+#include "giq/metrics/catalogue.h"
 
 namespace giq::cli {
 namespace {
@@ -35,6 +37,7 @@ figure{margin:0}figcaption{font-size:12px;color:#333;margin-top:4px;max-width:32
 .flipbook .controls{margin:6px 0;font-size:13px}
 .plot{max-width:100%;background:#fff;border:1px solid #ddd}
 .warning{color:#a00000}
+.ab{cursor:pointer}
 .hint{font-size:12px;color:#666}
 )";
 
@@ -57,6 +60,14 @@ document.querySelectorAll('.sync').forEach(function(group){
     v.addEventListener('pointerup',function(){drag=null;});
     v.addEventListener('dblclick',function(){s=1;x=0;y=0;apply();});
   });
+});
+document.querySelectorAll('.ab').forEach(function(fig){
+  var imgs=fig.querySelectorAll('img'),label=fig.querySelector('.ab-label'),k=1;
+  function show(){imgs.forEach(function(img,i){img.style.visibility=(i===k)?'visible':'hidden';});
+    label.textContent=imgs[k].alt+' (click or press a key over it: '+imgs[1-k].alt+')';}
+  fig.addEventListener('click',function(){k=1-k;show();});
+  fig.tabIndex=0;fig.addEventListener('keydown',function(){k=1-k;show();});
+  show();
 });
 document.querySelectorAll('.flipbook').forEach(function(book){
   var slider=book.querySelector('input[type=range]'),label=book.querySelector('.frame-label');
@@ -132,14 +143,61 @@ void gate_section(std::ostringstream& h, const json& g) {
   h << "</table>\n";
 }
 
+// One row per comparison: its headline metrics (catalogue order, with unit and direction in
+// the header) and the technique's frame time where the score recorded one.
+void summary_section(std::ostringstream& h, const std::vector<Comparison>& comparisons) {
+  std::vector<const metrics::MetricInfo*> columns;
+  for (const metrics::MetricInfo& info : metrics::kMetricCatalogue)
+    for (const Comparison& c : comparisons)
+      if (std::any_of(c.headline.begin(), c.headline.end(), [&](const auto& m) { return m.first == info.name; })) {
+        columns.push_back(&info);
+        break;
+      }
+  const bool timed = std::any_of(comparisons.begin(), comparisons.end(), [](const Comparison& c) { return c.gpu_ms.has_value(); });
+  const bool warned = std::any_of(comparisons.begin(), comparisons.end(), [](const Comparison& c) { return !c.warnings.empty(); });
+  h << "<h2>Summary</h2>\n<table><tr><th>comparison</th><th>technique</th><th>layer</th>";
+  if (timed) h << "<th>GPU ms<br><span class=\"hint\">ms, lower is better</span></th>";
+  for (const auto* m : columns)
+    h << "<th>" << html_escape(std::string(m->name)) << "<br><span class=\"hint\">" << html_escape(std::string(m->unit)) << ", "
+      << (m->better == metrics::Better::Lower ? "lower" : "higher") << " is better</span></th>";
+  if (warned) h << "<th>warnings</th>";
+  h << "</tr>\n";
+  for (const Comparison& c : comparisons) {
+    h << "<tr><td>" << html_escape(c.label) << "</td><td>" << html_escape(c.technique) << "</td><td>" << html_escape(c.layer)
+      << "</td>";
+    if (timed) h << "<td class=\"num\">" << (c.gpu_ms ? num(*c.gpu_ms) : "-") << "</td>";
+    for (const auto* m : columns) {
+      const auto it = std::find_if(c.headline.begin(), c.headline.end(), [&](const auto& v) { return v.first == m->name; });
+      if (it == c.headline.end()) {
+        h << "<td class=\"num\">-</td>";
+        continue;
+      }
+      const double v = *it->second.value;
+      h << "<td class=\"num" << (it->second.unresolved ? " UNRESOLVED" : "") << "\">" << (std::isinf(v) ? "inf" : num(v))
+        << (it->second.unresolved ? " (unresolved)" : "") << "</td>";
+    }
+    if (warned)
+      h << (c.warnings.empty() ? "<td></td>" : "<td class=\"warning\">" + std::to_string(c.warnings.size()) + " warning(s)</td>");
+    h << "</tr>\n";
+  }
+  h << "</table>\n";
+}
+
 void comparison_section(std::ostringstream& h, const Comparison& c) {
   h << "<div class=\"comparison\"><h3>" << html_escape(c.technique) << " &mdash; "
     << html_escape(c.label) << "</h3>\n"
     << "<p class=\"meta\">layer " << html_escape(c.layer) << " &middot; " << html_escape(c.source)
     << " &middot; <span class=\"hint\">wheel: zoom, drag: pan, double-click: reset (all images "
        "together)</span></p>\n";
+  for (const std::string& w : c.warnings) h << "<p class=\"warning\">warning: " << html_escape(w) << "</p>\n";
   h << "<div class=\"row sync\">\n";
   for (const Picture& p : c.panes) h << figure(p);
+  // A/B: the reference and the technique in one place, toggled by a click.
+  if (c.panes.size() == 2) {
+    h << "<figure class=\"ab\"><div class=\"view\"><img alt=\"" << html_escape(c.panes[0].title) << "\" src=\""
+      << c.panes[0].data_uri << "\"><img alt=\"" << html_escape(c.panes[1].title) << "\" src=\"" << c.panes[1].data_uri
+      << "\"></div><figcaption>A/B: <span class=\"ab-label\"></span></figcaption></figure>\n";
+  }
   for (const Picture& p : c.maps) h << figure(p);
   h << "</div>\n";
   if (!c.technique_frames.empty()) {
@@ -222,6 +280,7 @@ std::string report_html(const ReportInputs& in, const std::string& title) {
   for (const std::string& w : in.warnings)
     h << "<p class=\"warning\">not shown: " << html_escape(w) << "</p>\n";
   if (in.gate) gate_section(h, *in.gate);
+  if (!in.comparisons.empty()) summary_section(h, in.comparisons);
   std::string scene;
   for (const Comparison& c : in.comparisons) {
     if (c.scene != scene) h << "<h2>Scene " << html_escape(c.scene) << "</h2>\n", scene = c.scene;

@@ -23,6 +23,9 @@ struct ReferenceMetadata {
   std::string scene_hash;  // Scene::content_hash
   std::string view;        // view name, or "cli" for --camera
   scenes::Camera camera;   // in the scene's local frame
+  // The camera as the command line gave it (`giq reference --camera`: world coordinates, an
+  // engine's frame and units), recorded as "giq.camera_given"; "" for a view of the scene.
+  std::string camera_given;
   int frame = 0;
   double render_seconds = -1.0;  // < 0: not recorded
 };
