@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "command.h"
+#include "integer_check.h"
 #include "scene_setup.h"
 #include "output_guard.h"
 #include "giq/base/atomic_file.h"
@@ -36,10 +37,10 @@ struct RealtimeArgs {
   SceneSetup setup;  // --camera, --sun, --env
   std::string technique = "direct";
   std::vector<std::string> params;
-  int frames = 1;
-  int warmup = 0;
-  uint32_t width = 512;
-  uint32_t height = 512;
+  std::string frames = "1";
+  int warmup = -1;  // -1: not given
+  uint32_t width = 256;
+  uint32_t height = 256;
   std::string device;
   std::string out;
   bool list = false;
@@ -112,8 +113,22 @@ int run(const RealtimeArgs& a) {
   o.view = a.setup.has_camera() ? kCameraView : a.view;
   o.width = a.width;
   o.height = a.height;
-  o.frames = a.frames;
-  o.warmup = a.warmup;
+  // --frames N: N measured frames after --warmup W; --frames A:B: frames A..B of the sequence,
+  // the A before them rendered as warm-up (the grammar of every other command's --frames).
+  if (const auto range = parse_frame_range(a.frames)) {
+    if (a.warmup >= 0)
+      throw InputError("", "--warmup", "--frames " + a.frames + " already renders frames 0.." + std::to_string(range->first - 1) +
+                                           " as warm-up; give --frames N with --warmup W, or A:B alone");
+    o.warmup = range->first;
+    o.frames = range->second - range->first + 1;
+  } else {
+    char* end = nullptr;
+    const long n = std::strtol(a.frames.c_str(), &end, 10);
+    if (a.frames.empty() || *end != '\0' || n < 1 || n > 1000000)
+      throw InputError("", "--frames", "'" + a.frames + "'; expected a number of measured frames N >= 1, or a range A:B of frames");
+    o.frames = int(n);
+    o.warmup = std::max(a.warmup, 0);
+  }
   o.read_back = !a.no_images;
   const fs::path out(a.out);
   check_output_folder(out, {resolve_scene(a.scene)}, "--out");
@@ -129,14 +144,14 @@ int run(const RealtimeArgs& a) {
     }
     if (!warned_black) warned_black = warn_if_black(f.image, (out / frame_file(f.frame)).string());
     ++written;
-    if (tty) std::fprintf(stderr, "\rframe %d/%d  %.3f ms GPU", written, a.frames, f.timing.gpu_ms);
+    if (tty) std::fprintf(stderr, "\rframe %d/%d  %.3f ms GPU", written, o.frames, f.timing.gpu_ms);
   });
   if (tty) std::fprintf(stderr, "\n");
   write_file_atomically(out / "timings.json", timings.dump(2) + "\n");
   const auto messages = ctx.validation_messages();
   for (const auto& m : messages) std::cerr << "giq: validation: " << m << '\n';
   std::printf("giq realtime: %s on %s, %dx%d, %d frames (+%d warm-up): median %.3f ms GPU per frame -> %s\n",
-              a.technique.c_str(), ctx.info().name.c_str(), int(a.width), int(a.height), a.frames, a.warmup,
+              a.technique.c_str(), ctx.info().name.c_str(), int(a.width), int(a.height), o.frames, o.warmup,
               timings["frame_gpu_ms"].value("median", 0.0), out.string().c_str());
   // Validation errors mean the numbers cannot be trusted: an internal error, not a result.
   return messages.empty() ? 0 : 3;
@@ -152,8 +167,11 @@ void add_realtime_command(CLI::App& app, int& exit_code) {
   a.setup.add_options(*cmd);
   cmd->add_option("--technique", a.technique, "Technique (see --list)")->capture_default_str();
   cmd->add_option("--param", a.params, "Technique parameter name=value (repeatable)");
-  cmd->add_option("--frames", a.frames, "Measured frames (one EXR each)")->capture_default_str();
-  cmd->add_option("--warmup", a.warmup, "Frames rendered before the measured ones")->capture_default_str();
+  cmd->add_option("--frames", a.frames,
+                  "Measured frames (one EXR each): N after --warmup, or A:B, frames A..B of the sequence after A warm-up frames")
+      ->capture_default_str();
+  cmd->add_option("--warmup", a.warmup, "Frames rendered before the measured ones, with --frames N (default 0)")
+      ->check(integer_in(0.0L, 1000000.0L));
   cmd->add_option("--width", a.width, "Image width")->capture_default_str();
   cmd->add_option("--height", a.height, "Image height")->capture_default_str();
   cmd->add_option("--device", a.device, "Vulkan device: index or part of its name (default: a discrete GPU, else lavapipe)");
@@ -163,6 +181,9 @@ void add_realtime_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--list-devices", a.list_devices, "List Vulkan devices");
   cmd->add_flag("--validation", a.validation, "Enable the Khronos validation layer (any message makes the run fail)");
   cmd->add_flag("--no-images", a.no_images, "Write timings.json only (benchmarks)");
+  cmd->footer(
+      "Example: frames 28..43 of a sequence (28 warm-up frames first), as EXRs and timings.json:\n"
+      "  giq realtime --scene scenes/movinglight.gltf --technique ddgi --frames 28:43 --out out/ddgi");
   cmd->callback([&exit_code] { exit_code = run(a); });
 }
 

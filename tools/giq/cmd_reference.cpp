@@ -168,6 +168,12 @@ int run(const Options& o) {
   if (!(o.checkpoint_interval > 0.0)) throw InputError("", "--checkpoint-interval", "must be a positive number of seconds");
 
   if (o.resume && o.overwrite) throw InputError("", "--resume/--overwrite", "give one of them, not both");
+  {
+    std::string ext = fs::path(o.out).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".exr")
+      throw InputError(o.out, "--out", "the reference is written as OpenEXR; expected a file name ending in .exr");
+  }
   const sc::Scene scene = o.setup.load(o.scene, double(o.settings.width) / double(o.settings.height));
   const auto [first, last] = frame_range(o, scene);
   // Every output and checkpoint is checked before the first sample: a render of hours must not
@@ -226,8 +232,10 @@ int run(const Options& o) {
     const uint64_t nonfinite = r.film.nonfinite_samples();
     // A black image has no relative error to speak of: say so rather than 0%.
     const bool black = warn_if_black(img, out.string());
-    char rel[32] = "n/a (black image)";
-    if (!black) std::snprintf(rel, sizeof rel, "%.3g%%", 100.0 * r.film.relative_standard_error());
+    // Unknown, not 0%, where there is no error estimate: a black image, or one sample a pixel.
+    char rel[48] = "n/a (black image)";
+    if (!black && r.spp < 2) std::snprintf(rel, sizeof rel, "n/a (one sample a pixel)");
+    else if (!black) std::snprintf(rel, sizeof rel, "%.3g%%", 100.0 * r.film.relative_standard_error());
     std::printf("reference %s: %dx%d, view %s, frame %d, %u spp, %.2f s%s, rel.err %s, %llu non-finite samples\n",
                 out.string().c_str(), settings.width, settings.height, meta.view.c_str(), f, r.spp, r.elapsed_seconds,
                 r.resumed ? " (resumed)" : "", rel, (unsigned long long)nonfinite);

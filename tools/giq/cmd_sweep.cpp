@@ -49,7 +49,7 @@ struct SweepArgs {
   std::string scene, view = "0", ref, layer = "beauty", error, out = "sweep-out", device, giq, sampler = "sobol";
   std::vector<std::string> techniques, grid;
   std::vector<uint32_t> spp;
-  int auto_steps = 0, width = 128, height = 128, warmup = 10, frames = 20, jobs = 1, timing_width = 0, timing_height = 0,
+  int auto_steps = 0, width = 256, height = 256, warmup = 10, frames = 20, jobs = 1, timing_width = 0, timing_height = 0,
       max_settings = 64;
   uint32_t ref_spp = 1024;
   bool convergence = false, linear = false, quality = false;

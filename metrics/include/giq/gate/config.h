@@ -68,7 +68,7 @@ struct Case {
   std::vector<std::pair<std::string, double>> parameters;  // sorted by name
   int first_frame = 0, last_frame = 0;
   std::string layer = "beauty";
-  int width = 128, height = 128;
+  int width = 256, height = 256;  // the size every giq command renders by default
   GoldenSpec golden;
   TimingSpec timing;
   std::vector<Bound> bounds;
