@@ -125,6 +125,7 @@ void add_gate_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--rerender", a->cases.rerender,
                 "Render and score again even where outputs of an identical run exist");
   CLI::App* calibrate = add_gate_calibrate_command(*cmd, exit_code);
+  cmd->footer("Example: the project's gate on lavapipe, two cases at a time (exit 1 when a bound fails):\n  giq gate --config golden/gate.json --device llvmpipe --jobs 2 --out build/gate");
   cmd->callback([a, calibrate, &exit_code] {
     if (!calibrate->parsed()) exit_code = run_gate(*a);
   });

@@ -436,6 +436,7 @@ CLI::App* add_gate_calibrate_command(CLI::App& gate, int& exit_code) {
   cmd->add_option("--giq", a->giq, "giq binary whose subcommands are run (default: this one)");
   cmd->add_flag("--check", a->check,
                 "Only check that the config has every case the plan and the registered techniques call for (exit 1 if not)");
+  cmd->footer("Example: bounds for a newly registered technique, the others' kept:\n  giq gate calibrate --technique ddgi");
   cmd->callback([a, &exit_code] { exit_code = run_calibrate(*a); });
   return cmd;
 }

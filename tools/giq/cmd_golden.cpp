@@ -60,6 +60,7 @@ void add_golden_command(CLI::App& app, int& exit_code) {
       golden->add_subcommand("update", "Render the missing or stale golden references of a gate config");
   add_case_options(update, a->cases);
   update->add_flag("--force", a->force, "Render every golden again, fresh or not");
+  update->footer("Example: render what a new case needs, nothing that is fresh:\n  giq golden update --config golden/gate.json");
   update->callback([a, &exit_code] { exit_code = run_golden_update(*a); });
 }
 

@@ -276,6 +276,7 @@ void add_reference_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--overwrite", o.overwrite, "Discard an existing OUT.checkpoint and start again");
   cmd->add_flag("--half", o.half, "Store the colour layers as float16 (variance, depth, ids stay float32)");
   cmd->add_flag("--record-time", o.record_time, "Write the render time into the header (the file then differs run to run)");
+  cmd->footer("Example: the Cornell box to a mean relative error of 1%, resumable:\n  giq reference --scene scenes/cornell.gltf --rel-error 0.01 --out out/cornell.exr --resume");
   cmd->callback([&exit_code] { exit_code = run(o); });
 }
 

@@ -49,6 +49,7 @@ void add_report_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--max-frames", a->max_frames,
                   "Most sequence frames in a flip-book (sampled evenly)")
       ->capture_default_str();
+  cmd->footer("Example: one page from a gate run's outputs:\n  giq report build/gate");
   cmd->callback([a, &exit_code] { exit_code = run_report(*a); });
 }
 

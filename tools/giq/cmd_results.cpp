@@ -432,6 +432,7 @@ void add_results_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--references-only", a->references_only, "Render the references and stop");
   cmd->add_flag("--page-only", a->page_only, "Regenerate the page from its .json beside it, rendering nothing");
   cmd->add_flag("--rerender", a->rerender, "Render and score again even where outputs of an identical run exist");
+  cmd->footer("Example, from the repository root:\n  giq results");
   cmd->callback([a, &exit_code] { exit_code = run_results(*a); });
 }
 

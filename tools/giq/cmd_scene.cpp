@@ -148,6 +148,7 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   static bool as_json = false;
   info->add_option("scene", path, "glTF 2.0 scene (.gltf or .glb)")->required();
   info->add_flag("--json", as_json, "Print JSON instead of a table");
+  info->footer("Example:\n  giq scene info scenes/atrium.gltf");
   info->callback([&exit_code] {
     const sc::Scene s = sc::load(path);
     const json j = describe(s);

@@ -191,7 +191,7 @@ void add_score_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", args->json_output, "Print metrics.json on stdout instead of a table");
   cmd->footer(
       "Example: an engine's tone-mapped screenshot against the reference, failing above 10% FLIP:\n"
-      "  giq score --ref ref.exr --test shot.png --tonemap aces --exposure -1 --fail flip_mean<=0.1 --out score/");
+      "  giq score --ref ref.exr --test shot.png --tonemap aces --exposure -1 --fail 'flip_mean<=0.1' --out score/");
   cmd->callback([args, &exit_code] { exit_code = run_score(*args); });
 }
 

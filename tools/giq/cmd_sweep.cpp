@@ -336,6 +336,7 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
       ->delimiter(',');
   cmd->add_option("--sampler", a->sampler, "giq reference's sampler for rendered references: sobol or independent")
       ->capture_default_str();
+  cmd->footer("Example: two techniques' quality knobs on the Cornell box, error against GPU time:\n  giq sweep --scene scenes/cornell.gltf --technique rsm --technique vct --quality --out sweep-out");
   cmd->callback([a, &exit_code] { exit_code = run_sweep(*a); });
 }
 
