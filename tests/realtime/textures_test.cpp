@@ -36,6 +36,17 @@ class TexturesTest : public test::VulkanTest {
   }
 };
 
+// An 8-bit texture of random texels (every byte pattern: sRGB, linear and alpha channels).
+void add_random_texture(scenes::Scene& s, int w, int h, scenes::TexelFormat format, scenes::Filter filter,
+                        scenes::Wrap wrap, std::mt19937& rng) {
+  scenes::Texture t;
+  t.width = w, t.height = h, t.format = format, t.filter = filter, t.wrap_s = t.wrap_t = wrap;
+  auto words = std::make_shared<std::vector<uint32_t>>(size_t(w) * size_t(h));
+  for (auto& word : *words) word = uint32_t(rng());
+  t.words = words;
+  s.textures.push_back(t);
+}
+
 // texture_sample (shaders/textures.glsl) at a batch of (u, v, texture, lod) queries, on the GPU.
 std::vector<glm::vec4> sample_on_gpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& s,
                                      const std::vector<glm::vec4>& queries) {
@@ -109,12 +120,7 @@ TEST_F(TexturesTest, LookupsAreTheSceneLibrarysTextureSample) {
       test::add_texture(s, k.w, k.h, random_texel, k.filter, k.wrap);
       continue;
     }
-    scenes::Texture t;
-    t.width = k.w, t.height = k.h, t.format = k.format, t.filter = k.filter, t.wrap_s = t.wrap_t = k.wrap;
-    auto words = std::make_shared<std::vector<uint32_t>>();
-    for (int i = 0; i < k.w * k.h; ++i) words->push_back(uint32_t(rng()));
-    t.words = words;
-    s.textures.push_back(t);
+    add_random_texture(s, k.w, k.h, k.format, k.filter, k.wrap, rng);
   }
   // A material that uses a texture makes the scene textured (the texels are uploaded).
   s.materials[0].base_color_texture = 0;
@@ -167,12 +173,7 @@ TEST_F(TexturesTest, MipLevelsAreBoxMeansInLinearLight) {
                         scenes::Filter::Nearest);
       continue;
     }
-    scenes::Texture t;
-    t.width = k.w, t.height = k.h, t.format = k.format, t.filter = scenes::Filter::Nearest;
-    auto words = std::make_shared<std::vector<uint32_t>>();
-    for (int i = 0; i < k.w * k.h; ++i) words->push_back(uint32_t(rng()));
-    t.words = words;
-    s.textures.push_back(t);
+    add_random_texture(s, k.w, k.h, k.format, scenes::Filter::Nearest, scenes::Wrap::Repeat, rng);
   }
   s.materials[0].base_color_texture = 0;
   s.derive();
@@ -372,14 +373,9 @@ TEST_F(TexturesTest, TexturesBeyondTheLargestStorageBufferAreSampled) {
   scenes::Scene s = test::lambert_plane(0.5f);
   std::mt19937 rng(17);
   const int kCount = 10, kSize = 2048;
-  for (int i = 0; i < kCount; ++i) {
-    scenes::Texture t;
-    t.width = t.height = kSize, t.format = i % 2 ? scenes::TexelFormat::Rgba8Srgb : scenes::TexelFormat::Rgba8Unorm;
-    auto words = std::make_shared<std::vector<uint32_t>>(size_t(kSize) * kSize);
-    for (auto& w : *words) w = uint32_t(rng());
-    t.words = words;
-    s.textures.push_back(t);
-  }
+  for (int i = 0; i < kCount; ++i)
+    add_random_texture(s, kSize, kSize, i % 2 ? scenes::TexelFormat::Rgba8Srgb : scenes::TexelFormat::Rgba8Unorm,
+                       scenes::Filter::Linear, scenes::Wrap::Repeat, rng);
   s.materials[0].base_color_texture = 0;
   s.derive();
   ASSERT_GT(uint64_t(kCount) * kSize * kSize * 4, uint64_t(128) << 20);
