@@ -14,7 +14,6 @@
 #include "integer_check.h"
 #include "output_guard.h"
 #include "giq/base/error.h"
-#include "giq/base/suggest.h"
 #include "giq/base/frames.h"
 #include "giq/base/json.h"
 #include "giq/gate/evaluation.h"
@@ -61,13 +60,7 @@ std::vector<gate::Bound> parse_bounds(const std::vector<std::string>& fail, cons
         std::sscanf(text.c_str() + op + 2, "%lf%c", &v, &tail) != 1 || !std::isfinite(v))
       throw InputError("", flag, "'" + text + "'; expected METRIC<=VALUE or METRIC>=VALUE, e.g. relmse<=0.05");
     const std::string name = text.substr(0, op);
-    if (name.find('.') == std::string::npos && !metrics::find_metric_info(name)) {
-      std::string known;
-      std::vector<std::string> names;
-      for (const auto& m : metrics::kMetricCatalogue) known += (known.empty() ? "" : ", ") + std::string(m.name), names.emplace_back(m.name);
-      throw InputError("", flag, "'" + name + "' is not a metric; expected one of " + known +
-                                     " or a dotted path in metrics.json (docs/metrics.md)" + did_you_mean(name, names));
-    }
+    if (const std::string why = gate::unknown_metric(name); !why.empty()) throw InputError("", flag, why);
     const auto better = text[op] == '<' ? metrics::Better::Lower : metrics::Better::Higher;
     auto it = std::find_if(bounds.begin(), bounds.end(), [&](const gate::Bound& b) { return b.metric == name; });
     if (it == bounds.end()) {

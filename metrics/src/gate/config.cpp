@@ -10,9 +10,9 @@
 #include <sstream>
 
 #include "giq/base/error.h"
-#include "giq/base/suggest.h"
 #include "giq/base/json.h"
 #include "giq/base/frames.h"
+#include "giq/gate/metric_lookup.h"
 
 namespace giq::gate {
 namespace {
@@ -168,15 +168,7 @@ class Parser {
   }
 
   Bound bound(const std::string& metric, const json& v, const std::string& f) const {
-    // A short name must be the catalogue's (a typo would otherwise fail every run as a
-    // missing metric); a dotted path into metrics.json is taken as written.
-    if (metric.find('.') == std::string::npos && !metrics::find_metric_info(metric)) {
-      std::string known;
-      std::vector<std::string> names;
-      for (const auto& m : metrics::kMetricCatalogue) known += (known.empty() ? "" : ", ") + std::string(m.name), names.emplace_back(m.name);
-      fail(f, "'" + metric + "' is not a metric; expected one of " + known + ", or a dotted path in metrics.json" +
-                  did_you_mean(metric, names));
-    }
+    if (const std::string why = unknown_metric(metric); !why.empty()) fail(f, why);
     Bound b;
     b.metric = metric;
     b.better = default_direction(metric);

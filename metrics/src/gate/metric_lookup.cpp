@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "giq/base/error.h"
+#include "giq/base/suggest.h"
 #include "giq/base/json.h"
 #include "giq/metrics/catalogue.h"
 
@@ -111,6 +112,15 @@ FrameTime read_timings(const std::filesystem::path& file) {
   if (!std::isfinite(*t.gpu_ms) || *t.gpu_ms <= 0.0)
     throw InputError(file.string(), t.key, std::to_string(*t.gpu_ms) + " ms; expected a positive frame time");
   return t;
+}
+
+std::string unknown_metric(const std::string& name) {
+  if (name.find('.') != std::string::npos || metrics::find_metric_info(name)) return "";
+  std::string known;
+  std::vector<std::string> names;
+  for (const auto& m : metrics::kMetricCatalogue) known += (known.empty() ? "" : ", ") + std::string(m.name), names.emplace_back(m.name);
+  return "'" + name + "' is not a metric; expected one of " + known + ", or a dotted path in metrics.json (docs/metrics.md)" +
+         did_you_mean(name, names);
 }
 
 }  // namespace giq::gate

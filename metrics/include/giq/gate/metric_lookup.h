@@ -27,6 +27,12 @@ struct MetricValue {
 // Empty when the file does not hold the metric.
 std::optional<MetricValue> find_metric(const nlohmann::json& metrics, const std::string& name);
 
+// Why `name` cannot name a metric in a bound ("" when it can): a short name must be the
+// catalogue's (a typo would otherwise fail every run as a missing metric, or be ignored); a
+// dotted path into metrics.json is taken as written. The message lists the short names and
+// suggests the nearest.
+std::string unknown_metric(const std::string& name);
+
 // timings.json (`giq realtime`'s, docs/realtime.md; or an engine's own with frame_ms):
 // frame_gpu_ms.median (else frame_ms.median) and device.name. The one reader of that file.
 struct FrameTime {
