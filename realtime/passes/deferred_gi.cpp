@@ -5,7 +5,8 @@
 namespace giq::realtime {
 
 std::vector<Parameter> DeferredGi::parameters(const FrameNeeds& needs) {
-  std::vector<Parameter> p = DirectLightPass::parameters();
+  std::vector<Parameter> p;
+  if (!needs.own_direct) p = DirectLightPass::parameters();
   p.push_back(GBufferPass::ray_traced_parameter());
   if (needs.reflective_shadow_maps)
     for (auto& r : ReflectiveShadowMaps::parameters()) p.push_back(std::move(r));
@@ -15,7 +16,11 @@ std::vector<Parameter> DeferredGi::parameters(const FrameNeeds& needs) {
 }
 
 DeferredGi::DeferredGi(const TechniqueCreateInfo& ci, const FrameNeeds& needs)
-    : width_(ci.width), height_(ci.height), gbuffer_(ci), lighting_(ci), ci_(ci) {
+    : width_(ci.width), height_(ci.height), gbuffer_(ci), ci_(ci) {
+  if (needs.own_direct)
+    own_direct_ = Image(ci.ctx, {width_, height_, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
+  else
+    lighting_ = std::make_unique<DirectLightPass>(ci);
   if (needs.motion_vectors) gbuffer_.enable_motion_vectors();
   if (needs.reflective_shadow_maps) rsm_ = std::make_unique<ReflectiveShadowMaps>(ci);
   const ImageDesc full{width_, height_, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT};
@@ -31,6 +36,11 @@ DeferredGi::DeferredGi(const TechniqueCreateInfo& ci, const FrameNeeds& needs)
   } else {
     indirect_ = Image(ci.ctx, full);
   }
+}
+
+DirectLightPass& DeferredGi::direct_light() {
+  if (!lighting_) throw std::logic_error("the technique computes its own direct light (FrameNeeds::own_direct)");
+  return *lighting_;
 }
 
 ReflectiveShadowMaps& DeferredGi::rsm() {
@@ -49,10 +59,10 @@ Image& DeferredGi::add_layer(const std::string& name) {
 }
 
 void DeferredGi::render(const FrameInput& in) {
-  lighting_.record_shadows(in);
+  if (lighting_) lighting_->record_shadows(in);
   if (rsm_) rsm_->record(in);
   gbuffer_.record(in.cmd, in.camera, in.timer);
-  lighting_.record_lighting(in, gbuffer_);
+  if (lighting_) lighting_->record_lighting(in, gbuffer_);
   if (!composite_) {
     if (in.frame == 0) {
       const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
@@ -65,14 +75,14 @@ void DeferredGi::render(const FrameInput& in) {
     upsample_->record(in.cmd, low_, gbuffer_, in.timer);
     for (auto& l : layers_) l.upsample->record(in.cmd, l.target, gbuffer_, in.timer);
   }
-  composite_->record(in.cmd, lighting_.output(), upsample_ ? upsample_->output() : indirect_, in.timer);
+  composite_->record(in.cmd, direct(), upsample_ ? upsample_->output() : indirect_, in.timer);
 }
 
 std::vector<std::pair<std::string, Image*>> DeferredGi::outputs() {
   Image& indirect = upsample_ ? upsample_->output() : indirect_;
   std::vector<std::pair<std::string, Image*>> o = {
-      {"", composite_ ? &composite_->output() : &lighting_.output()},
-      {"direct", &lighting_.output()},
+      {"", composite_ ? &composite_->output() : &direct()},
+      {"direct", &direct()},
       {"indirect", &indirect}};
   for (auto& l : layers_) o.push_back({l.name, l.upsample ? &l.upsample->output() : &l.target});
   return o;

@@ -4,7 +4,8 @@
 //   shadow_maps      shadow maps of every light (passes/shadow_maps.h)
 //   rsm              reflective shadow maps, for techniques that ask (passes/rsm.h)
 //   gbuffer          rasterised or ray-traced (passes/gbuffer.h), motion vectors on request
-//   direct_lighting  the direct light every technique shares (passes/direct_light.h)
+//   direct_lighting  the direct light every technique shares (passes/direct_light.h), or
+//                    none for a technique that computes its own (FrameNeeds::own_direct)
 //   ...              the technique's own passes (IndirectLight::record)
 //   upsample, blur   for techniques that shade at 1/k resolution (passes/upsample.h), for the
 //                    indirect light and each extra layer
@@ -40,6 +41,11 @@ struct FrameNeeds {
   bool indirect = true;                 // false: the technique adds no light (`direct`)
   bool reflective_shadow_maps = false;  // the "rsm" step and its parameters
   bool motion_vectors = false;          // the G-buffer's motion vectors, every frame
+  // The technique writes the direct light too (into DeferredGi::direct_target(), at full
+  // resolution), so the frame records neither shadow maps nor the shared direct light and
+  // declares none of their parameters: for techniques whose direct light is part of what
+  // they estimate and denoise (`hybrid`).
+  bool own_direct = false;
   // 0: the indirect light is shaded at full resolution. k >= 1: at 1/k resolution per axis,
   // brought back by the edge-aware upsample; declares "downsample" (default k) and "blur".
   int downsample = 0;
@@ -71,7 +77,7 @@ class DeferredGi final : public Technique {
 
   // What the shared steps made this frame, for the technique's passes.
   GBufferPass& gbuffer() { return gbuffer_; }
-  DirectLightPass& direct_light() { return lighting_; }
+  DirectLightPass& direct_light();  // not with FrameNeeds::own_direct
   ReflectiveShadowMaps& rsm();  // only with FrameNeeds::reflective_shadow_maps
 
   uint32_t width() const { return width_; }  // full resolution
@@ -82,6 +88,9 @@ class DeferredGi final : public Technique {
   uint32_t target_height() const { return upsample_ ? upsample_->low_height() : height_; }
   // RGBA32F at the target resolution; the technique moves it to GENERAL and writes it.
   Image& indirect_target() { return upsample_ ? low_ : indirect_; }
+  // RGBA32F at full resolution, with FrameNeeds::own_direct: the technique moves it to
+  // GENERAL and writes it.
+  Image& direct_target() { return own_direct_; }
   // An extra output layer, written like the indirect target and upsampled like it; call
   // from the technique's constructor.
   Image& add_layer(const std::string& name);
@@ -93,13 +102,15 @@ class DeferredGi final : public Technique {
     std::unique_ptr<UpsamplePass> upsample;
   };
 
+  Image& direct() { return lighting_ ? lighting_->output() : own_direct_; }
+
   uint32_t width_, height_;
   GBufferPass gbuffer_;
-  DirectLightPass lighting_;
+  std::unique_ptr<DirectLightPass> lighting_;
   std::unique_ptr<ReflectiveShadowMaps> rsm_;
   std::unique_ptr<UpsamplePass> upsample_;
   std::unique_ptr<CompositePass> composite_;
-  Image low_, indirect_;
+  Image low_, indirect_, own_direct_;
   std::deque<Layer> layers_;  // a deque: add_layer()'s references stay valid
   std::unique_ptr<IndirectLight> light_;
   const TechniqueCreateInfo ci_;  // for add_layer's upsample passes

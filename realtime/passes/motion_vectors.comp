@@ -25,12 +25,18 @@ void main() {
   if (any(greaterThanEqual(vec2(px), size))) return;
   vec2 centre = vec2(px) + 0.5;
   uvec4 ids = imageLoad(gb_ids, px);
-  vec3 previous;
+  // What did not move gets exactly 0, not the rounding of a projection back to its pixel:
+  // temporal filters would otherwise blend neighbours in with weights of ~1e-5 every frame.
+  bool same_camera = pc.current.position == pc.previous.position && pc.current.forward == pc.previous.forward &&
+                     pc.current.right == pc.previous.right && pc.current.up == pc.previous.up;
+  vec3 previous = vec3(centre, 1.0);
   if (ids.x == 0u) {
     // The direction, seen from the previous camera (from the same point of its image plane
-    // when orthographic): a static camera keeps every environment pixel where it is.
-    vec3 offset = camera_ray_origin(pc.current, centre, size) - pc.current.position.xyz;
-    previous = camera_project(pc.previous, pc.previous.position.xyz + offset + camera_ray_direction(pc.current, centre, size), size);
+    // when orthographic).
+    if (!same_camera) {
+      vec3 offset = camera_ray_origin(pc.current, centre, size) - pc.current.position.xyz;
+      previous = camera_project(pc.previous, pc.previous.position.xyz + offset + camera_ray_direction(pc.current, centre, size), size);
+    }
   } else {
     uvec3 t = scene_triangles[ids.x - 1u].v.xyz;
     vec3 a = scene_vertices[t.x].position.xyz, b = scene_vertices[t.y].position.xyz, c = scene_vertices[t.z].position.xyz;
@@ -44,9 +50,9 @@ void main() {
       w.y = dot(cross(a - c, p - c), n) / nn;
       w.z = 1.0 - w.x - w.y;
     }
-    vec3 q = w.x * previous_vertices[t.x].position.xyz + w.y * previous_vertices[t.y].position.xyz +
-             w.z * previous_vertices[t.z].position.xyz;
-    previous = camera_project(pc.previous, q, size);
+    vec3 pa = previous_vertices[t.x].position.xyz, pb = previous_vertices[t.y].position.xyz,
+         pc_ = previous_vertices[t.z].position.xyz;
+    if (!same_camera || pa != a || pb != b || pc_ != c) previous = camera_project(pc.previous, w.x * pa + w.y * pb + w.z * pc_, size);
   }
   // w: 1 when the previous position lies in front of the previous camera and inside the image.
   bool inside = previous.z > 0.0 && all(greaterThanEqual(previous.xy, vec2(0.0))) && all(lessThan(previous.xy, size));

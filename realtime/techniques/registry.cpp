@@ -9,7 +9,8 @@
   X(rsm)                  \
   X(lpv)                  \
   X(vct)                  \
-  X(ddgi)
+  X(ddgi)                 \
+  X(hybrid)
 
 namespace giq::realtime {
 

@@ -345,8 +345,9 @@ class LaneIntegrator {
     const int x = s.x[l], y = s.y[l];
     const PathSampler sampler(uint32_t(y) * uint32_t(rs.width) + uint32_t(x), s.pixel[l]->samples, rs.seed, rs.block());
     const PathSampler::Group j = sampler.get(SampleDimensions::kPixel);
-    lanes::set(s.dir, l, c_.rays.direction(float(x) + j[0], float(y) + j[1]));
-    lanes::set(s.origin, l, c_.eye + c_.rays.origin_offset(float(x) + j[0], float(y) + j[1]));
+    const float fx = float(x) + (rs.pixel_centre ? 0.5f : j[0]), fy = float(y) + (rs.pixel_centre ? 0.5f : j[1]);
+    lanes::set(s.dir, l, c_.rays.direction(fx, fy));
+    lanes::set(s.origin, l, c_.eye + c_.rays.origin_offset(fx, fy));
     lanes::set(s.beta, l, glm::vec3(1.0f));
     lanes::set(s.direct, l, glm::vec3(0.0f));
     lanes::set(s.indirect, l, glm::vec3(0.0f));

@@ -76,8 +76,9 @@ class PathIntegrator {
     const RenderSettings& rs = c_.settings;
     const PathSampler s(uint32_t(y) * uint32_t(rs.width) + uint32_t(x), sample_index, rs.seed, rs.block());
     const PathSampler::Group j = s.get(D::kPixel);
-    glm::vec3 d = c_.rays.direction(float(x) + j[0], float(y) + j[1]);
-    glm::vec3 o = c_.eye + c_.rays.origin_offset(float(x) + j[0], float(y) + j[1]);
+    const float fx = float(x) + (rs.pixel_centre ? 0.5f : j[0]), fy = float(y) + (rs.pixel_centre ? 0.5f : j[1]);
+    glm::vec3 d = c_.rays.direction(fx, fy);
+    glm::vec3 o = c_.eye + c_.rays.origin_offset(fx, fy);
     glm::vec3 beta(1.0f), direct(0.0f), indirect(0.0f);
     float prev_pdf = 0.0f;  // BSDF pdf of the direction that led to the current hit
     uint32_t rays = 0;

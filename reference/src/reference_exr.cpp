@@ -39,6 +39,7 @@ std::string settings_json(const RenderSettings& s) {
   j["estimator"] = estimator_name(s.estimator);
   j["sampler"] = sampler_name(s.sampler);
   if (s.sampler == Sampler::Sobol) j["sobol_block"] = s.sobol_block;
+  j["pixel_filter"] = s.pixel_centre ? "point (pixel centre)" : "box";
   j["integrator"] = "path tracing, NEE + MIS (power heuristic), Russian roulette after bounce 3";
   return j.dump();
 }

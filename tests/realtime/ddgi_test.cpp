@@ -93,7 +93,7 @@ TEST_F(DdgiTest, OctahedralMapsAgreeWithTheCpuAndBordersRepeatTheFoldedTexel) {
   const uint32_t n = 6, tile = n + 2;
   const std::string src = R"(#version 460
 #extension GL_GOOGLE_include_directive : require
-#include "techniques/ddgi/octahedral.glsl"
+#include "shaders/octahedral.glsl"
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer In { vec4 dirs[]; };
 layout(std430, binding = 1) writeonly buffer Out { vec4 result[]; };

@@ -9,7 +9,7 @@
 #define GIQ_DDGI_VOLUME_GLSL
 
 #include "techniques/ddgi/ddgi_shared.h"
-#include "techniques/ddgi/octahedral.glsl"
+#include "shaders/octahedral.glsl"
 
 uvec3 ddgi_probe_coords(uint p) {
   uvec3 c = ddgi.counts.xyz;

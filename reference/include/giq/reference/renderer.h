@@ -54,6 +54,10 @@ struct RenderSettings {
   // benchmarks; never changes the image.
   bool lanes = true;
   Sampler sampler = Sampler::Sobol;
+  // Every camera ray through its pixel's centre instead of a uniformly distributed point of
+  // the pixel (the box filter): the point a G-buffer shades, for comparing a technique's own
+  // converged samples at pixel centres with the truth at the same points (tests). Edges alias.
+  bool pixel_centre = false;
   // Samples per independently scrambled block of the Sobol sampler, a power of two from 2 to
   // 256. Larger blocks stratify more (on the Cornell box relMSE x spp is 0.135 with 16, 0.124
   // with 32, 0.111 with 64, 0.203 with independent samples); smaller ones give the variance
