@@ -1,5 +1,7 @@
 // `giq results --page-only`: the page generated from a results.json written here, so its
-// numbers and sentences are known exactly.
+// numbers and sentences are known exactly. `giq results --update` (with the fake giq of the
+// gate tests doing the rendering): the page's other rows are kept, in order, and a page made
+// with other settings is refused.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -62,6 +64,52 @@ TEST(ResultsPage, NumbersAndComparisonsFromResultsJson) {
             std::string::npos)
       << page;
   EXPECT_NE(page.find("Local device: dev"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+// The page of an earlier run: `direct` and `pt` on the scene `box`, `direct` on `zzz`.
+json earlier_page() {
+  return {{"settings", {{"size", 8}, {"reference_spp", 1}, {"sequence_reference_spp", 1}, {"static_frames", 1}}},
+          {"rows", {row("box", "direct", 0.5, 0.08, 0.0), row("box", "pt", 0.25, 0.02, 0.0), row("zzz", "direct", 0.125, 0.01, 0.0)}},
+          {"sweeps", json::array({{{"scene", "box"}, {"technique", "pt"}, {"parameters", {{"samples_per_frame", 1}}},
+                                   {"default", true}, {"gpu_ms", 1.5}, {"flip_mean", 0.5}, {"relmse", 0.1},
+                                   {"pareto_front", true}, {"resolution", {8, 8}}, {"timing_resolution", {8, 8}},
+                                   {"error", ""}}})}};
+}
+
+TEST(ResultsPage, UpdateRendersOnlyTheGivenTechniqueAndKeepsTheOtherRows) {
+  const fs::path dir = fs::temp_directory_path() / ("giq_results_update_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "scenes");
+  fs::create_directories(dir / "docs");
+  fs::copy_file(fs::path(GIQ_SCENES_DIR) / "cornell.gltf", dir / "scenes" / "box.gltf");
+  std::ofstream(dir / "docs" / "results.json") << earlier_page().dump(1);
+  // giq results runs from the repository root: here, the test's folder.
+  const std::string cmd = "cd " + giq::test::shell_quote(dir.string()) + " && " + giq::test::shell_quote(GIQ_BINARY) +
+                          " results --giq " + giq::test::shell_quote(FAKE_GIQ) +
+                          " --technique direct --scene box --update --size 8 --spp 1 --sequence-spp 1 --frames 1";
+  const auto r = giq::test::run_captured(cmd, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(dir / "docs" / "results.json");
+  const json page = json::parse(in);
+  ASSERT_EQ(page["rows"].size(), 3u) << page.dump(1);
+  // box/direct rendered again (by the fake: its device and 2.5 ms), box/pt and zzz/direct kept
+  // as they were, in the page's order; the earlier sweeps kept too.
+  EXPECT_EQ(page["rows"][0]["scene"], "box");
+  EXPECT_EQ(page["rows"][0]["technique"], "direct");
+  EXPECT_EQ(page["rows"][0]["device"], "llvmpipe (LLVM 15.0.6, 256 bits)");
+  EXPECT_EQ(page["rows"][0]["gpu_ms"], 2.5);
+  EXPECT_EQ(page["rows"][1], earlier_page()["rows"][1]);
+  EXPECT_EQ(page["rows"][2], earlier_page()["rows"][2]);
+  EXPECT_EQ(page["sweeps"], earlier_page()["sweeps"]);
+
+  // Another size: the rows would not be comparable.
+  const auto bad = giq::test::run_captured(
+      "cd " + giq::test::shell_quote(dir.string()) + " && " + giq::test::shell_quote(GIQ_BINARY) + " results --giq " + giq::test::shell_quote(FAKE_GIQ) +
+          " --technique direct --scene box --update --size 16 --spp 1 --sequence-spp 1 --frames 1",
+      dir);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("settings.size"), std::string::npos) << bad.err;
   fs::remove_all(dir);
 }
 

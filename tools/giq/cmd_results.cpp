@@ -14,7 +14,8 @@
 // page names the device those timings.json name.
 //
 // Every number in the page comes from results.json, written next to the renders and beside the
-// page (docs/results.json), so the page can be regenerated without the renders (--page-only).
+// page (docs/results.json), so the page can be regenerated without the renders (--page-only),
+// and one technique can be added or redone without rendering the others again (--update).
 // Renders, references and scores are reused when the same giq binary ran the same command
 // (the gate's stamps, gate_runner.h), so a second run only redoes what changed.
 
@@ -52,7 +53,7 @@ struct ResultsArgs {
   std::string out = "out/results", gpu, doc = "docs/results.md", giq;
   std::vector<std::string> techniques, scenes;
   int size = 256, spp = 256, sequence_spp = 64, frames = 32;
-  bool references_only = false, page_only = false, rerender = false;
+  bool references_only = false, page_only = false, rerender = false, update = false;
 };
 
 // metrics.json stores each metric as {"value": ...} (lag as {"value_frames": ...}); null when
@@ -310,6 +311,37 @@ void run_step(const std::vector<std::string>& argv, const fs::path& dir, const s
   if (!problem.empty()) throw InputError("", argv[1], problem);
 }
 
+// --update: the rows of the page's .json that this run did not render again (other techniques
+// or scenes) join this run's, in the page's order (scenes by name, techniques as registered);
+// the page must have been made with the same settings, so that every row is comparable.
+void keep_other_rows(ordered& results, const fs::path& page_json, const fs::path& giq, const fs::path& out) {
+  const ordered old = read_ordered_json(page_json);
+  for (const char* k : {"size", "reference_spp", "sequence_reference_spp", "static_frames"})
+    if (old.at("settings").value(k, json()) != results["settings"][k])
+      throw InputError(page_json.string(), std::string("settings.") + k,
+                       old["settings"].value(k, json()).dump() + " differs from this run's " +
+                           results["settings"][k].dump() + "; --update keeps rows only from a page made with the same "
+                           "--size, --spp, --sequence-spp and --frames");
+  std::vector<std::string> order;
+  for (const TechniqueParameters& t : list_techniques(giq, out / "techniques.json")) order.push_back(t.name);
+  auto rank = [&](const ordered& row) {
+    const std::string t = row.at("technique").get<std::string>();
+    const auto it = std::find(order.begin(), order.end(), t);
+    return std::make_pair(row.at("scene").get<std::string>(), it - order.begin());
+  };
+  ordered rows = results["rows"];
+  std::set<std::pair<std::string, long>> fresh;
+  for (const auto& r : rows) fresh.insert(rank(r));
+  for (const auto& r : old.at("rows"))
+    if (!fresh.count(rank(r))) rows.push_back(r);
+  std::vector<ordered> sorted(rows.begin(), rows.end());
+  std::stable_sort(sorted.begin(), sorted.end(), [&](const ordered& x, const ordered& y) { return rank(x) < rank(y); });
+  results["rows"] = sorted;
+  if (!results.contains("sweeps") && old.contains("sweeps")) results["sweeps"] = old["sweeps"];
+  if (!results["settings"].contains("gpu_dir") && old["settings"].contains("gpu_dir"))
+    results["settings"]["gpu_dir"] = old["settings"]["gpu_dir"];
+}
+
 int run_results(const ResultsArgs& a) {
   const fs::path out = fs::absolute(a.out), doc = a.doc;
   if (a.page_only) {
@@ -403,6 +435,7 @@ int run_results(const ResultsArgs& a) {
   }
   if (a.references_only) return 0;
   if (!a.gpu.empty()) results["sweeps"] = sweep_rows(fs::path(a.gpu) / "sweeps");
+  if (a.update) keep_other_rows(results, doc.parent_path() / (doc.stem().string() + ".json"), giq, out);
   write_file_atomically(out / "results.json", results.dump(1));
   // The page's data beside it, so that every number can be checked and the page regenerated
   // without the renders (--page-only).
@@ -432,7 +465,10 @@ void add_results_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--references-only", a->references_only, "Render the references and stop");
   cmd->add_flag("--page-only", a->page_only, "Regenerate the page from its .json beside it, rendering nothing");
   cmd->add_flag("--rerender", a->rerender, "Render and score again even where outputs of an identical run exist");
-  cmd->footer("Example, from the repository root:\n  giq results");
+  cmd->add_flag("--update", a->update,
+                "Keep the page's rows of the techniques and scenes not rendered in this run (same settings required)");
+  cmd->footer("Examples, from the repository root:\n  giq results\n"
+              "  giq results --technique hybrid --update --gpu bench/results/h200   (add one technique to the page)");
   cmd->callback([a, &exit_code] { exit_code = run_results(*a); });
 }
 
