@@ -51,6 +51,7 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
   // the resources need, not the 64 MiB blocks around them); measured after the first frame,
   // since passes may create resources when they first record.
   const uint64_t memory_before = ctx.allocator().bytes_in_use();
+  if (options.on_progress) options.on_progress(-1);
   SceneGpu scene_gpu(ctx, compiler, posed);
   const uint64_t memory_scene = ctx.allocator().bytes_in_use();
   std::unique_ptr<Technique> technique =
@@ -80,7 +81,10 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
     t.gpu_ms = timer.frame_ms();
     timings.push_back(t);
     ++technique_frame;
-    if (t.warmup) continue;
+    if (t.warmup) {
+      if (options.on_progress) options.on_progress(f + 1);
+      continue;
+    }
 
     RenderedFrame out;
     out.frame = f;
@@ -100,6 +104,7 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
                           {"giq.driver", ctx.info().driver},
                           {"giq.gpu_ms", std::to_string(t.gpu_ms)}};
     on_frame(out);
+    if (options.on_progress) options.on_progress(f + 1);
   }
 
   nlohmann::json run = {

@@ -335,3 +335,34 @@ TEST_F(GateCli, ImageFilesFromOutsideAreGatedAndConfigTyposStopIt) {
   }
   EXPECT_EQ(calls("realtime --scene"), 0);
 }
+
+// Cases with a camera in world coordinates instead of a view (an engine's camera, converted
+// by frame=): the golden and the render get the same --camera, each camera its own golden,
+// and a camera giq would refuse, or a view beside a camera, stops the gate before any work.
+TEST_F(GateCli, CamerasInWorldCoordinates) {
+  const std::string unity = "eye=0.278,0.273,0.8 target=0.278,0.273,-0.28 fov=39.31 frame=unity";
+  const std::string gltf = "eye=0.278,0.273,-0.8 target=0.278,0.273,0.28 fov=39.31";
+  config(json::array({{{"name", "unity"}, {"technique", "pt"}, {"camera", unity}, {"bounds", {{"relmse", 0.1}}}},
+                      {{"name", "gltf"}, {"technique", "pt"}, {"camera", gltf}, {"bounds", {{"relmse", 0.1}}}}}));
+  ASSERT_EQ(update().code, 0);
+  EXPECT_EQ(calls("reference"), 2);  // two cameras, two goldens
+  EXPECT_EQ(calls("--camera " + unity), 1);
+  int goldens = 0;
+  for (const auto& e : fs::directory_iterator(dir_ / "refs"))
+    goldens += e.path().filename().string().rfind("cornell_camera-", 0) == 0;
+  EXPECT_EQ(goldens, 2);
+  const Result r = gate();
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_EQ(calls("realtime --scene " + std::string(GIQ_SCENES_DIR) + "/cornell.gltf --camera " + gltf), 1);
+
+  config(json::array({{{"name", "bad"}, {"technique", "pt"}, {"camera", "eye=1,1,1 target=1,1,1"},
+                       {"bounds", {{"relmse", 0.1}}}}}));
+  Result bad = gate();
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("cases.bad.camera"), std::string::npos) << bad.err;
+  config(json::array({{{"name", "both"}, {"technique", "pt"}, {"view", "0"}, {"camera", gltf},
+                       {"bounds", {{"relmse", 0.1}}}}}));
+  bad = gate();
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("a view or a camera, not both"), std::string::npos) << bad.err;
+}

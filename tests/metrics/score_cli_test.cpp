@@ -578,3 +578,37 @@ TEST(ScoreCli, InputPathsAreRelativeToMetricsJsonAndTheReportWorksFromAnywhere) 
   for (size_t p = 0; (p = html.find("src=\"data:image/png;base64,", p)) != std::string::npos; ++p) ++pngs;
   EXPECT_GE(pngs, 3u);  // the reference, the test and at least one error map
 }
+
+// docs/own-engine.md's worked example, step by step with a cheaper reference (64 paths per
+// pixel instead of 1024): the engine's tone-mapped PNG scores without a warning under its
+// display transform and at less than half the FLIP it gets without one (which warns that an
+// LDR image meets an HDR reference), and the engine's linear EXR needs no transform.
+TEST(ScoreCli, TheOwnEngineExampleScoresAsItsPageSays) {
+  const fs::path d = fresh_dir("own_engine");
+  const fs::path ex = fs::path(GIQ_SOURCE_DIR) / "docs" / "examples" / "own-engine";
+  const CliRun ref = giq_run("reference --scene " + (fs::path(GIQ_SOURCE_DIR) / "scenes" / "cornell.gltf").string() +
+                                 " --camera eye=0.278,0.273,0.8 target=0.278,0.273,-0.28 fov=39.31 frame=unity"
+                                 " --width 320 --height 240 --spp 64 --out " + (d / "ref.exr").string(),
+                             d);
+  ASSERT_EQ(ref.code, 0) << ref.err;
+  auto score = [&](const std::string& test, const std::string& options, const std::string& out) {
+    const CliRun r = giq_run("score --ref " + (d / "ref.exr").string() + " --test " + (ex / test).string() + " " +
+                                 options + " --out " + (d / out).string() + " --json",
+                             d);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return json::parse(r.out);
+  };
+  const json shown = score("screenshot-aces.png", "--tonemap aces --exposure 1 --test-encoding srgb", "aces");
+  EXPECT_EQ(shown["warnings"], json::array()) << shown["warnings"];
+  const double ratio = shown["metrics"]["mean_luminance_ratio"].get<double>();
+  EXPECT_TRUE(ratio >= 0.8 && ratio <= 1.25) << ratio;
+  const json raw = score("screenshot-aces.png", "", "raw");
+  ASSERT_FALSE(raw["warnings"].empty());
+  EXPECT_NE(raw["warnings"][0].get<std::string>().find("low-dynamic-range"), std::string::npos);
+  EXPECT_LT(shown["metrics"]["flip"]["mean"]["value"].get<double>(),
+            0.5 * raw["metrics"]["flip"]["mean"]["value"].get<double>());
+  const json linear = score("lighting-linear.exr", "", "linear");
+  EXPECT_EQ(linear["warnings"], json::array()) << linear["warnings"];
+  EXPECT_EQ(linear["inputs"]["dynamic_range"], "hdr");
+  fs::remove_all(d);
+}

@@ -3,8 +3,7 @@
 // gate-summary.md and gate.json, and exits 0 (pass or warn), 1 (any failure) or 2 (bad input).
 // See docs/gate.md.
 
-#include <unistd.h>
-
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -14,6 +13,7 @@
 
 #include "command.h"
 #include "gate_runner.h"
+#include "progress.h"
 #include "output_guard.h"
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
@@ -53,20 +53,21 @@ int run_gate(const GateArgs& a) {
   check_output_folder(out, {config.file}, "--out");
   fs::create_directories(out);
   check_cases(tools, cases, out / "techniques.log");
-  const bool tty = ::isatty(STDERR_FILENO) != 0;
-
   std::vector<CaseRun> runs(cases.size());
+  ProgressLine line;
   std::mutex progress;
   size_t done = 0;
+  const auto start = std::chrono::steady_clock::now();
   parallel_for(cases.size(), a.cases.jobs, [&](size_t i) {
     runs[i] = run_case(tools, *cases[i], config, manifest, out);
     std::lock_guard<std::mutex> g(progress);
     ++done;
-    if (tty)
-      std::fprintf(stderr, "\rgiq gate: %zu/%zu cases  (%s %.1f s)   ", done, cases.size(),
-                   cases[i]->name.c_str(), runs[i].seconds);
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    line.show("giq gate: %zu/%zu cases  %s elapsed  ETA %s  (%s %.1f s)", done, cases.size(),
+              format_seconds(elapsed).c_str(), format_seconds(elapsed / double(done) * double(cases.size() - done)).c_str(),
+              cases[i]->name.c_str(), runs[i].seconds);
   });
-  if (tty) std::fprintf(stderr, "\n");
+  line.finish();
 
   std::vector<gate::Outcome> outcomes;
   std::vector<std::pair<std::string, double>> seconds;
@@ -78,6 +79,7 @@ int run_gate(const GateArgs& a) {
     json cj = {{"name", cases[i]->name},
                {"scene", cases[i]->scene.string()},
                {"view", cases[i]->view},
+               {"camera", cases[i]->camera},
                {"technique", cases[i]->technique},
                {"test", cases[i]->test.string()},
                {"frames", {cases[i]->first_frame, cases[i]->last_frame}},

@@ -1,8 +1,7 @@
 // `giq realtime`: renders a scene's view with a real-time technique on a Vulkan device,
 // headless, writing one multi-layer EXR per measured frame and timings.json.
 
-#include <unistd.h>
-
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -12,6 +11,7 @@
 
 #include "command.h"
 #include "integer_check.h"
+#include "progress.h"
 #include "scene_setup.h"
 #include "output_guard.h"
 #include "giq/base/atomic_file.h"
@@ -135,18 +135,34 @@ int run(const RealtimeArgs& a) {
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) throw InputError(out.string(), "--out", "cannot create the folder: " + ec.message());
-  const bool tty = isatty(fileno(stderr));
-  int written = 0;
+  // Progress on a terminal: the setup (scene upload, shader compilation), then warm-up and
+  // measured frames, with the time left at the mean pace of the frames after the first (which
+  // also pays for the pipelines' first use).
+  ProgressLine line;
+  const auto start = std::chrono::steady_clock::now();
+  auto first_done = start;
+  if (line.active())
+    o.on_progress = [&, total = o.warmup + o.frames](int done) {
+      const auto now = std::chrono::steady_clock::now();
+      if (done < 0) return line.show("giq realtime: uploading the scene, compiling shaders...");
+      if (done == 1) first_done = now;
+      const double pace = done > 1 ? std::chrono::duration<double>(now - first_done).count() / (done - 1) : -1.0;
+      const int warm = std::min(done, o.warmup);
+      line.show("giq realtime: warm-up %d/%d, frames %d/%d  %s elapsed  ETA %s", warm, o.warmup, done - warm, o.frames,
+                format_seconds(std::chrono::duration<double>(now - start).count()).c_str(),
+                format_seconds(pace < 0.0 ? -1.0 : pace * (total - done)).c_str());
+    };
   bool warned_black = false;
   const nlohmann::json timings = rt::render_sequence(ctx, compiler, scene, o, [&](rt::RenderedFrame& f) {
     if (!a.no_images) {
       image::write_exr(f.image, out / frame_file(f.frame));
     }
-    if (!warned_black) warned_black = warn_if_black(f.image, (out / frame_file(f.frame)).string());
-    ++written;
-    if (tty) std::fprintf(stderr, "\rframe %d/%d  %.3f ms GPU", written, o.frames, f.timing.gpu_ms);
+    if (!warned_black) {
+      line.clear();
+      warned_black = warn_if_black(f.image, (out / frame_file(f.frame)).string());
+    }
   });
-  if (tty) std::fprintf(stderr, "\n");
+  line.finish();
   write_file_atomically(out / "timings.json", timings.dump(2) + "\n");
   const auto messages = ctx.validation_messages();
   for (const auto& m : messages) std::cerr << "giq: validation: " << m << '\n';

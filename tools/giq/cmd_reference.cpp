@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "command.h"
+#include "progress.h"
 #include "scene_setup.h"
 #include "integer_check.h"
 #include "output_guard.h"
@@ -129,17 +130,6 @@ image::ExrOptions exr_options(const image::Image& img, bool half) {
   return opts;
 }
 
-std::string format_seconds(double s) {
-  char b[32];
-  if (s < 0.0) return "?";
-  if (s < 120.0)
-    std::snprintf(b, sizeof b, "%.0fs", s);
-  else if (s < 7200.0)
-    std::snprintf(b, sizeof b, "%dm%02ds", int(s) / 60, int(s) % 60);
-  else
-    std::snprintf(b, sizeof b, "%dh%02dm", int(s) / 3600, (int(s) / 60) % 60);
-  return b;
-}
 
 void draw_bar(const ref::Progress& p, const std::string& label) {
   double fraction = 0.0;

@@ -5,12 +5,15 @@
 // renderer: error against spp and seconds on log-log axes with the fitted slope.
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <tuple>
@@ -27,6 +30,7 @@
 #include "giq/gate/sweep_table.h"
 #include "giq/image/io.h"
 #include "giq/metrics/catalogue.h"
+#include "progress.h"
 #include "subprocess.h"
 #include "sweep_plan.h"
 #include "technique_listing.h"
@@ -46,7 +50,7 @@ std::vector<std::string> sweep_metrics(const std::string& error) {
 }
 
 struct SweepArgs {
-  std::string scene, view = "0", ref, layer = "beauty", error, out = "sweep-out", device, giq, sampler = "sobol";
+  std::string scene, view = "0", camera, ref, layer = "beauty", error, out = "sweep-out", device, giq, sampler = "sobol";
   std::vector<std::string> techniques, grid;
   std::vector<uint32_t> spp;
   int auto_steps = 0, width = 256, height = 256, warmup = 10, frames = 20, jobs = 1, timing_width = 0, timing_height = 0,
@@ -54,6 +58,14 @@ struct SweepArgs {
   uint32_t ref_spp = 1024;
   bool convergence = false, linear = false, quality = false;
 };
+
+// The view every render shares: --camera (world coordinates, docs/own-engine.md) when given,
+// else --view.
+std::vector<std::string> view_arguments(const SweepArgs& a) {
+  if (!a.camera.empty()) return {"--camera", a.camera};
+  return {"--view", a.view};
+}
+
 
 void must(const ProcessResult& r, const std::string& what, const fs::path& log) {
   if (r.exit_code != 0)
@@ -67,11 +79,18 @@ fs::path reference(const SweepArgs& a, const fs::path& giq, const fs::path& out,
   const fs::path file = out / name;
   const fs::path log = out / "log.txt";
   const ProcessResult r = run_process(
-      {giq.string(), "reference", "--scene", a.scene, "--view", a.view, "--spp",
-       std::to_string(spp), "--seed", std::to_string(seed), "--width", std::to_string(a.width),
-       "--height", std::to_string(a.height), "--sampler", a.sampler, "--record-time",
-       // Its time is measured: an earlier, interrupted render's samples must not count.
-       "--overwrite", "--out", file.string()},
+      [&] {
+        std::vector<std::string> ra = {giq.string(), "reference", "--scene", a.scene, "--spp", std::to_string(spp),
+                                       "--seed", std::to_string(seed), "--width", std::to_string(a.width),
+                                       "--height", std::to_string(a.height), "--sampler", a.sampler,
+                                       "--record-time",
+                                       // Its time is measured: an earlier, interrupted render's
+                                       // samples must not count.
+                                       "--overwrite", "--out", file.string()};
+        const auto v = view_arguments(a);
+        ra.insert(ra.begin() + 4, v.begin(), v.end());
+        return ra;
+      }(),
       log);
   must(r, "giq reference", log);
   if (seconds) {
@@ -138,7 +157,23 @@ int run_techniques(const SweepArgs& a, const fs::path& giq, const fs::path& out)
   if (!fs::exists(ref)) throw InputError(ref.string(), "--ref", "no such reference file");
 
   std::vector<gate::SweepRow> rows(jobs.size());
+  // Progress on a terminal: settings done, and the time left at the mean pace so far.
+  ProgressLine line;
+  std::mutex progress;
+  size_t done = 0;
+  const auto start = std::chrono::steady_clock::now();
+  line.show("giq sweep: 0/%zu settings", jobs.size());
   parallel_for(jobs.size(), a.jobs, [&](size_t i) {
+    struct Report {  // when the setting ends, however it ends
+      std::function<void()> f;
+      ~Report() { f(); }
+    } report{[&] {
+      std::lock_guard<std::mutex> g(progress);
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      ++done;
+      line.show("giq sweep: %zu/%zu settings  %s elapsed  ETA %s", done, jobs.size(), format_seconds(elapsed).c_str(),
+                format_seconds(elapsed / double(done) * double(jobs.size() - done)).c_str());
+    }};
     gate::SweepRow& row = rows[i];
     row.technique = jobs[i].technique->name;
     row.parameters = jobs[i].setting;
@@ -150,13 +185,13 @@ int run_techniques(const SweepArgs& a, const fs::path& giq, const fs::path& out)
       const fs::path log = dir / "log.txt";
       std::vector<std::string> rt = {giq.string(),  "realtime",
                                      "--scene",     a.scene,
-                                     "--view",      a.view,
                                      "--technique", row.technique,
                                      "--width",     std::to_string(a.width),
                                      "--height",    std::to_string(a.height),
                                      "--warmup",    std::to_string(a.warmup),
                                      "--frames",    std::to_string(a.frames),
                                      "--out",       (dir / "technique").string()};
+      for (const std::string& v : view_arguments(a)) rt.push_back(v);
       for (const auto& [k, v] : row.parameters) {
         char buf[64];
         std::snprintf(buf, sizeof buf, "%s=%.10g", k.c_str(), v);
@@ -187,17 +222,20 @@ int run_techniques(const SweepArgs& a, const fs::path& giq, const fs::path& out)
       row.error = e.what();
     }
   });
+  line.finish();
   gate::mark_front(rows, error);
   write_file_atomically(out / "sweep.csv", gate::sweep_csv(rows, sweep_metrics(error)));
-  const json run = {{"scene", a.scene},   {"view", a.view},     {"resolution", {a.width, a.height}},
-                    {"warmup", a.warmup}, {"frames", a.frames}, {"reference", ref.string()},
-                    {"layer", a.layer},
-                    {"timing_resolution", a.timing_width > 0 ? json::array({a.timing_width, a.timing_height})
-                                                             : json::array({a.width, a.height})}};
+  json run = {{"scene", a.scene},   {"view", a.view},     {"resolution", {a.width, a.height}},
+              {"warmup", a.warmup}, {"frames", a.frames}, {"reference", ref.string()},
+              {"layer", a.layer},
+              {"timing_resolution", a.timing_width > 0 ? json::array({a.timing_width, a.timing_height})
+                                                       : json::array({a.width, a.height})}};
+  if (!a.camera.empty()) run["view"] = "camera", run["camera"] = a.camera;
   write_file_atomically(out / "sweep.json", gate::sweep_json(rows, error, run).dump(2) + "\n");
   write_file_atomically(out / "sweep.svg",
                         gate::sweep_svg(rows, error, !a.linear,
-                                        fs::path(a.scene).stem().string() + " / " + a.view + ": " +
+                                        fs::path(a.scene).stem().string() + " / " +
+                                            (a.camera.empty() ? a.view : "camera") + ": " +
                                             error + " vs GPU ms"));
   int failed = 0;
   for (const auto& r : rows) {
@@ -219,7 +257,12 @@ int run_convergence(const SweepArgs& a, const fs::path& giq, const fs::path& out
       a.ref.empty() ? reference(a, giq, out, a.ref_spp, 1, "truth.exr") : fs::path(a.ref);
   std::vector<double> spp, seconds, err;
   json rows = json::array();
+  ProgressLine line;
+  const auto start = std::chrono::steady_clock::now();
   for (uint32_t n : a.spp) {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    line.show("giq sweep: reference at %u spp (%zu/%zu)  %s elapsed", n, size_t(rows.size()) + 1, a.spp.size(),
+              format_seconds(elapsed).c_str());
     double s = 0.0;
     // A seed other than the truth's, so the two estimates' noise is independent.
     const fs::path img = reference(a, giq, out, n, 2, "spp_" + std::to_string(n) + ".exr", &s);
@@ -231,6 +274,7 @@ int run_convergence(const SweepArgs& a, const fs::path& giq, const fs::path& out
     rows.push_back(
         {{"spp", n}, {"seconds", s}, {error, std::isfinite(e) ? json(e) : json(nullptr)}});
   }
+  line.finish();
   const gate::LineFit by_spp = gate::fit_log_log(spp, err),
                       by_seconds = gate::fit_log_log(seconds, err);
   auto fit_json = [](const gate::LineFit& f) {
@@ -299,6 +343,9 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
       "Speed against accuracy: techniques over parameter settings, or reference convergence");
   cmd->add_option("--scene", a->scene, "Scene (.gltf/.glb)");
   cmd->add_option("--view", a->view, "View name or index")->capture_default_str();
+  cmd->add_option("--camera", a->camera,
+                  "Camera in world coordinates instead of a view, one quoted argument as giq reference's "
+                  "--camera takes it: \"eye=x,y,z target=x,y,z fov=deg [frame=...]\" (docs/own-engine.md)");
   cmd->add_option("--technique", a->techniques,
                   "Technique to sweep (repeatable; several share one plot)");
   cmd->add_option("--grid", a->grid, "Axis 'param=a,b,c' or 'technique.param=a,b,c' (repeatable)");

@@ -1,5 +1,7 @@
 #include "gate_runner.h"
 
+#include "scene_setup.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,6 +19,7 @@
 #include "giq/image/io.h"
 #include "giq/metrics/score.h"
 #include "giq/scenes/scene.h"
+#include "scene_setup.h"
 #include "subprocess.h"
 #include "technique_listing.h"
 
@@ -56,7 +59,8 @@ namespace {
 
 std::vector<std::string> realtime_args(const Toolchain& t, const gate::Case& c) {
   std::vector<std::string> a = {t.giq.string(),          "realtime",  "--scene",
-                                c.scene.string(),        "--view",    c.view,
+                                c.scene.string(),        c.camera.empty() ? "--view" : "--camera",
+                                c.camera.empty() ? c.view : c.camera,
                                 "--technique",           c.technique, "--width",
                                 std::to_string(c.width), "--height",  std::to_string(c.height)};
   for (const std::string& p : gate::parameter_arguments(c)) a.insert(a.end(), {"--param", p});
@@ -201,7 +205,8 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
     const std::string scene = fs::absolute(c.scene).lexically_relative(config_dir).generic_string();
     std::vector<std::string> a = {t.giq.string(), "reference",
                                   "--scene",      scene,
-                                  "--view",       c.view,
+                                  c.camera.empty() ? "--view" : "--camera",
+                                  c.camera.empty() ? c.view : c.camera,
                                   "--frames",     frame_range(c.first_frame, c.golden_last_frame()),
                                   "--width",      std::to_string(c.width),
                                   "--height",     std::to_string(c.height),
@@ -311,9 +316,10 @@ void check_cases(const Toolchain& t, const std::vector<const gate::Case*>& cases
     auto it = scenes_by_path.find(c->scene);
     if (it == scenes_by_path.end()) it = scenes_by_path.emplace(c->scene, scenes::load(c->scene)).first;
     try {
-      it->second.view(c->view);
+      if (c->camera.empty()) it->second.view(c->view);
+      else camera_from_arguments({c->camera}, it->second, double(c->width) / double(c->height));
     } catch (const InputError& e) {
-      throw InputError(c->scene.string(), at + ".view", e.message());
+      throw InputError(c->scene.string(), at + (c->camera.empty() ? ".view" : ".camera"), e.message());
     }
   }
 }

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <initializer_list>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 
 #include "giq/base/error.h"
@@ -281,10 +282,22 @@ sc::Scene SceneSetup::load(const std::filesystem::path& path, double aspect) con
   if (!camera.empty()) {
     sc::View view;
     view.name = kCameraView;
-    view.camera = parse_camera(camera, scene, aspect);
+    view.camera = camera_from_arguments(camera, scene, aspect);
     scene.add_view(view);
   }
   return scene;
+}
+
+scenes::Camera camera_from_arguments(const std::vector<std::string>& camera, const scenes::Scene& scene, double aspect) {
+  // One quoted argument ("eye=.. target=.. fov=..", as configs and scripts pass it) reads
+  // like the same words given separately.
+  std::vector<std::string> words;
+  for (const std::string& a : camera) {
+    std::istringstream in(a);
+    for (std::string w; in >> w;) words.push_back(w);
+  }
+  if (words.empty()) throw InputError("", "--camera", "is empty; expected eye=x,y,z target=x,y,z [fov=deg] or auto");
+  return parse_camera(words, scene, aspect);
 }
 
 bool warn_if_black(const image::Image& image, const std::string& what) {

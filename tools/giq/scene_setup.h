@@ -40,6 +40,10 @@ struct SceneSetup {
   scenes::Scene load(const std::filesystem::path& path, double aspect) const;
 };
 
+// The camera --camera's arguments describe (one or several words; one quoted argument is split
+// at spaces), for an image of aspect width / height; throws InputError (field --camera).
+scenes::Camera camera_from_arguments(const std::vector<std::string>& camera, const scenes::Scene& scene, double aspect);
+
 // When every pixel of the image's beauty is 0 (or not finite), prints one warning on stderr
 // naming the likely causes (a camera looking away or inside geometry, an engine's frame or
 // units not converted, lights blocked) and returns true.

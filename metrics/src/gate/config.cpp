@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 // ordered_json keeps the file's order, so cases and bounds are reported in the order written.
 using json = nlohmann::ordered_json;
 
-const std::set<std::string> kCaseKeys = {"name",       "scene",  "view",  "technique",  "test",
+const std::set<std::string> kCaseKeys = {"name",       "scene",  "view",  "camera", "technique",  "test",
                                          "parameters", "frames", "layer", "resolution",
                                          "golden",     "timing", "bounds"};
 
@@ -99,6 +99,10 @@ class Parser {
         c.scene = p.is_absolute() ? p : (file_.parent_path() / p).lexically_normal();
       } else if (key == "view") {
         c.view = v.is_number_integer() ? std::to_string(integer(v, f, 0, 1 << 20)) : string(v, f);
+      } else if (key == "camera") {
+        c.camera = string(v, f);
+        if (c.camera.find_first_not_of(" \t") == std::string::npos)
+          fail(f, "is empty; expected \"eye=x,y,z target=x,y,z fov=deg\" as giq's --camera takes it");
       } else if (key == "technique") {
         c.technique = string(v, f);
       } else if (key == "test") {
@@ -219,6 +223,8 @@ class Parser {
         fail(at + ".test", pattern ? "a frame pattern needs a frame range \"A:B\" (frames)"
                                    : "a frame range needs a frame pattern such as shot_%04d.exr");
     }
+    if (!c.camera.empty() && !c.view.empty()) fail(at + ".camera", "a case has a view or a camera, not both");
+    if (!c.camera.empty()) c.view = "camera";  // the view --camera adds
     if (c.view.empty()) c.view = "0";
     if (!c.golden.spp && !c.golden.rel_error) c.golden.spp = 256;
     if (c.bounds.empty())

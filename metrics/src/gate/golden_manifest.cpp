@@ -28,8 +28,11 @@ std::string sanitize(const std::string& s) {
 }  // namespace
 
 std::string golden_key(const Case& c) {
-  return sanitize(c.scene.stem().string() + "_" + c.view + "_f" + std::to_string(c.first_frame) +
-                  "-" + std::to_string(c.golden_last_frame()));
+  // A camera's golden is named by a hash of the camera as given, so that two cameras of one
+  // scene get two goldens.
+  const std::string view = c.camera.empty() ? c.view : "camera-" + Hasher().add(c.camera).hex().substr(0, 8);
+  return sanitize(c.scene.stem().string() + "_" + view + "_f" + std::to_string(c.first_frame) + "-" +
+                  std::to_string(c.golden_last_frame()));
 }
 
 json golden_settings(const Case& c) {
@@ -42,6 +45,7 @@ json golden_settings(const Case& c) {
   // Only when set, so the manifests of float32 goldens written before the option stay fresh.
   if (c.golden.half) s["half"] = true;
   if (c.golden.sampler != "independent") s["sampler"] = c.golden.sampler;
+  if (!c.camera.empty()) s["camera"] = c.camera;
   return s;
 }
 

@@ -61,6 +61,9 @@ struct Case {
   std::string name;
   std::filesystem::path scene;  // resolved against the config file's folder
   std::string view;
+  // Instead of a view: a camera in world coordinates, as giq's --camera takes it
+  // ("eye=x,y,z target=x,y,z fov=deg [frame=unity ...]", docs/own-engine.md).
+  std::string camera;
   std::string technique;
   // Instead of a technique: image files from outside giq (an engine's), one file or a frame
   // pattern (%04d) for a range, resolved against the config file's folder.

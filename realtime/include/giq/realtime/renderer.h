@@ -31,6 +31,10 @@ struct RenderOptions {
   // Read the outputs back and call on_frame with the image; off for benchmarks that only need
   // timings (on_frame then gets an empty image).
   bool read_back = true;
+  // For progress displays: called with frames_done = -1 before the scene is uploaded and the
+  // technique created (its shaders compiled), then after every frame, warm-up frames
+  // included, with frames_done counting them.
+  std::function<void(int frames_done)> on_progress;
 };
 
 struct RenderedFrame {
