@@ -215,3 +215,72 @@ TEST_F(Report, ChromiumShowsTheImages) {
 }
 
 }  // namespace
+
+namespace {
+
+// An image whose every pixel is known: R = x/8, G = y/8, B = `b` (technique: twice that).
+void ramp_exr(const fs::path& p, float scale, const std::string& technique = "") {
+  giq::image::Image img(16, 16);
+  float *r = img.add_channel("R"), *g = img.add_channel("G"), *b = img.add_channel("B");
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const size_t i = img.index(x, y);
+      r[i] = scale * float(x) / 8.0f, g[i] = scale * float(y) / 8.0f, b[i] = scale * 0.5f;
+    }
+  if (!technique.empty()) img.metadata["giq.technique"] = technique;
+  giq::image::write_exr(img, p);
+}
+
+}  // namespace
+
+// Pointing at a pixel of a comparison's image reads out that pixel's values from the EXRs: in
+// headless Chromium, a pointer move over pixel (5, 7) of the reference pane, dispatched once
+// the page has loaded, and the readout in the DOM afterwards.
+TEST_F(Report, PointingAtAPixelReadsItsValues) {
+  const char* candidates[] = {"/usr/bin/chromium", "/usr/bin/chromium-browser"};
+  std::string chromium;
+  for (const char* c : candidates)
+    if (fs::exists(c)) chromium = c;
+  if (chromium.empty()) GTEST_SKIP() << "chromium is not installed (tools/bootstrap installs it)";
+  const fs::path d = dir_ / "readout";
+  fs::create_directories(d);
+  ramp_exr(d / "ref.exr", 1.0f);
+  ramp_exr(d / "tech.exr", 2.0f, "ramp");
+  giq::image::Image map(16, 16);
+  float* v = map.add_channel("Y");
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) v[map.index(x, y)] = float(x + y) / 16.0f;
+  giq::image::write_exr(map, d / "abs_error.exr");
+  std::vector<unsigned char> px(16 * 16 * 3, 128);
+  giq::image::write_png_rgb8(d / "abs_error.png", 16, 16, 3, px.data());
+  const json m = {{"inputs", {{"reference", "ref.exr"}, {"test", "tech.exr"}, {"layer", "beauty"}}},
+                  {"metrics", {{"relmse", {{"value", 0.5}}}}},
+                  {"maps",
+                   {{"abs_error",
+                     {{"png", "abs_error.png"}, {"exr", "abs_error.exr"}, {"colormap", "magma"}, {"range", {0, 2}},
+                      {"unit", "radiance"}, {"definition", "|T - R|"}, {"range_rule", "0 to the 99th percentile"}}}}}};
+  std::ofstream(d / "metrics.json") << m.dump();
+  ASSERT_EQ(giq("report " + d.string() + " --out " + (d / "report.html").string()), 0) << slurp(dir_ / "out.txt");
+  // The page, with a script that points at the centre of pixel (5, 7) of the first pane: 16
+  // pixels fill the 320-pixel pane, 20 screen pixels each.
+  std::string page = slurp(d / "report.html");
+  const std::string poke = R"(<script>window.addEventListener('load',function(){
+  var v=document.querySelector('.comparison .row.sync .view'),r=v.querySelector('img').getBoundingClientRect();
+  v.dispatchEvent(new PointerEvent('pointermove',{clientX:r.left+5.5*20*r.width/320,clientY:r.top+7.5*20*r.height/320,bubbles:true}));
+  document.body.setAttribute('data-readout',document.querySelector('.readout').textContent);});</script></body>)";
+  page.replace(page.rfind("</body>"), 7, poke);
+  std::ofstream(d / "poked.html") << page;
+  const std::string cmd = chromium +
+                          " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
+                          " --disable-background-networking --disable-component-update --disable-sync --user-data-dir=" +
+                          (dir_ / "profile").string() + " --window-size=1400,1400 --dump-dom file://" +
+                          (d / "poked.html").string() + " >" + (d / "dom.html").string() + " 2>" +
+                          (d / "chromium.log").string();
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(d / "chromium.log");
+  const std::string dom = slurp(d / "dom.html");
+  EXPECT_NE(dom.find("pixel (5, 7): reference (0.625, 0.875, 0.5) \u00b7 ramp (1.25, 1.75, 1) \u00b7 abs_error 0.75"),
+            std::string::npos)
+      << dom.substr(0, 400);
+  // The colour bar's five ticks, the top one standing for everything above it.
+  EXPECT_NE(page.find("<span>0</span><span>0.5</span><span>1</span><span>1.5</span><span>&ge;2</span>"), std::string::npos);
+}

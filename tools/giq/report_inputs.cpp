@@ -129,6 +129,36 @@ void add_maps(Comparison& c, const json& maps, const fs::path& dir, const fs::pa
   }
 }
 
+// The readout's values: the scored layer of both images and every error map's EXR (under the
+// report's folder, as add_maps requires of the PNGs), when the images are small enough.
+void add_readout(Comparison& c, const image::Image& r, const image::Image& t, const std::string& layer, const json& maps,
+                 const fs::path& dir, const fs::path& root) {
+  if (r.pixel_count() > kReadoutPixels || r.width() != t.width() || r.height() != t.height()) return;
+  if (!r.has_layer(layer) || !t.has_layer(layer)) return;
+  auto channel = [&](const image::Image& img, const std::string& name) {
+    const float* v = img.channel(name);
+    return std::vector<float>(v, v + img.pixel_count());
+  };
+  Comparison::Readout& o = c.readout;
+  o.width = r.width(), o.height = r.height();
+  const auto rc = r.layer_channels(layer), tc = t.layer_channels(layer);
+  const char* const suffix[3] = {" R", " G", " B"};
+  for (size_t k = 0; k < 3; ++k) o.channels.emplace_back(std::string("reference") + suffix[k], channel(r, rc[k]));
+  for (size_t k = 0; k < 3; ++k) o.channels.emplace_back(c.technique + suffix[k], channel(t, tc[k]));
+  if (!maps.is_object()) return;
+  for (const auto& [name, m] : maps.items()) {
+    const fs::path exr = dir / m.value("exr", "");
+    if (!m.contains("exr") || !fs::exists(exr) || !path_inside(exr, root)) continue;
+    try {
+      const image::Image e = image::read_image(exr);
+      if (e.width() == o.width && e.height() == o.height && !e.channel_names().empty())
+        o.channels.emplace_back(name, channel(e, e.channel_names().front()));
+    } catch (const InputError&) {
+      // A map that cannot be read is left out of the readout; its picture still shows.
+    }
+  }
+}
+
 Comparison comparison(const fs::path& file, const fs::path& root, int max_frames) {
   const json j = read_json(file);
   const fs::path dir = file.parent_path();
@@ -192,6 +222,8 @@ Comparison comparison(const fs::path& file, const fs::path& root, int max_frames
     add_metric_rows(c, j["metrics"], "");
   }
   if (j.contains("maps")) add_maps(c, j["maps"], dir, root, file);
+  add_readout(c, r, t, layer, sequence && j.contains("last_frame") ? j["last_frame"].value("maps", json()) : j.value("maps", json()),
+              dir, root);
   for (const metrics::MetricInfo& info : metrics::kMetricCatalogue)
     if (info.headline && info.scope != metrics::Scope::Timing)
       if (const auto v = gate::find_metric(j, std::string(info.name)); v && v->value)

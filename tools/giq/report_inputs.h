@@ -42,7 +42,18 @@ struct Comparison {
   std::vector<std::pair<std::string, gate::MetricValue>> headline;
   std::optional<double> gpu_ms;
   std::vector<std::string> warnings;  // metrics.json's: why a score may be meaningless
+  // The values under the pointer (the last frame's): the reference's and the technique's
+  // R, G, B of the scored layer, then each error map's value, as the page's readout shows
+  // them; empty above kReadoutPixels pixels, which would make the page too large.
+  struct Readout {
+    int width = 0, height = 0;
+    std::vector<std::pair<std::string, std::vector<float>>> channels;  // label, values row by row
+  } readout;
 };
+
+// The largest image whose values the page embeds for the pixel readout (512 x 512: 1 MiB of
+// float32 per channel before base64).
+inline constexpr size_t kReadoutPixels = 512 * 512;
 
 struct Sweep {
   std::string source;

@@ -69,6 +69,27 @@ document.querySelectorAll('.ab').forEach(function(fig){
   fig.tabIndex=0;fig.addEventListener('keydown',function(){k=1-k;show();});
   show();
 });
+document.querySelectorAll('.comparison').forEach(function(cmp){
+  var d=cmp.querySelector('.readout-data'),row=cmp.querySelector('.row.sync');if(!d||!row)return;
+  var out=cmp.querySelector('.readout'),w=+d.dataset.w,h=+d.dataset.h,labels=JSON.parse(d.dataset.labels),data=null;
+  function decode(){data=d.dataset.values.split(',').map(function(b){var s=atob(b),u=new Uint8Array(s.length);
+    for(var i=0;i<s.length;i++)u[i]=s.charCodeAt(i);return new Float32Array(u.buffer);});}
+  function fmt(v){return isFinite(v)?Number(v.toPrecision(4)).toString():String(v);}
+  row.querySelectorAll('.view').forEach(function(v){
+    v.addEventListener('pointermove',function(e){
+      var img=v.querySelector('img');if(!img)return;
+      var r=img.getBoundingClientRect(),k=Math.min(320/w,320/h),ox=(320-w*k)/2,oy=(320-h*k)/2;
+      var x=Math.floor(((e.clientX-r.left)/r.width*320-ox)/k),y=Math.floor(((e.clientY-r.top)/r.height*320-oy)/k);
+      if(x<0||y<0||x>=w||y>=h){out.textContent='point at an image for its pixel\'s values';return;}
+      if(!data)decode();
+      var i=y*w+x,parts=[];
+      for(var c=0;c<labels.length;){
+        var rgb=/ R$/.test(labels[c])&&c+2<labels.length;
+        if(rgb){parts.push(labels[c].slice(0,-2)+' ('+fmt(data[c][i])+', '+fmt(data[c+1][i])+', '+fmt(data[c+2][i])+')');c+=3;}
+        else{parts.push(labels[c]+' '+fmt(data[c][i]));c+=1;}}
+      out.textContent='pixel ('+x+', '+y+'): '+parts.join(' \u00b7 ');});
+  });
+});
 document.querySelectorAll('.flipbook').forEach(function(book){
   var slider=book.querySelector('input[type=range]'),label=book.querySelector('.frame-label');
   var first=parseInt(book.dataset.first,10),step=parseInt(book.dataset.step,10),timer=null;
@@ -113,14 +134,25 @@ std::string figure(const Picture& p, const std::string& extra_imgs = "") {
     s << extra_imgs;
   s << "</div>";
   if (p.scale) {
+    // Five ticks at fixed fractions of the range; where the range is a percentile of the
+    // values, the ends also stand for everything beyond them (the map clips there).
+    const bool clipped = p.scale->rule.find("percentile") != std::string::npos;
     s << "<div class=\"scale\" style=\"background:linear-gradient(to right,"
-      << colormap_gradient(p.scale->colormap) << ")\"></div><div class=\"scale-labels\"><span>"
-      << num(p.scale->lo) << "</span><span>" << html_escape(p.scale->unit) << "</span><span>"
-      << num(p.scale->hi) << "</span></div>";
+      << colormap_gradient(p.scale->colormap) << ")\"></div><div class=\"scale-labels\">";
+    for (int k = 0; k <= 4; ++k) {
+      const double v = p.scale->lo + (p.scale->hi - p.scale->lo) * k / 4.0;
+      const bool end_clipped = clipped && (k == 4 || (k == 0 && p.scale->lo < 0.0));
+      s << "<span>" << (end_clipped ? (k == 0 ? "&le;" : "&ge;") : "") << num(std::abs(v) < 1e-12 * std::abs(p.scale->hi) ? 0.0 : v)
+        << "</span>";
+    }
+    s << "</div>";
   }
   s << "<figcaption>" << html_escape(p.title);
-  if (p.scale && !p.scale->rule.empty())
-    s << "<br><span class=\"hint\">range: " << html_escape(p.scale->rule) << "</span>";
+  if (p.scale) {
+    s << "<br><span class=\"hint\">";
+    if (!p.scale->unit.empty()) s << "unit: " << html_escape(p.scale->unit) << "; ";
+    s << "range: " << html_escape(p.scale->rule) << "</span>";
+  }
   s << "</figcaption></figure>\n";
   return s.str();
 }
@@ -200,6 +232,22 @@ void comparison_section(std::ostringstream& h, const Comparison& c) {
   }
   for (const Picture& p : c.maps) h << figure(p);
   h << "</div>\n";
+  if (c.readout.width > 0) {
+    // The values under the pointer, as float32 little-endian in base64, one string a channel.
+    json labels = json::array();
+    std::string values;
+    for (const auto& [label, v] : c.readout.channels) {
+      labels.push_back(label);
+      if (!values.empty()) values += ',';
+      values += gate::base64(std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(float)));
+    }
+    h << "<p class=\"readout hint\">point at an image for its pixel's values</p><div class=\"readout-data\" hidden "
+         "data-w=\""
+      << c.readout.width << "\" data-h=\"" << c.readout.height << "\" data-labels=\"" << html_escape(labels.dump())
+      << "\" data-values=\"" << values << "\"></div>\n";
+  } else if (!c.panes.empty()) {
+    h << "<p class=\"hint\">no pixel readout: images above " << kReadoutPixels << " pixels are not embedded</p>\n";
+  }
   if (!c.technique_frames.empty()) {
     const size_t n = c.technique_frames.size();
     auto frames = [&](const std::vector<std::string>& uris, const std::string& who) {
