@@ -366,3 +366,25 @@ TEST_F(GateCli, CamerasInWorldCoordinates) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("a view or a camera, not both"), std::string::npos) << bad.err;
 }
+
+// A tone-mapped screenshot in a gate case: the case's "display" reaches giq score as its
+// options, and a tone curve or encoding giq score would not know stops the gate at load.
+TEST_F(GateCli, ScreenshotsAreScoredUnderTheCasesDisplayTransform) {
+  config(json::array({{{"name", "shot"},
+                       {"test", "shots/engine.exr"},
+                       {"display", {{"tonemap", "aces"}, {"exposure", 1}, {"test_encoding", "srgb"}}},
+                       {"bounds", {{"relmse", 0.05}}}}}));
+  ASSERT_EQ(update().code, 0);
+  fs::create_directories(dir_ / "shots");
+  fs::copy_file(dir_ / "refs" / "cornell_0_f0-0" / "frame_0000.exr", dir_ / "shots" / "engine.exr");
+  const Result r = gate();
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_EQ(calls("--tonemap aces --exposure 1 --test-encoding srgb"), 1);
+  for (const json& display : {json{{"tonemap", "filmic"}}, json{{"test_encoding", "gamma"}}, json{{"gamma", 2.2}}}) {
+    config(json::array({{{"name", "shot"}, {"test", "shots/engine.exr"}, {"display", display},
+                         {"bounds", {{"relmse", 0.05}}}}}));
+    const Result bad = gate();
+    EXPECT_EQ(bad.code, 2) << display;
+    EXPECT_NE(bad.err.find("display"), std::string::npos) << bad.err;
+  }
+}

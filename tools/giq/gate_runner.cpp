@@ -57,6 +57,19 @@ std::string run_cached_step(const std::vector<std::string>& argv, const fs::path
 
 namespace {
 
+// giq score's display options for the case (gate::DisplaySpec).
+std::vector<std::string> display_args(const gate::Case& c) {
+  std::vector<std::string> a;
+  if (!c.display.tonemap.empty()) a.insert(a.end(), {"--tonemap", c.display.tonemap});
+  if (c.display.exposure != 0.0) {
+    char ev[32];
+    std::snprintf(ev, sizeof ev, "%.17g", c.display.exposure);
+    a.insert(a.end(), {"--exposure", ev});
+  }
+  if (!c.display.test_encoding.empty()) a.insert(a.end(), {"--test-encoding", c.display.test_encoding});
+  return a;
+}
+
 std::vector<std::string> realtime_args(const Toolchain& t, const gate::Case& c) {
   std::vector<std::string> a = {t.giq.string(),          "realtime",  "--scene",
                                 c.scene.string(),        c.camera.empty() ? "--view" : "--camera",
@@ -124,6 +137,7 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
       sc.insert(sc.end(), {"--ref", ref, "--test", c.test.string()});
       if (c.sequence()) sc.insert(sc.end(), {"--frames", frame_range(c.first_frame, c.last_frame)});
       sc.insert(sc.end(), {"--layer", c.layer, "--scene", c.scene.string(), "--out", score.string()});
+      for (const std::string& d : display_args(c)) sc.push_back(d);
       const std::string problem = run_cached_step(
           sc, score, log, "giq score", {{"argv", sc}, {"giq", binary_hash}, {"golden", golden_files}, {"test", test_files}},
           t.rerender);
@@ -164,6 +178,7 @@ CaseRun run_case(const Toolchain& t, const gate::Case& c, const gate::Config& co
       sc.insert(sc.end(), {"--ref", ref, "--test", (tech / frame_file(c.first_frame)).string()});
     sc.insert(sc.end(), {"--layer", c.layer, "--scene", c.scene.string(), "--timings",
                          (tech / "timings.json").string(), "--out", score.string()});
+    for (const std::string& d : display_args(c)) sc.push_back(d);
     problem = run_cached_step(sc, score, log, "giq score",
                    {{"argv", sc},
                     {"giq", binary_hash},

@@ -13,6 +13,7 @@
 #include "giq/base/json.h"
 #include "giq/base/frames.h"
 #include "giq/gate/metric_lookup.h"
+#include "giq/metrics/display.h"
 
 namespace giq::gate {
 namespace {
@@ -23,7 +24,7 @@ using json = nlohmann::ordered_json;
 
 const std::set<std::string> kCaseKeys = {"name",       "scene",  "view",  "camera", "technique",  "test",
                                          "parameters", "frames", "layer", "resolution",
-                                         "golden",     "timing", "bounds"};
+                                         "golden",     "display", "timing", "bounds"};
 
 class Parser {
  public:
@@ -123,6 +124,28 @@ class Parser {
         c.height = integer(v[1], f + "[1]", 1, 16384);
       } else if (key == "golden") {
         golden(c.golden, object(v, f), f);
+      } else if (key == "display") {
+        only_keys(object(v, f), {"tonemap", "exposure", "test_encoding"}, f);
+        if (v.contains("tonemap")) {
+          c.display.tonemap = string(v["tonemap"], f + ".tonemap");
+          // The names giq score knows (display.h's list; the gate library does not link the
+          // metrics library, which giq score runs as a separate process).
+          bool known = false;
+          for (std::string_view names = metrics::kToneCurveNames; !names.empty();) {
+            const size_t comma = names.find(", ");
+            known |= names.substr(0, comma) == c.display.tonemap;
+            names = comma == std::string_view::npos ? std::string_view() : names.substr(comma + 2);
+          }
+          if (!known)
+            fail(f + ".tonemap", "'" + c.display.tonemap + "' is not a tone curve; expected one of " +
+                                     std::string(metrics::kToneCurveNames));
+        }
+        if (v.contains("exposure")) c.display.exposure = number(v["exposure"], f + ".exposure");
+        if (v.contains("test_encoding")) {
+          c.display.test_encoding = string(v["test_encoding"], f + ".test_encoding");
+          if (c.display.test_encoding != "srgb" && c.display.test_encoding != "linear")
+            fail(f + ".test_encoding", "'" + c.display.test_encoding + "'; expected srgb or linear");
+        }
       } else if (key == "timing") {
         only_keys(object(v, f), {"warmup", "frames"}, f);
         if (v.contains("warmup")) c.timing.warmup = integer(v["warmup"], f + ".warmup", 0, 100000);

@@ -57,6 +57,15 @@ struct TimingSpec {
   int frames = 20;
 };
 
+// How giq score shows the reference before comparing (docs/own-engine.md): an engine's
+// exposure and tone curve for its tone-mapped screenshots, and how an 8-bit test stores
+// colour. Empty strings and 0 stops: giq score's defaults.
+struct DisplaySpec {
+  std::string tonemap;        // giq score --tonemap
+  double exposure = 0.0;      // giq score --exposure, stops
+  std::string test_encoding;  // giq score --test-encoding
+};
+
 struct Case {
   std::string name;
   std::filesystem::path scene;  // resolved against the config file's folder
@@ -73,6 +82,7 @@ struct Case {
   std::string layer = "beauty";
   int width = 256, height = 256;  // the size every giq command renders by default
   GoldenSpec golden;
+  DisplaySpec display;
   TimingSpec timing;
   std::vector<Bound> bounds;
 
