@@ -30,6 +30,13 @@ void solid_exr(const fs::path& p, float r, float g, float b, const std::string& 
   giq::image::write_exr(img, p);
 }
 
+// Debian's headless browser, or "" where it is not installed.
+std::string chromium_binary() {
+  for (const char* c : {"/usr/bin/chromium", "/usr/bin/chromium-browser"})
+    if (fs::exists(c)) return c;
+  return "";
+}
+
 const char* kHostileScene = "<script>alert(1)</script>.gltf";
 const char* kHostileTechnique = "<img src=x onerror=alert(2)>";
 
@@ -174,10 +181,7 @@ TEST_F(Report, AGateJsonThatIsNotTheGatesIsAnInputError) {
 }
 
 TEST_F(Report, ChromiumShowsTheImages) {
-  const char* candidates[] = {"/usr/bin/chromium", "/usr/bin/chromium-browser"};
-  std::string chromium;
-  for (const char* c : candidates)
-    if (fs::exists(c)) chromium = c;
+  const std::string chromium = chromium_binary();
   if (chromium.empty()) GTEST_SKIP() << "chromium is not installed (tools/bootstrap installs it)";
   ASSERT_EQ(giq("report " + dir_.string()), 0) << slurp(dir_ / "out.txt");
   const fs::path shot = dir_ / "shot.png", profile = dir_ / "profile";
@@ -237,10 +241,7 @@ void ramp_exr(const fs::path& p, float scale, const std::string& technique = "")
 // headless Chromium, a pointer move over pixel (5, 7) of the reference pane, dispatched once
 // the page has loaded, and the readout in the DOM afterwards.
 TEST_F(Report, PointingAtAPixelReadsItsValues) {
-  const char* candidates[] = {"/usr/bin/chromium", "/usr/bin/chromium-browser"};
-  std::string chromium;
-  for (const char* c : candidates)
-    if (fs::exists(c)) chromium = c;
+  const std::string chromium = chromium_binary();
   if (chromium.empty()) GTEST_SKIP() << "chromium is not installed (tools/bootstrap installs it)";
   const fs::path d = dir_ / "readout";
   fs::create_directories(d);

@@ -18,6 +18,7 @@
 #include "giq/realtime/resources.h"
 #include "giq/scenes/scene.h"
 #include "techniques/ddgi/ddgi_shared.h"
+#include "octahedral_map.h"
 #include "test_scenes.h"
 
 namespace giq::realtime {
@@ -27,26 +28,8 @@ using test::builtin;
 using test::layer;
 using test::mean;
 
-// The CPU octahedral map, written from Cigolle et al. 2014 independently of
-// octahedral.glsl.
-glm::vec2 oct_encode(glm::vec3 d) {
-  const float l1 = std::abs(d.x) + std::abs(d.y) + std::abs(d.z);
-  glm::vec2 p(d.x / l1, d.y / l1);
-  if (d.z < 0.0f)
-    p = glm::vec2((1.0f - std::abs(p.y)) * (p.x >= 0.0f ? 1.0f : -1.0f),
-                  (1.0f - std::abs(p.x)) * (p.y >= 0.0f ? 1.0f : -1.0f));
-  return p;
-}
-
-glm::vec3 oct_decode(glm::vec2 e) {
-  glm::vec3 v(e.x, e.y, 1.0f - std::abs(e.x) - std::abs(e.y));
-  if (v.z < 0.0f) {
-    const float x = v.x, y = v.y;
-    v.x = (1.0f - std::abs(y)) * (x >= 0.0f ? 1.0f : -1.0f);
-    v.y = (1.0f - std::abs(x)) * (y >= 0.0f ? 1.0f : -1.0f);
-  }
-  return glm::normalize(v);
-}
+using test::oct_decode;
+using test::oct_encode;
 
 // Folds a point of the plane outside [-1, 1]^2 back into it: across the edge x = +-1 the map
 // continues mirrored in y, across y = +-1 mirrored in x.

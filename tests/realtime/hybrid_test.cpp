@@ -15,6 +15,7 @@
 #include "giq/realtime/timer.h"
 #include "passes/gbuffer.h"
 #include "techniques/hybrid/svgf.h"
+#include "octahedral_map.h"
 #include "test_scenes.h"
 
 namespace giq::realtime {
@@ -22,15 +23,7 @@ namespace {
 
 using test::layer;
 
-// The CPU octahedral encoding of a unit normal (Cigolle et al. 2014), for synthetic surfaces.
-glm::vec2 oct_encode(glm::vec3 d) {
-  const float l1 = std::abs(d.x) + std::abs(d.y) + std::abs(d.z);
-  glm::vec2 p(d.x / l1, d.y / l1);
-  if (d.z < 0.0f)
-    p = glm::vec2((1.0f - std::abs(p.y)) * (p.x >= 0.0f ? 1.0f : -1.0f),
-                  (1.0f - std::abs(p.x)) * (p.y >= 0.0f ? 1.0f : -1.0f));
-  return p;
-}
+using test::oct_encode;
 
 float hash01(uint32_t i) {
   i = (i ^ 61u) ^ (i >> 16);
