@@ -10,6 +10,7 @@
 #include "giq/metrics/leak.h"
 #include "giq/metrics/maps.h"
 #include "giq/metrics/ssim.h"
+#include "giq/metrics/ztest.h"
 #include "giq/metrics/strip.h"
 #include "score_json.h"
 
@@ -92,6 +93,20 @@ json score_image(const image::Image& ref, const std::string& ref_file, const ima
     // like the plain error.
     m["mse_debiased"] = with_floor(metric(e.mse_debiased, "mse_debiased", io_noise, unit_of("mse_debiased")),
                                    e.unresolved_mse, nf_mse);
+  }
+
+  // --- the per-pixel z-test, where the reference has its noise (and the test its own, if any)
+  if (v) {
+    const std::string test_var_layer = variance_layer_for(test, req.layer);
+    std::optional<RgbLayer> tv;
+    if (!test_var_layer.empty()) tv = rgb_layer(test, test_var_layer, test_file);
+    const ZTest zt = ztest(r, t, *v, tv ? &*tv : nullptr);
+    json zio = io_noise;
+    if (tv) zio.push_back("test:" + test_var_layer);
+    m["ztest"] = {{"p_sidak", metric(zt.p_sidak, "ztest_sidak", zio, unit_of("ztest_p"))},
+                  {"max_abs_z", number(zt.max_abs_z)},
+                  {"p_min", number(zt.p_min)},
+                  {"tested", zt.tested}};
   }
 
   // --- SSIM

@@ -35,7 +35,7 @@ struct MetricInfo {
 };
 
 // In the order the tables list them.
-inline constexpr std::array<MetricInfo, 26> kMetricCatalogue = {{
+inline constexpr std::array<MetricInfo, 27> kMetricCatalogue = {{
     {"mse", "mse", {"mse"}, {}, "radiance^2", Better::Lower, false, "per-image-error", Scope::Image},
     {"rmse", "rmse", {"rmse"}, {}, "radiance", Better::Lower, false, "per-image-error", Scope::Image},
     {"mae", "mae", {"mae"}, {}, "radiance", Better::Lower, false, "per-image-error", Scope::Image},
@@ -56,6 +56,7 @@ inline constexpr std::array<MetricInfo, 26> kMetricCatalogue = {{
      "share of sum_image Y_R", Better::Lower, true, "leaking", Scope::Image},
     {"leak_pixels", "leak_pixels", {"leak.declared.leak_pixels", "leak.automatic.leak_pixels"},
      {"leak_pixels (declared)", "leak_pixels (automatic)"}, "share of region pixels", Better::Lower, false, "leaking", Scope::Image},
+    {"ztest_p", "z-test p (Sidak)", {"ztest.p_sidak"}, {}, "1", Better::Higher, false, "per-pixel-z-test", Scope::Image},
     {"nonfinite_pixels", "nonfinite_pixels", {"nonfinite_pixels"}, {}, "pixels", Better::Lower, false,
      "valid-pixels-and-non-finite-input", Scope::Image},
     {"mse_seq", "mse_seq", {"mse_seq"}, {}, "radiance^2", Better::Lower, false,
