@@ -11,18 +11,7 @@
 namespace giq::realtime {
 namespace {
 
-class DirectTest : public test::VulkanTest {
- protected:
-  image::Image render(const scenes::Scene& s, const std::string& technique, uint32_t size,
-                      std::vector<std::string> params = {}) {
-    RenderOptions o;
-    o.technique = technique;
-    o.view = "0";
-    o.width = o.height = size;
-    o.parameters = std::move(params);
-    return render_last(s, o);
-  }
-};
+using DirectTest = test::VulkanTest;
 
 // The point of the plane y = 0 seen through pixel (x, y)'s centre.
 glm::vec3 plane_point(const scenes::Camera& cam, int x, int y, int size) {

@@ -49,6 +49,16 @@ image::Image VulkanTest::render_last(const scenes::Scene& s, const realtime::Ren
   return out;
 }
 
+image::Image VulkanTest::render(const scenes::Scene& s, const std::string& technique, uint32_t size,
+                                std::vector<std::string> params) {
+  realtime::RenderOptions o;
+  o.technique = technique;
+  o.view = "0";
+  o.width = o.height = size;
+  o.parameters = std::move(params);
+  return render_last(s, o);
+}
+
 void VulkanTest::expect_persistent_matches_fresh(const scenes::Scene& animated, realtime::RenderOptions o,
                                                  const std::string& channel) {
   ASSERT_TRUE(animated.features.animation);

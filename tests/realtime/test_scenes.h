@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "giq/image/image.h"
 #include "giq/realtime/context.h"
@@ -33,6 +34,9 @@ class VulkanTest : public ::testing::Test {
   void TearDown() override;
   // The last measured frame of the sequence `o` describes.
   image::Image render_last(const scenes::Scene& s, const realtime::RenderOptions& o);
+  // One frame of `technique` on view 0 at size x size.
+  image::Image render(const scenes::Scene& s, const std::string& technique, uint32_t size,
+                      std::vector<std::string> params = {});
   // One instance of o.technique through frames 0..o.frames-1 of an animated scene gives, at
   // every frame, the bits of an instance created for that frame's pose alone (same commands
   // on the same data), in `channel`; and consecutive frames differ, so something did move.

@@ -10,16 +10,6 @@ namespace giq::test {
 
 using namespace giq::realtime;
 
-image::Image TexturesTest::render(const scenes::Scene& s, const std::string& technique, uint32_t size,
-                                  std::vector<std::string> params) {
-  RenderOptions o;
-  o.technique = technique;
-  o.view = "0";
-  o.width = o.height = size;
-  o.parameters = std::move(params);
-  return render_last(s, o);
-}
-
 void add_random_texture(scenes::Scene& s, int w, int h, scenes::TexelFormat format, scenes::Filter filter,
                         scenes::Wrap wrap, std::mt19937& rng) {
   scenes::Texture t;

@@ -1,7 +1,8 @@
 #pragma once
-// What the texture tests share: a fixture that renders a scene's first view, random 8-bit
-// textures, and compute-shader queries against the scene's GPU buffers (a lookup, a mip level)
-// read back for comparison with the scene library's own arithmetic.
+// What the texture tests share: their fixture (VulkanTest, whose render() draws a scene's
+// first view), random 8-bit textures, and compute-shader queries against the scene's GPU
+// buffers (a lookup, a mip level) read back for comparison with the scene library's own
+// arithmetic.
 
 #include <algorithm>
 #include <cstdint>
@@ -15,12 +16,7 @@
 
 namespace giq::test {
 
-class TexturesTest : public VulkanTest {
- protected:
-  // The last frame of `technique` on view 0 at size x size.
-  image::Image render(const scenes::Scene& s, const std::string& technique, uint32_t size,
-                      std::vector<std::string> params = {});
-};
+using TexturesTest = VulkanTest;
 
 // An 8-bit texture of random texels (every byte pattern: sRGB, linear and alpha channels).
 void add_random_texture(scenes::Scene& s, int w, int h, scenes::TexelFormat format, scenes::Filter filter,

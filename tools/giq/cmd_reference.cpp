@@ -1,8 +1,6 @@
 // `giq reference`: renders the path-traced ground truth of a scene's view as a multi-layer
 // reference EXR, with checkpoints and resume. See docs/reference.md.
 
-#include <unistd.h>
-
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -130,8 +128,7 @@ image::ExrOptions exr_options(const image::Image& img, bool half) {
   return opts;
 }
 
-
-void draw_bar(const ref::Progress& p, const std::string& label) {
+void draw_bar(ProgressLine& line, const ref::Progress& p, const std::string& label) {
   double fraction = 0.0;
   if (p.target_spp > 0) fraction = double(p.spp) / double(p.target_spp);
   else if (p.eta_seconds >= 0.0) fraction = p.elapsed_seconds / std::max(1e-9, p.elapsed_seconds + p.eta_seconds);
@@ -139,9 +136,8 @@ void draw_bar(const ref::Progress& p, const std::string& label) {
   const int filled = int(std::clamp(fraction, 0.0, 1.0) * kWidth);
   std::string bar(size_t(filled), '=');
   bar.resize(kWidth, ' ');
-  std::fprintf(stderr, "\r%s [%s] %u spp  %s elapsed  ETA %s  rel.err %.3g%%   ", label.c_str(), bar.c_str(), p.spp,
-               format_seconds(p.elapsed_seconds).c_str(), format_seconds(p.eta_seconds).c_str(), 100.0 * p.rel_error);
-  std::fflush(stderr);
+  line.show("%s [%s] %u spp  %s elapsed  ETA %s  rel.err %.3g%%", label.c_str(), bar.c_str(), p.spp,
+            format_seconds(p.elapsed_seconds).c_str(), format_seconds(p.eta_seconds).c_str(), 100.0 * p.rel_error);
 }
 
 int run(const Options& o) {
@@ -179,7 +175,6 @@ int run(const Options& o) {
                        "a checkpoint for this render exists: add --resume to continue it, or --overwrite to start again");
     if (fs::exists(checkpoint) && o.overwrite) fs::remove(checkpoint);
   }
-  const bool tty = ::isatty(STDERR_FILENO) != 0;
   for (int f = first; f <= last; ++f) {
     const sc::Scene posed = scene.features.animation ? scene.at_frame(f) : scene;
     ref::ReferenceMetadata meta;
@@ -206,10 +201,11 @@ int run(const Options& o) {
                   " frame " + std::to_string(f) + " settings " + ref::settings_json(settings);
     po.cancel = &g_cancel;
     const std::string label = out.filename().string();
-    if (tty) po.on_progress = [&](const ref::Progress& p) { draw_bar(p, label); };
+    ProgressLine line;
+    if (line.active()) po.on_progress = [&](const ref::Progress& p) { draw_bar(line, p, label); };
 
     const ref::RenderOutcome r = ref::render_progressive(renderer, po);
-    if (tty) std::fprintf(stderr, "\n");
+    line.finish();
     if (!r.completed) {
       std::fprintf(stderr, "giq: interrupted after %.1f s; progress saved in %s; continue with --resume\n", r.elapsed_seconds,
                    po.checkpoint.string().c_str());

@@ -64,7 +64,7 @@ void main() {
       PathState st = path_start();
       path_add(st, 1u, next_event(params, r.x, p_off, ng, r.n, s, wo, rng));
       vec3 wi;
-      if (pc.max_bounces > 0u && path_scatter(st, 0u, s, wo, ng, r.n, rng, wi))
+      if (path_scatter(st, 0u, s, wo, ng, r.n, rng, wi))
         path_trace(params, st, 1u, p_off, wi, rng);
       // A non-finite sample can only come from a degenerate configuration: dropped (black).
       if (!all(lessThan(abs(st.direct + st.indirect), vec3(3.0e38)))) continue;
