@@ -14,6 +14,7 @@
 
 #include "command.h"
 #include "progress.h"
+#include "reference_frame.h"
 #include "scene_setup.h"
 #include "integer_check.h"
 #include "output_guard.h"
@@ -176,29 +177,18 @@ int run(const Options& o) {
     if (fs::exists(checkpoint) && o.overwrite) fs::remove(checkpoint);
   }
   for (int f = first; f <= last; ++f) {
-    const sc::Scene posed = scene.features.animation ? scene.at_frame(f) : scene;
-    ref::ReferenceMetadata meta;
-    meta.scene = o.scene;
-    meta.scene_hash = scene.content_hash;
-    meta.frame = f;
-    const sc::View& v = posed.view(o.setup.has_camera() ? kCameraView : o.view.empty() ? "0" : o.view);
-    meta.camera = v.camera;
-    meta.view = v.name;
-    for (const std::string& a : o.setup.camera) {
-      if (!meta.camera_given.empty()) meta.camera_given += ' ';
-      meta.camera_given += a;
-    }
+    ReferenceFrame job = reference_frame(scene, o.scene, o.view, o.setup.camera, f, settings);
+    ref::ReferenceMetadata& meta = job.metadata;
     const fs::path out = frame_path(o.out, f, first != last);
     if (out.has_parent_path()) fs::create_directories(out.parent_path());
-    const ref::Renderer renderer(posed, meta.camera, settings);
+    const ref::Renderer renderer(job.posed, meta.camera, settings);
 
     ref::ProgressiveOptions po;
     po.stop = {o.spp, o.seconds, o.rel_error};
     po.checkpoint = out.string() + ".checkpoint";
     po.checkpoint_interval_seconds = o.checkpoint_interval;
     po.resume = o.resume;
-    po.identity = "scene " + scene.content_hash + " view " + meta.view + " camera " + ref::describe_camera(meta.camera) +
-                  " frame " + std::to_string(f) + " settings " + ref::settings_json(settings);
+    po.identity = job.identity;
     po.cancel = &g_cancel;
     const std::string label = out.filename().string();
     ProgressLine line;

@@ -1,19 +1,20 @@
-#include "flip_valid.h"
+#include "giq/metrics/flip.h"
 
 #include <cmath>
 #include <limits>
 
 #include "giq/metrics/layer.h"
 
-namespace giq::metrics::detail {
+namespace giq::metrics {
 
-FlipResult flip_valid(const image::Image& ref, const image::Image& test, std::string_view layer, bool hdr) {
+FlipResult flip_valid(const image::Image& ref, const image::Image& test, std::string_view layer, bool hdr,
+                      const FlipOptions& options) {
   const RgbLayer r = rgb_layer(ref, layer, ""), t = rgb_layer(test, layer, "");
   const size_t n = r.pixel_count();
   size_t bad = 0;
   for (size_t i = 0; i < n; ++i) bad += !(r.finite(i) && t.finite(i));
   auto run = [&](const image::Image& a, const image::Image& b, std::string_view l) {
-    return hdr ? hdr_flip(a, b, l) : ldr_flip(a, b, l);
+    return hdr ? hdr_flip(a, b, l, options) : ldr_flip(a, b, l, options);
   };
   if (!bad) return run(ref, test, layer);
 
@@ -44,4 +45,4 @@ FlipResult flip_valid(const image::Image& ref, const image::Image& test, std::st
   return f;
 }
 
-}  // namespace giq::metrics::detail
+}  // namespace giq::metrics

@@ -144,6 +144,31 @@ std::vector<std::string> previous_outputs(const std::filesystem::path& manifest)
   return names;
 }
 
+// What both forms of score() write alike: what was done to the inputs beyond reading them,
+// what makes the result doubtful, and the version.
+void describe_treatment(json& result, bool sequence, bool ref_hdr, bool test_hdr, const ScoreRequest& req) {
+  json& inputs = result["inputs"];
+  if (req.test_layer && *req.test_layer != req.layer) inputs["test_layer"] = req.test_layer->empty() ? "beauty" : *req.test_layer;
+  if (req.crop) inputs["crop"] = {req.crop->x, req.crop->y, req.crop->width, req.crop->height};
+  if (!test_hdr) inputs["test_encoding"] = req.test_encoding == TestEncoding::Srgb ? "srgb" : "linear";
+  if (req.display.active()) inputs["display"] = req.display.to_json();
+  json warnings = json::array();
+  if (ref_hdr && !test_hdr && req.display.curve == ToneCurve::None)
+    warnings.push_back("the test is a low-dynamic-range image and the reference HDR, and no tone curve was given: "
+                       "everything brighter than 1 in the reference (emitters, highlights) is clipped in the test and "
+                       "counts as error; give the engine's tone curve and exposure (--tonemap, --exposure) or score a "
+                       "linear EXR of its lighting buffer (docs/own-engine.md)");
+  if (result.contains(sequence ? "last_frame" : "metrics")) {
+    const json& found = sequence ? result["last_frame"] : result;
+    for (const auto& w : found.value("warnings", json::array())) warnings.push_back(w);
+    if (sequence && result["last_frame"].contains("warnings")) result["last_frame"].erase("warnings");
+  }
+  result["warnings"] = warnings;
+  result["giq_version"] = giq::version();
+  result["schema_version"] = kMetricsSchemaVersion;
+  result["definitions"] = "docs/metrics.md";
+}
+
 }  // namespace
 
 json score(const ScoreRequest& request) {
@@ -162,7 +187,16 @@ json score(const ScoreRequest& request) {
       throw InputError("", "--frames",
                        std::to_string(req.frames->first) + ":" + std::to_string(req.frames->second) +
                            " is empty; expected A:B with A <= B");
-    result = detail::score_sequence(req);
+    detail::Frames frames;
+    frames.first = req.frames->first, frames.last = req.frames->second;
+    frames.per_frame_reference = is_pattern(req.reference);
+    frames.reference_name = [&](int f) { return frame_path(req.reference, f); };
+    frames.test_name = [&](int f) { return frame_path(req.test, f); };
+    frames.reference = [&](int f) { return detail::read_input(frame_path(req.reference, f), detail::Side::Reference, req); };
+    frames.test = [&](int f) { return detail::read_input(frame_path(req.test, f), detail::Side::Test, req); };
+    frames.reference_label = req.reference, frames.test_label = req.test;
+    frames.hdr = detail::compares_hdr(frame_path(req.reference, frames.first), frame_path(req.test, frames.first), req);
+    result = detail::score_sequence(frames, req);
   } else {
     if (is_pattern(req.reference))
       throw InputError(req.reference, "--ref", "a reference pattern needs a technique pattern and --frames");
@@ -170,30 +204,12 @@ json score(const ScoreRequest& request) {
     const image::Image test = detail::read_input(req.test, detail::Side::Test, req);
     result = detail::score_image(ref, req.reference, test, req.test, detail::compares_hdr(req.reference, req.test, req), req);
   }
-  // What was done to the inputs beyond reading them, and what makes the result doubtful.
   const std::string first_test = sequence ? frame_path(req.test, req.frames->first) : req.test;
   const std::string first_ref = is_pattern(req.reference) ? frame_path(req.reference, req.frames->first) : req.reference;
-  const bool ref_hdr = image::is_exr_file(first_ref), test_hdr = image::is_exr_file(first_test);
-  json& inputs = result["inputs"];
-  if (req.test_layer && *req.test_layer != req.layer) inputs["test_layer"] = req.test_layer->empty() ? "beauty" : *req.test_layer;
-  if (req.crop) inputs["crop"] = {req.crop->x, req.crop->y, req.crop->width, req.crop->height};
-  if (!test_hdr) inputs["test_encoding"] = req.test_encoding == TestEncoding::Srgb ? "srgb" : "linear";
-  if (req.display.active()) inputs["display"] = req.display.to_json();
-  json warnings = json::array();
-  if (ref_hdr && !test_hdr && req.display.curve == ToneCurve::None)
-    warnings.push_back("the test is a low-dynamic-range image and the reference HDR, and no tone curve was given: "
-                       "everything brighter than 1 in the reference (emitters, highlights) is clipped in the test and "
-                       "counts as error; give the engine's tone curve and exposure (--tonemap, --exposure) or score a "
-                       "linear EXR of its lighting buffer (docs/own-engine.md)");
-  const json& found = sequence ? result["last_frame"] : result;
-  for (const auto& w : found.value("warnings", json::array())) warnings.push_back(w);
-  if (sequence && result["last_frame"].contains("warnings")) result["last_frame"].erase("warnings");
-  result["warnings"] = warnings;
-  result["giq_version"] = giq::version();
-  result["schema_version"] = kMetricsSchemaVersion;
-  result["definitions"] = "docs/metrics.md";
+  describe_treatment(result, sequence, image::is_exr_file(first_ref), image::is_exr_file(first_test), req);
   // Paths relative to metrics.json's folder, so that the folder can move with its inputs and
   // be read from any working directory (giq report).
+  json& inputs = result["inputs"];
   const auto relative = [&](const std::string& p) { return path_from_output(p, request.out_dir); };
   inputs["reference"] = relative(req.reference);
   inputs["test"] = relative(req.test);
@@ -208,6 +224,60 @@ json score(const ScoreRequest& request) {
   write_file_atomically(req.out_dir / "metrics.json", result.dump(2) + "\n");
   folder.publish(previous_outputs(request.out_dir / "metrics.json"));
   return result;
+}
+
+ScoreResult score(const ImageInputs& in, const ScoreRequest& request, bool keep_maps) {
+  if (in.reference.empty() || in.test.empty())
+    throw InputError(in.reference.empty() ? in.reference_name : in.test_name, "images", "none given");
+  if (!in.sequence && (in.reference.size() != 1 || in.test.size() != 1))
+    throw InputError(in.test_name, "images", "one reference and one test image expected outside a sequence");
+  if (in.reference.size() != 1 && in.reference.size() != in.test.size())
+    throw InputError(in.reference_name, "frames",
+                     std::to_string(in.reference.size()) + " reference frames for " + std::to_string(in.test.size()) +
+                         " test frames; expected one reference (a static scene) or one per test frame");
+  std::optional<StagedFolder> folder;
+  ScoreRequest req = request;
+  req.write_maps = request.write_maps && !request.out_dir.empty();
+  if (!request.out_dir.empty()) {
+    folder.emplace(request.out_dir, "metrics.json");
+    req.out_dir = folder->staging();
+  }
+  const size_t n = in.test.size();
+  const bool per_frame_ref = in.reference.size() > 1 || (in.sequence && n == 1);
+  auto name = [&](const std::string& base, size_t i) { return in.sequence ? base + "[" + std::to_string(i) + "]" : base; };
+  auto ref_name = [&](int f) { return per_frame_ref ? name(in.reference_name, size_t(f)) : in.reference_name; };
+  auto ref = [&](int f) {
+    return detail::prepare_input(in.reference[per_frame_ref ? size_t(f) : 0], ref_name(f), in.reference_hdr,
+                                 detail::Side::Reference, req);
+  };
+  auto test = [&](int f) {
+    return detail::prepare_input(in.test[size_t(f)], name(in.test_name, size_t(f)), in.test_hdr, detail::Side::Test, req);
+  };
+  const bool hdr = in.reference_hdr && in.test_hdr && req.display.curve == ToneCurve::None;
+  ScoreResult out;
+  std::vector<Map>* kept = keep_maps ? &out.maps : nullptr;
+  if (in.sequence) {
+    detail::Frames frames;
+    frames.first = 0, frames.last = int(n) - 1;
+    frames.per_frame_reference = per_frame_ref;
+    frames.hdr = hdr;
+    frames.reference = ref, frames.test = test;
+    frames.reference_name = ref_name;
+    frames.test_name = [&](int f) { return name(in.test_name, size_t(f)); };
+    frames.reference_label = in.reference_name, frames.test_label = in.test_name;
+    out.metrics = detail::score_sequence(frames, req, kept);
+  } else {
+    out.metrics = detail::score_image(ref(0), in.reference_name, test(0), in.test_name, hdr, req, kept);
+  }
+  describe_treatment(out.metrics, in.sequence, in.reference_hdr, in.test_hdr, req);
+  json& inputs = out.metrics["inputs"];
+  if (!req.scene.empty()) inputs["scene"] = req.scene;
+  if (req.frame_ms) inputs["frame_ms"] = *req.frame_ms, inputs["timings"] = req.timings;
+  if (folder) {
+    write_file_atomically(req.out_dir / "metrics.json", out.metrics.dump(2) + "\n");
+    folder->publish(previous_outputs(request.out_dir / "metrics.json"));
+  }
+  return out;
 }
 
 std::string format_table(const json& j) {

@@ -2,11 +2,11 @@
 
 #include <cmath>
 
-#include "flip_valid.h"
 #include "giq/base/error.h"
 #include "giq/image/io.h"
 #include "giq/metrics/catalogue.h"
 #include "giq/metrics/error.h"
+#include "giq/metrics/flip.h"
 #include "giq/metrics/leak.h"
 #include "giq/metrics/maps.h"
 #include "giq/metrics/ssim.h"
@@ -37,7 +37,7 @@ json leak_region_json(const LeakRegion& g, const std::string& region, const json
 }  // namespace
 
 json score_image(const image::Image& ref, const std::string& ref_file, const image::Image& test,
-                 const std::string& test_file, bool hdr, const ScoreRequest& req) {
+                 const std::string& test_file, bool hdr, const ScoreRequest& req, std::vector<Map>* kept) {
   check_pair(ref, ref_file, test, test_file, req.layer);
   const RgbLayer r = rgb_layer(ref, req.layer, ref_file);
   const RgbLayer t = rgb_layer(test, req.layer, test_file);
@@ -176,35 +176,31 @@ json score_image(const image::Image& ref, const std::string& ref_file, const ima
                        "with more samples");
   out["warnings"] = warnings;
 
-  // --- maps, one at a time so at most one extra plane is resident
-  if (req.write_maps) {
+  // --- maps, one at a time so at most one extra plane is resident (unless they are kept)
+  if (req.write_maps || kept) {
     json maps;
     std::optional<Map> abs_map;
     MapRange abs_range;
-    auto emit = [&](const Map& map, std::optional<MapRange> range) {
+    auto emit = [&](Map map, std::optional<MapRange> range) {
       const MapRange rg = range ? *range : auto_range(map);
-      maps[map.name] = map_entry(write_map(map, req.out_dir, rg), map);
-      return rg;
+      if (req.write_maps) maps[map.name] = map_entry(write_map(map, req.out_dir, rg), map);
+      if (req.write_maps && map.name == "abs_error") abs_map = map, abs_range = rg;  // for the strip
+      if (kept) kept->push_back(std::move(map));
     };
-    {
-      Map a = abs_error_map(r, t);
-      abs_range = emit(a, std::nullopt);
-      abs_map = std::move(a);
-    }
+    emit(abs_error_map(r, t), std::nullopt);
     emit(relative_error_map(r, t), std::nullopt);
     emit(signed_luminance_map(r, t), std::nullopt);
     emit(leak_map(r, t, v), std::nullopt);
-    {
-      Map fm{"flip", flip_def + " per pixel", "1", false, f.width, f.height, std::move(f.map)};
-      MapRange unit_range{0.0f, 1.0f, "FLIP's own range [0, 1]"};
-      emit(fm, unit_range);
+    emit(Map{"flip", flip_def + " per pixel", "1", false, f.width, f.height, std::move(f.map)},
+         MapRange{0.0f, 1.0f, "FLIP's own range [0, 1]"});
+    if (req.write_maps) {
+      out["maps"] = maps;
+      const StripInfo si = write_strip(req.out_dir / "strip.png", r, t, *abs_map, abs_range, hdr);
+      out["strip"] = {{"png", "strip.png"},
+                      {"panels", {"reference", "technique", "abs_error"}},
+                      {"exposure", si.exposure},
+                      {"panel_size", {si.panel_width, si.panel_height}}};
     }
-    out["maps"] = maps;
-    const StripInfo si = write_strip(req.out_dir / "strip.png", r, t, *abs_map, abs_range, hdr);
-    out["strip"] = {{"png", "strip.png"},
-                    {"panels", {"reference", "technique", "abs_error"}},
-                    {"exposure", si.exposure},
-                    {"panel_size", {si.panel_width, si.panel_height}}};
   }
   return out;
 }

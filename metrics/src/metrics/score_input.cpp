@@ -1,4 +1,4 @@
-// read_input (score_image.h): the one place an input file becomes what the metrics compare.
+// prepare_input (score_image.h): the one place an input becomes what the metrics compare.
 
 #include <cstring>
 
@@ -11,8 +11,11 @@
 namespace giq::metrics::detail {
 
 image::Image read_input(const std::string& file, Side side, const ScoreRequest& req) {
-  const image::Image in = image::read_image(file);
-  const bool reference = side == Side::Reference, exr = image::is_exr_file(file);
+  return prepare_input(image::read_image(file), file, image::is_exr_file(file), side, req);
+}
+
+image::Image prepare_input(const image::Image& in, const std::string& file, bool exr, Side side, const ScoreRequest& req) {
+  const bool reference = side == Side::Reference;
   const std::string& layer = reference || !req.test_layer ? req.layer : *req.test_layer;
   rgb_layer(in, layer, file);  // throws, naming the layers present
   Crop c{0, 0, in.width(), in.height()};

@@ -1,15 +1,15 @@
-// score() for sequences: frames are read one at a time (two passes when lag needs the changed
-// region first), so memory stays at two reference and two technique frames plus the
-// per-pixel accumulators of SequenceAccumulator.
+// score() for sequences: frames are read (or prepared, when in memory) one at a time (two
+// passes when lag needs the changed region first), so memory stays at two reference and two
+// technique frames plus the per-pixel accumulators of SequenceAccumulator.
 
 #include <limits>
 #include <optional>
 
-#include "flip_valid.h"
 #include "giq/base/error.h"
 #include "giq/image/io.h"
 #include "giq/metrics/catalogue.h"
 #include "giq/metrics/error.h"
+#include "giq/metrics/flip.h"
 #include "giq/metrics/lag.h"
 #include "giq/metrics/maps.h"
 #include "giq/metrics/sequence.h"
@@ -29,17 +29,17 @@ std::optional<RgbLayer> variance_of(const image::Image& ref, const std::string& 
 
 }  // namespace
 
-json score_sequence(const ScoreRequest& req) {
-  const int first = req.frames->first, last = req.frames->second, frames = last - first + 1;
-  const bool per_frame_ref = is_pattern(req.reference);
+json score_sequence(const Frames& in, const ScoreRequest& req, std::vector<Map>* kept) {
+  const int first = in.first, last = in.last, frames = last - first + 1;
+  const bool per_frame_ref = in.per_frame_reference;
   const std::string layer_name = req.layer.empty() ? "beauty" : req.layer;
   const json io = {"reference:" + layer_name, "test:" + layer_name};
-  auto ref_file = [&](int f) { return frame_path(req.reference, f); };
-  auto test_file = [&](int f) { return frame_path(req.test, f); };
-  const bool hdr = compares_hdr(ref_file(first), test_file(first), req);
+  const auto& ref_file = in.reference_name;
+  const auto& test_file = in.test_name;
+  const bool hdr = in.hdr;
 
   std::optional<image::Image> static_ref;
-  if (!per_frame_ref) static_ref = read_input(req.reference, Side::Reference, req);
+  if (!per_frame_ref) static_ref = in.reference(first);
 
   // --- pass 1 (references only): the step frame and the changed region, for lag90
   json lag = {{"value_frames", nullptr}, {"definition", "lag90"}};
@@ -62,7 +62,7 @@ json score_sequence(const ScoreRequest& req) {
       double best = -1.0;
       std::optional<image::Image> prev;
       for (int f = first; f <= last; ++f) {
-        image::Image cur = read_input(ref_file(f), Side::Reference, req);
+        image::Image cur = in.reference(f);
         const RgbLayer c = rgb_layer(cur, req.layer, ref_file(f));
         if (prev) {
           if (cur.width() != prev->width() || cur.height() != prev->height())
@@ -74,8 +74,8 @@ json score_sequence(const ScoreRequest& req) {
       }
       lag["step_frame_source"] = "detected: largest mean |Y_R,t - Y_R,t-1|";
     }
-    const image::Image before = read_input(ref_file(first + t0 - 1), Side::Reference, req);
-    const image::Image after = read_input(ref_file(last), Side::Reference, req);
+    const image::Image before = in.reference(first + t0 - 1);
+    const image::Image after = in.reference(last);
     const auto vb = variance_of(before, req.layer, ref_file(first + t0 - 1));
     const auto va = variance_of(after, req.layer, ref_file(last));
     region = changed_region(rgb_layer(before, req.layer, ref_file(first + t0 - 1)), vb ? &*vb : nullptr,
@@ -97,11 +97,11 @@ json score_sequence(const ScoreRequest& req) {
   json per_frame = json::array(), last_frame;
   int width = 0, height = 0;
   for (int f = first; f <= last; ++f) {
-    image::Image test = read_input(test_file(f), Side::Test, req);
+    image::Image test = in.test(f);
     std::optional<image::Image> ref_frame;
-    if (per_frame_ref) ref_frame = read_input(ref_file(f), Side::Reference, req);
+    if (per_frame_ref) ref_frame = in.reference(f);
     const image::Image& ref = per_frame_ref ? *ref_frame : *static_ref;
-    const std::string rf = per_frame_ref ? ref_file(f) : req.reference;
+    const std::string rf = per_frame_ref ? ref_file(f) : in.reference_label;
     check_pair(ref, rf, test, test_file(f), req.layer);
     if (!acc) {
       width = ref.width(), height = ref.height();
@@ -123,12 +123,12 @@ json score_sequence(const ScoreRequest& req) {
                          {"relmse_trimmed", number(e.relmse_trimmed)},
                          {"nonfinite_pixels", e.nonfinite_pixels}});
     if (!region.empty()) r_t.push_back(region_abs_error(r, t, region));
-    if (prev_test) {
+    if (prev_test && !req.sequence_only) {
       flip_test += flip_valid(*prev_test, test, req.layer, hdr).mean;
       if (per_frame_ref) flip_ref += flip_valid(*prev_ref, ref, req.layer, hdr).mean;
       ++flip_pairs;
     }
-    if (f == last) last_frame = score_image(ref, rf, test, test_file(f), hdr, req);
+    if (f == last && !req.sequence_only) last_frame = score_image(ref, rf, test, test_file(f), hdr, req, kept);
     prev_test = std::move(test);
     if (per_frame_ref) prev_ref = std::move(ref_frame);
   }
@@ -149,11 +149,13 @@ json score_sequence(const ScoreRequest& req) {
   q["mean_reference_luminance"] = number(s.mean_reference_luminance);
   q["flicker"] = metric(s.flicker, "flicker", io, unit_of("flicker"));
   q["flicker_uncorrected"] = metric(s.flicker_uncorrected, "flicker", io, unit_of("flicker"));
-  const double tf_test = flip_pairs ? flip_test / flip_pairs : std::numeric_limits<double>::quiet_NaN();
-  const double tf_ref = flip_pairs ? flip_ref / flip_pairs : std::numeric_limits<double>::quiet_NaN();
-  q["temporal_flip"] = metric(tf_test - tf_ref, "temporal_flip", io, unit_of("temporal_flip"));
-  q["temporal_flip"]["technique_consecutive_flip"] = number(tf_test);
-  q["temporal_flip"]["reference_consecutive_flip"] = number(tf_ref);
+  if (!req.sequence_only) {
+    const double tf_test = flip_pairs ? flip_test / flip_pairs : std::numeric_limits<double>::quiet_NaN();
+    const double tf_ref = flip_pairs ? flip_ref / flip_pairs : std::numeric_limits<double>::quiet_NaN();
+    q["temporal_flip"] = metric(tf_test - tf_ref, "temporal_flip", io, unit_of("temporal_flip"));
+    q["temporal_flip"]["technique_consecutive_flip"] = number(tf_test);
+    q["temporal_flip"]["reference_consecutive_flip"] = number(tf_ref);
+  }
   if (!region.empty()) {
     const LagResult lr = lag90(r_t, t0, req.frame_ms);
     lag["step_frame"] = first + t0;
@@ -177,8 +179,8 @@ json score_sequence(const ScoreRequest& req) {
   q["lag"] = lag;
 
   json out;
-  out["inputs"] = {{"reference", req.reference},
-                   {"test", req.test},
+  out["inputs"] = {{"reference", in.reference_label},
+                   {"test", in.test_label},
                    {"frames", {first, last}},
                    {"layer", layer_name},
                    {"width", width},
@@ -186,18 +188,21 @@ json score_sequence(const ScoreRequest& req) {
                    {"dynamic_range", hdr ? "hdr" : "ldr"}};
   out["sequence"] = q;
   out["per_frame"] = per_frame;
-  out["last_frame"] = last_frame;
-  if (req.write_maps) {
-    const Map sd = acc->temporal_stddev_map();
-    const WrittenMap wm = write_map(sd, req.out_dir, auto_range(sd));
-    out["maps"] = {{"temporal_stddev",
-                    {{"exr", wm.exr.filename().string()},
-                     {"png", wm.png.filename().string()},
-                     {"definition", sd.definition},
-                     {"unit", sd.unit},
-                     {"colormap", wm.colormap},
-                     {"range", {wm.range.lo, wm.range.hi}},
-                     {"range_rule", wm.range.rule}}}};
+  if (!req.sequence_only) out["last_frame"] = last_frame;
+  if (req.write_maps || kept) {
+    Map sd = acc->temporal_stddev_map();
+    if (req.write_maps) {
+      const WrittenMap wm = write_map(sd, req.out_dir, auto_range(sd));
+      out["maps"] = {{"temporal_stddev",
+                      {{"exr", wm.exr.filename().string()},
+                       {"png", wm.png.filename().string()},
+                       {"definition", sd.definition},
+                       {"unit", sd.unit},
+                       {"colormap", wm.colormap},
+                       {"range", {wm.range.lo, wm.range.hi}},
+                       {"range_rule", wm.range.rule}}}};
+    }
+    if (kept) kept->push_back(std::move(sd));
   }
   return out;
 }

@@ -49,4 +49,12 @@ FlipResult hdr_flip(const image::Image& reference, const image::Image& test, std
 FlipResult ldr_flip(const image::Image& reference, const image::Image& test, std::string_view layer,
                     const FlipOptions& options = {});
 
+// FLIP as giq score computes it, on a pair that may hold NaN/Inf: HDR-FLIP when `hdr`, else
+// LDR-FLIP. FLIP's filters spread a non-finite value over its neighbourhood, so such pixels
+// are first set to 0 in both images (no difference of their own), and the mean and max are
+// taken over the valid pixels only (NaN in the map). The weighted median and quartiles weight
+// each pixel by its own FLIP value, so the zeroed pixels carry ~no weight.
+FlipResult flip_valid(const image::Image& reference, const image::Image& test, std::string_view layer, bool hdr,
+                      const FlipOptions& options = {});
+
 }  // namespace giq::metrics

@@ -17,7 +17,9 @@
 #include <string>
 #include <vector>
 
+#include "giq/image/image.h"
 #include "giq/metrics/display.h"
+#include "giq/metrics/maps.h"
 
 namespace giq::metrics {
 
@@ -51,6 +53,9 @@ struct ScoreRequest {
   std::string timings;             // the timings file it came from
   std::optional<int> step_frame;   // lag: the frame of the step change (default: detected)
   bool write_maps = true;
+  // Sequences: only the sequence metrics (bias/variance, flicker, lag, per-frame errors),
+  // without temporal FLIP and the full score of the last frame (giq.flicker, giq.lag).
+  bool sequence_only = false;
 };
 
 // Runs everything, writes <out_dir>/metrics.json (atomically) and returns its content.
@@ -59,6 +64,27 @@ struct ScoreRequest {
 // a brightness ratio suggesting an exposure or unit mismatch, a black or too noisy
 // reference) is scored anyway and says why in metrics.json's "warnings".
 nlohmann::json score(const ScoreRequest& request);
+
+// Images already in memory (the Python module): one image per side, or one per frame (a
+// reference of one image stands for every frame). `name`s stand for the files in messages and
+// metrics.json; `hdr` says the values are linear radiance, as an EXR's are, rather than
+// display-referred, as an 8-bit image's (decoded to linear) are.
+struct ImageInputs {
+  std::vector<image::Image> reference, test;
+  bool sequence = false;  // test holds frames 0..n-1 (even one) rather than one image
+  std::string reference_name = "<reference>", test_name = "<test>";
+  bool reference_hdr = true, test_hdr = true;
+};
+
+struct ScoreResult {
+  nlohmann::json metrics;  // what metrics.json holds
+  std::vector<Map> maps;   // the single image's (or last frame's) maps, when keep_maps
+};
+
+// score() on images in memory: the same checks, metrics and metrics.json, written with the
+// maps and strip only when request.out_dir is set (request.reference, .test and .frames are
+// ignored: with several test images, the frames are 0..n-1).
+ScoreResult score(const ImageInputs& inputs, const ScoreRequest& request, bool keep_maps = false);
 
 // metrics.json's layout version: 2 stores the input paths (inputs.reference, test, scene,
 // timings) relative to the file's own folder; 1 stored them as given on the command line.
