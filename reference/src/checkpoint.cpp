@@ -8,39 +8,13 @@
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
 #include "giq/base/hash.h"
+#include "binary_record.h"
 
 namespace giq::reference {
 namespace {
 
 constexpr char kMagic[] = "giq-checkpoint 2\n";
 static_assert(std::is_trivially_copyable_v<PixelAccumulator> && std::is_trivially_copyable_v<PixelAux>);
-
-template <class T>
-void put(std::string& out, const T& v) {
-  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
-}
-
-class Reader {
- public:
-  Reader(const std::string& data, const std::filesystem::path& path) : data_(data), path_(path) {}
-  template <class T>
-  T get() {
-    T v;
-    bytes(&v, sizeof(T));
-    return v;
-  }
-  void bytes(void* dst, size_t n) {
-    if (n > data_.size() - pos_) throw InputError(path_.string(), "checkpoint", "file is truncated; delete it to start over");
-    std::memcpy(dst, data_.data() + pos_, n);
-    pos_ += n;
-  }
-  size_t pos() const { return pos_; }
-
- private:
-  const std::string& data_;
-  const std::filesystem::path& path_;
-  size_t pos_ = 0;
-};
 
 }  // namespace
 
@@ -70,7 +44,7 @@ std::optional<Checkpoint> read_checkpoint(const std::filesystem::path& path, con
   std::memcpy(&stored_hash, data.data() + data.size() - sizeof(uint64_t), sizeof(uint64_t));
   if (Hasher().add(data.data(), data.size() - sizeof(uint64_t)).value() != stored_hash)
     throw InputError(file, "checkpoint", "checksum mismatch: the file is corrupt; delete it to start over");
-  Reader r(data, path);
+  RecordReader r(data, data.size(), path.string(), "checkpoint", "file is truncated; delete it to start over");
   std::string skip(magic, '\0');
   r.bytes(skip.data(), magic);
   const uint64_t n = r.get<uint64_t>();

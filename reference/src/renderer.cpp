@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "giq/base/error.h"
+#include "giq/reference/part.h"
 #include "lane_integrator.h"
 #include "path_integrator.h"
 
@@ -138,7 +139,11 @@ void Renderer::render_aux(Film& film) const {
   });
 }
 
-bool Renderer::render(Film& film, uint32_t target_spp, const std::atomic<bool>* cancel, RenderStats* stats) const {
+// A shard's units (part.h) are whole tiles.
+static_assert(kUnitSize % kTile == 0);
+
+bool Renderer::render(Film& film, uint32_t target_spp, const std::atomic<bool>* cancel, RenderStats* stats,
+                      const std::function<bool(int x0, int y0)>& only) const {
   const RenderContext& ctx = impl_->ctx;
   const int tiles_x = (film.width + kTile - 1) / kTile, tiles_y = (film.height + kTile - 1) / kTile;
   std::atomic<bool> skipped{false};
@@ -154,7 +159,9 @@ bool Renderer::render(Film& film, uint32_t target_spp, const std::atomic<bool>* 
               skipped = true;
               continue;
             }
-            const RenderStats s = impl_->kernels.render_tile(ctx, film, (t % tiles_x) * kTile, (t / tiles_x) * kTile, target_spp);
+            const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
+            if (only && !only(x0, y0)) continue;
+            const RenderStats s = impl_->kernels.render_tile(ctx, film, x0, y0, target_spp);
             rays.fetch_add(s.rays, std::memory_order_relaxed);
             samples.fetch_add(s.samples, std::memory_order_relaxed);
           }

@@ -4,6 +4,7 @@
 //   OUT/exr         small EXRs: every compression, half/float/uint, multi-part, tiled
 //   OUT/gate_config golden/gate.json and tests/data/gate
 //   OUT/checkpoint  checkpoints of small films, with and without their checksum
+//   OUT/part        the two parts of a small sharded render, with and without their checksum
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -24,6 +25,7 @@
 #include "fuzz_input.h"
 #include "giq/image/io.h"
 #include "giq/reference/checkpoint.h"
+#include "giq/reference/part.h"
 
 namespace fs = std::filesystem;
 
@@ -132,6 +134,30 @@ void checkpoint_seeds(const fs::path& to) {
   }
 }
 
+// Parts of a 130 x 70 render of two frames (3 x 2 units of 64 x 64) cut in two shards.
+void part_seeds(const fs::path& to) {
+  namespace ref = giq::reference;
+  for (uint32_t k = 1; k <= 2; ++k) {
+    ref::Part part;
+    part.identity = "scene 0 view front camera '' frames 3:4 spp 2 settings {}";
+    part.scene = "scene.gltf", part.scene_hash = "0", part.view = "front";
+    part.settings.width = 130, part.settings.height = 70;
+    part.spp = 2, part.first_frame = 3, part.last_frame = 4, part.shard = {k, 2};
+    const ref::WorkUnits units{3, 4, 130, 70};
+    for (int f = 3; f <= 4; ++f) {
+      ref::Film film(130, 70, 32);
+      for (ref::PixelAccumulator& p : film.pixels) p.samples = 2;
+      part.frames.push_back(ref::part_frame(film, f, giq::scenes::Camera{}, units, part.shard));
+    }
+    const std::string name = "shard_" + std::to_string(k) + "_of_2";
+    ref::write_part(to / (name + ".part"), part);
+    std::ifstream in(to / (name + ".part"), std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    bytes.resize(bytes.size() - sizeof(uint64_t));
+    std::ofstream(to / (name + "_unsummed.part"), std::ios::binary) << '\x01' << bytes;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -140,12 +166,13 @@ int main(int argc, char** argv) {
     return 2;
   }
   const fs::path out = argv[1], source = GIQ_SOURCE_DIR;
-  for (const char* h : {"gltf", "exr", "gate_config", "checkpoint"}) fs::create_directories(out / h);
+  for (const char* h : {"gltf", "exr", "gate_config", "checkpoint", "part"}) fs::create_directories(out / h);
   copy_seeds(source / "scenes", out / "gltf", {".gltf", ".glb"});
   copy_seeds(source / "tests/data/scenes", out / "gltf", {".gltf", ".glb"});
   exr_seeds(out / "exr");
   fs::copy_file(source / "golden/gate.json", out / "gate_config/golden_gate.json", fs::copy_options::overwrite_existing);
   copy_seeds(source / "tests/data/gate", out / "gate_config", {".json"});
   checkpoint_seeds(out / "checkpoint");
+  part_seeds(out / "part");
   return 0;
 }

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "giq/base/error.h"
+#include "giq/base/hash.h"
 
 namespace giq::fuzz {
 
@@ -44,6 +45,21 @@ inline std::filesystem::path input_file(const uint8_t* data, size_t size, const 
   if (size && std::fwrite(data, 1, size, f) != size) std::abort();
   std::fclose(f);
   return p;
+}
+
+// A file that ends with a 64-bit FNV-1a checksum of everything before it (checkpoints, shard
+// parts) refuses almost every mutation at that check. An input that starts with the byte 0x01
+// (such files start with 'g') stands for the file without its checksum: it is dropped and the
+// right checksum appended, so the mutations also reach the fields behind the check. Other
+// inputs are the file's bytes as they are.
+inline std::filesystem::path checksummed_input_file(const uint8_t* data, size_t size, const std::string& name) {
+  std::string bytes(reinterpret_cast<const char*>(data), size);
+  if (!bytes.empty() && bytes[0] == '\x01') {
+    bytes.erase(0, 1);
+    const uint64_t hash = giq::Hasher().add(bytes).value();
+    bytes.append(reinterpret_cast<const char*>(&hash), sizeof hash);
+  }
+  return input_file(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), name);
 }
 
 // Runs `read`; InputError is the expected outcome of bad input, anything else a finding.

@@ -15,12 +15,14 @@
 #include "command.h"
 #include "progress.h"
 #include "reference_frame.h"
+#include "reference_output.h"
 #include "scene_setup.h"
 #include "integer_check.h"
 #include "output_guard.h"
 #include "giq/base/error.h"
 #include "giq/base/frames.h"
 #include "giq/image/io.h"
+#include "giq/reference/part.h"
 #include "giq/reference/progressive_render.h"
 #include "giq/reference/reference_exr.h"
 #include "giq/reference/renderer.h"
@@ -73,6 +75,7 @@ struct Options {
   bool overwrite = false;
   bool record_time = false;
   bool half = false;
+  std::string shard;  // "K/N": render only this share of the work units into a part file
 };
 
 std::pair<int, int> frame_range(const Options& o, const sc::Scene& scene) {
@@ -89,46 +92,6 @@ std::pair<int, int> frame_range(const Options& o, const sc::Scene& scene) {
   return {a, b};
 }
 
-// The output path of one frame: "#" runs are replaced by the zero-padded frame number;
-// otherwise, when several frames are rendered, ".<frame>" goes before the extension.
-fs::path frame_path(const std::string& pattern, int frame, bool several) {
-  const size_t hash = pattern.find('#');
-  if (hash != std::string::npos) {
-    size_t n = 0;
-    while (hash + n < pattern.size() && pattern[hash + n] == '#') ++n;
-    std::string num = std::to_string(frame);
-    if (num.size() < n) num.insert(0, n - num.size(), '0');
-    return pattern.substr(0, hash) + num + pattern.substr(hash + n);
-  }
-  if (!several) return pattern;
-  fs::path p(pattern);
-  char num[16];
-  std::snprintf(num, sizeof num, ".%04d", frame);
-  return p.parent_path() / (p.stem().string() + num + p.extension().string());
-}
-
-// --half: the colour layers (beauty, direct, indirect, albedo) as float16, a third of the
-// size of float32 with zip compression on noisy data. Half keeps 11 significant bits, a
-// relative rounding error of at most 2^-11 (4.9e-4), far below the per-pixel noise of any
-// finite-spp render (golden/README.md has the measured ratio). The variance layer stays
-// float32: it spans many decades and is squared into z-scores and noise floors; so do depth,
-// normals, object ids and the sample count. A channel with a finite value beyond half's range
-// (65504) stays float32 rather than turn into infinity.
-image::ExrOptions exr_options(const image::Image& img, bool half) {
-  image::ExrOptions opts;
-  if (!half) return opts;
-  for (const char* layer : {"", "direct", "indirect", "albedo"}) {
-    if (!img.has_layer(layer)) continue;
-    for (const std::string& name : img.layer_channels(layer)) {
-      const float* c = img.channel(name);
-      bool fits = true;
-      for (size_t i = 0; i < img.pixel_count() && fits; ++i) fits = !(std::fabs(c[i]) > 65504.0f);
-      if (fits) opts.half_channels.insert(name);
-    }
-  }
-  return opts;
-}
-
 void draw_bar(ProgressLine& line, const ref::Progress& p, const std::string& label) {
   double fraction = 0.0;
   if (p.target_spp > 0) fraction = double(p.spp) / double(p.target_spp);
@@ -141,8 +104,61 @@ void draw_bar(ProgressLine& line, const ref::Progress& p, const std::string& lab
             format_seconds(p.elapsed_seconds).c_str(), format_seconds(p.eta_seconds).c_str(), 100.0 * p.rel_error);
 }
 
+// --shard K/N: this process's share of the work units (part.h), every pixel of it to --spp,
+// into a part file for `giq reference merge`. No checkpoints: a shard is redone whole.
+int run_shard(const Options& o, const sc::Scene& scene, const ref::RenderSettings& settings, int first, int last) {
+  const ref::Shard shard = ref::parse_shard(o.shard);
+  if (o.spp == 0 || o.seconds > 0.0 || o.rel_error > 0.0)
+    throw InputError("", "--shard",
+                     "shards stop at a sample count: give --spp alone (a time or an error target would stop each shard "
+                     "at a different point, and the parts would not add up to one render)");
+  if (o.resume || o.record_time || o.half)
+    throw InputError("", "--shard", "--resume, --record-time and --half do not apply to a shard (a shard is rendered again "
+                                    "whole; give --half to giq reference merge)");
+  check_output_file(o.out, {o.scene}, "--out");
+  ref::Part part;
+  part.scene = o.scene;
+  part.scene_hash = scene.content_hash;
+  part.settings = settings;
+  part.spp = o.spp;
+  part.first_frame = first, part.last_frame = last;
+  part.shard = shard;
+  const ref::WorkUnits units{first, last, settings.width, settings.height};
+  uint64_t owned = 0;
+  for (int f = first; f <= last; ++f) {
+    const ReferenceFrame job = reference_frame(scene, o.scene, o.view, o.setup.camera, f, settings);
+    part.view = job.metadata.view, part.camera_given = job.metadata.camera_given;
+    bool any = false;
+    for (int t = 0; t < units.tiles_per_frame(); ++t) any |= ref::WorkUnits::owned(units.unit(f, t), shard);
+    if (!any) continue;
+    const ref::Renderer renderer(job.posed, job.metadata.camera, settings);
+    ref::Film film = renderer.make_film();
+    renderer.render_aux(film);
+    const auto mine = [&](int x, int y) {
+      return ref::WorkUnits::owned(units.unit(f, (y / ref::kUnitSize) * units.tiles_x() + x / ref::kUnitSize), shard);
+    };
+    if (!renderer.render(film, o.spp, &g_cancel, nullptr, mine)) {
+      std::fprintf(stderr, "giq: interrupted; nothing written; run shard %s again\n", o.shard.c_str());
+      return 130;
+    }
+    part.frames.push_back(ref::part_frame(film, f, job.metadata.camera, units, shard));
+    owned += part.frames.back().tiles.size();
+  }
+  part.identity = "scene " + scene.content_hash + " view " + part.view + " camera '" + part.camera_given + "' frames " +
+                  std::to_string(first) + ":" + std::to_string(last) + " spp " + std::to_string(o.spp) + " settings " +
+                  ref::settings_json(settings);
+  if (fs::path(o.out).has_parent_path()) fs::create_directories(fs::path(o.out).parent_path());
+  ref::write_part(o.out, part);
+  std::printf("reference shard %u/%u: %llu of %llu units of %dx%d pixels (frames %d to %d, %u spp) -> %s\n", shard.index,
+              shard.count, (unsigned long long)owned, (unsigned long long)(uint64_t(units.tiles_per_frame()) * uint64_t(last - first + 1)),
+              ref::kUnitSize, ref::kUnitSize, first, last, o.spp, o.out.c_str());
+  return 0;
+}
+
 int run(const Options& o) {
   const InterruptGuard interrupts;
+  if (o.scene.empty()) throw InputError("", "--scene", "a scene is required (a .gltf/.glb path)");
+  if (o.out.empty()) throw InputError("", "--out", "an output file is required");
   if (!o.view.empty() && o.setup.has_camera()) throw InputError("", "--view/--camera", "give a view or a camera, not both");
   ref::RenderSettings settings = o.settings;
   if (o.estimator == "mis") settings.estimator = ref::Estimator::Mis;
@@ -155,7 +171,7 @@ int run(const Options& o) {
   if (!(o.checkpoint_interval > 0.0)) throw InputError("", "--checkpoint-interval", "must be a positive number of seconds");
 
   if (o.resume && o.overwrite) throw InputError("", "--resume/--overwrite", "give one of them, not both");
-  {
+  if (o.shard.empty()) {
     std::string ext = fs::path(o.out).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext != ".exr")
@@ -163,6 +179,7 @@ int run(const Options& o) {
   }
   const sc::Scene scene = o.setup.load(o.scene, double(o.settings.width) / double(o.settings.height));
   const auto [first, last] = frame_range(o, scene);
+  if (!o.shard.empty()) return run_shard(o, scene, settings, first, last);
   // Every output and checkpoint is checked before the first sample: a render of hours must not
   // fail at its end, overwrite its scene, or discard another render's saved progress.
   for (int f = first; f <= last; ++f) {
@@ -225,7 +242,7 @@ int run(const Options& o) {
 void add_reference_command(CLI::App& app, int& exit_code) {
   static Options o;
   auto* cmd = app.add_subcommand("reference", "Render the path-traced reference EXR of a view");
-  cmd->add_option("--scene", o.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
+  cmd->add_option("--scene", o.scene, "glTF 2.0 scene (.gltf or .glb)");
   cmd->add_option("--view", o.view, "View name or index (default: the first view)");
   o.setup.add_options(*cmd);
   auto* frame = cmd->add_option("--frame", o.frame, "Frame of the sequence to render (default 0)");
@@ -246,14 +263,20 @@ void add_reference_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--sobol-block", o.settings.sobol_block, "Samples per Sobol block, a power of two from 2 to 256")
       ->capture_default_str();
-  cmd->add_option("--out", o.out, "Output EXR path")->required();
+  cmd->add_option("--out", o.out, "Output EXR path (with --shard: the part file)");
+  cmd->add_option("--shard", o.shard,
+                  "K/N: render only share K of N of the work units (frames x 64x64 tiles) into the part file --out; "
+                  "giq reference merge joins the N parts (docs/reference.md, 'Shards')");
   cmd->add_option("--checkpoint-interval", o.checkpoint_interval, "Seconds between checkpoints (OUT.checkpoint)")->capture_default_str();
   cmd->add_flag("--resume", o.resume, "Continue from OUT.checkpoint when it exists");
   cmd->add_flag("--overwrite", o.overwrite, "Discard an existing OUT.checkpoint and start again");
   cmd->add_flag("--half", o.half, "Store the colour layers as float16 (variance, depth, ids stay float32)");
   cmd->add_flag("--record-time", o.record_time, "Write the render time into the header (the file then differs run to run)");
   cmd->footer("Example: the Cornell box to a mean relative error of 1%, resumable:\n  giq reference --scene scenes/cornell.gltf --rel-error 0.01 --out out/cornell.exr --resume");
-  cmd->callback([&exit_code] { exit_code = run(o); });
+  CLI::App* merge = add_reference_merge_command(*cmd, exit_code);
+  cmd->callback([merge, &exit_code] {
+    if (!merge->parsed()) exit_code = run(o);
+  });
 }
 
 }  // namespace giq::cli

@@ -11,6 +11,8 @@ void add_scene_command(CLI::App& app, int& exit_code);
 void add_score_command(CLI::App& app, int& exit_code);
 #ifdef GIQ_WITH_REFERENCE
 void add_reference_command(CLI::App& app, int& exit_code);
+// `giq reference merge`, a subcommand of `giq reference` (cmd_reference_merge.cpp).
+CLI::App* add_reference_merge_command(CLI::App& reference, int& exit_code);
 #endif
 #ifdef GIQ_WITH_VULKAN
 void add_realtime_command(CLI::App& app, int& exit_code);

@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -92,8 +93,11 @@ class Renderer {
 
   // Adds samples until every pixel has `target_spp`. Work is split in tiles; when `cancel`
   // becomes true, tiles not yet started are skipped (their pixels keep fewer samples; the
-  // film stays valid and can be completed later). Returns false when cancelled.
-  bool render(Film& film, uint32_t target_spp, const std::atomic<bool>* cancel = nullptr, RenderStats* stats = nullptr) const;
+  // film stays valid and can be completed later). Returns false when cancelled. `only`, when
+  // given, picks the pixels to render by the top-left corner of each 16 x 16 tile (a shard's
+  // share: part.h); the others are left as they are.
+  bool render(Film& film, uint32_t target_spp, const std::atomic<bool>* cancel = nullptr, RenderStats* stats = nullptr,
+              const std::function<bool(int x0, int y0)>& only = {}) const;
 
   // Whether render() traces eight paths at a time (RenderSettings::lanes and a scene that
   // allows it).
