@@ -34,6 +34,7 @@ class RecordReader {
     return v;
   }
   void bytes(void* dst, size_t n) {
+    if (n == 0) return;  // dst may be an empty vector's null data(), which memcpy must not get
     if (n > end_ - pos_) fail(truncated_);
     std::memcpy(dst, data_.data() + pos_, n);
     pos_ += n;

@@ -89,6 +89,7 @@ void write_part(const std::filesystem::path& path, const Part& p) {
     put_camera(out, f.camera);
     put(out, uint32_t(f.tiles.size()));
     for (uint32_t t : f.tiles) put(out, t);
+    if (f.pixels.empty()) continue;  // a frame without tiles has no pixel data (and null data())
     out.append(reinterpret_cast<const char*>(f.pixels.data()), f.pixels.size() * sizeof(PixelAccumulator));
     out.append(reinterpret_cast<const char*>(f.aux.data()), f.aux.size() * sizeof(PixelAux));
   }

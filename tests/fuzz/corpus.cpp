@@ -134,18 +134,19 @@ void checkpoint_seeds(const fs::path& to) {
   }
 }
 
-// Parts of a 130 x 70 render of two frames (3 x 2 units of 64 x 64) cut in two shards.
+// Parts of a 65 x 3 render of two frames (2 units a frame: 64 x 3 and 1 x 3 pixels) cut in two
+// shards; small, so that the harness runs many inputs a second.
 void part_seeds(const fs::path& to) {
   namespace ref = giq::reference;
   for (uint32_t k = 1; k <= 2; ++k) {
     ref::Part part;
     part.identity = "scene 0 view front camera '' frames 3:4 spp 2 settings {}";
     part.scene = "scene.gltf", part.scene_hash = "0", part.view = "front";
-    part.settings.width = 130, part.settings.height = 70;
+    part.settings.width = 65, part.settings.height = 3;
     part.spp = 2, part.first_frame = 3, part.last_frame = 4, part.shard = {k, 2};
-    const ref::WorkUnits units{3, 4, 130, 70};
+    const ref::WorkUnits units{3, 4, 65, 3};
     for (int f = 3; f <= 4; ++f) {
-      ref::Film film(130, 70, 32);
+      ref::Film film(65, 3, 32);
       for (ref::PixelAccumulator& p : film.pixels) p.samples = 2;
       part.frames.push_back(ref::part_frame(film, f, giq::scenes::Camera{}, units, part.shard));
     }
