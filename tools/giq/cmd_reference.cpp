@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -106,7 +107,8 @@ void draw_bar(ProgressLine& line, const ref::Progress& p, const std::string& lab
 
 // --shard K/N: this process's share of the work units (part.h), every pixel of it to --spp,
 // into a part file for `giq reference merge`. No checkpoints: a shard is redone whole.
-int run_shard(const Options& o, const sc::Scene& scene, const ref::RenderSettings& settings, int first, int last) {
+// Checked before the scene is loaded, so a mistyped share costs nothing.
+ref::Shard shard_of(const Options& o) {
   const ref::Shard shard = ref::parse_shard(o.shard);
   if (o.spp == 0 || o.seconds > 0.0 || o.rel_error > 0.0)
     throw InputError("", "--shard",
@@ -116,6 +118,11 @@ int run_shard(const Options& o, const sc::Scene& scene, const ref::RenderSetting
     throw InputError("", "--shard", "--resume, --record-time and --half do not apply to a shard (a shard is rendered again "
                                     "whole; give --half to giq reference merge)");
   check_output_file(o.out, {o.scene}, "--out");
+  return shard;
+}
+
+int run_shard(const Options& o, ref::Shard shard, const sc::Scene& scene, const ref::RenderSettings& settings, int first,
+              int last) {
   ref::Part part;
   part.scene = o.scene;
   part.scene_hash = scene.content_hash;
@@ -171,7 +178,8 @@ int run(const Options& o) {
   if (!(o.checkpoint_interval > 0.0)) throw InputError("", "--checkpoint-interval", "must be a positive number of seconds");
 
   if (o.resume && o.overwrite) throw InputError("", "--resume/--overwrite", "give one of them, not both");
-  if (o.shard.empty()) {
+  const std::optional<ref::Shard> shard = o.shard.empty() ? std::nullopt : std::optional(shard_of(o));
+  if (!shard) {
     std::string ext = fs::path(o.out).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext != ".exr")
@@ -179,7 +187,7 @@ int run(const Options& o) {
   }
   const sc::Scene scene = o.setup.load(o.scene, double(o.settings.width) / double(o.settings.height));
   const auto [first, last] = frame_range(o, scene);
-  if (!o.shard.empty()) return run_shard(o, scene, settings, first, last);
+  if (shard) return run_shard(o, *shard, scene, settings, first, last);
   // Every output and checkpoint is checked before the first sample: a render of hours must not
   // fail at its end, overwrite its scene, or discard another render's saved progress.
   for (int f = first; f <= last; ++f) {
