@@ -129,12 +129,18 @@ Film Renderer::make_film() const {
   return Film(s.width, s.height, s.block());
 }
 
-void Renderer::render_aux(Film& film) const {
+void Renderer::render_aux(Film& film, const std::function<bool(int x0, int y0)>& only) const {
   const RenderContext& ctx = impl_->ctx;
+  const int tiles_x = (film.width + kTile - 1) / kTile, tiles_y = (film.height + kTile - 1) / kTile;
   impl_->run([&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, film.height), [&](const tbb::blocked_range<int>& rows) {
-      for (int y = rows.begin(); y < rows.end(); ++y)
-        for (int x = 0; x < film.width; ++x) film.aux[size_t(y) * size_t(film.width) + size_t(x)] = impl_->kernels.aux(ctx, x, y);
+    tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int>& r) {
+      for (int t = r.begin(); t < r.end(); ++t) {
+        const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
+        if (only && !only(x0, y0)) continue;
+        for (int y = y0; y < std::min(y0 + kTile, film.height); ++y)
+          for (int x = x0; x < std::min(x0 + kTile, film.width); ++x)
+            film.aux[size_t(y) * size_t(film.width) + size_t(x)] = impl_->kernels.aux(ctx, x, y);
+      }
     });
   });
 }

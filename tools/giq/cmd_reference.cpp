@@ -139,11 +139,11 @@ int run_shard(const Options& o, ref::Shard shard, const sc::Scene& scene, const 
     for (int t = 0; t < units.tiles_per_frame(); ++t) any |= ref::WorkUnits::owned(units.unit(f, t), shard);
     if (!any) continue;
     const ref::Renderer renderer(job.posed, job.metadata.camera, settings);
-    ref::Film film = renderer.make_film();
-    renderer.render_aux(film);
     const auto mine = [&](int x, int y) {
       return ref::WorkUnits::owned(units.unit(f, (y / ref::kUnitSize) * units.tiles_x() + x / ref::kUnitSize), shard);
     };
+    ref::Film film = renderer.make_film();
+    renderer.render_aux(film, mine);  // the share's pixels only, like the samples
     if (!renderer.render(film, o.spp, &g_cancel, nullptr, mine)) {
       std::fprintf(stderr, "giq: interrupted; nothing written; run shard %s again\n", o.shard.c_str());
       return 130;

@@ -28,9 +28,6 @@ namespace {
 
 using nlohmann::json;
 
-bool is_path(const py::handle& h) { return py::isinstance<py::str>(h) || py::hasattr(h, "__fspath__"); }
-std::string path_of(const py::handle& h) { return py::str(py::module_::import("os").attr("fspath")(h)); }
-
 // One side of a comparison in memory: one image, or one per frame.
 struct Side {
   std::vector<image::Image> images;

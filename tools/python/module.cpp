@@ -26,6 +26,9 @@ py::object to_python(const nlohmann::json& j) {
   }
 }
 
+bool is_path(const py::handle& h) { return py::isinstance<py::str>(h) || py::hasattr(h, "__fspath__"); }
+std::string path_of(const py::handle& h) { return py::str(py::module_::import("os").attr("fspath")(h)); }
+
 }  // namespace giq::python
 
 PYBIND11_MODULE(_giq, m) {

@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace giq::python {
 
@@ -19,5 +20,9 @@ void register_rendering(py::module_& m);
 
 // JSON as Python objects (dict, list, str, int, float, bool, None).
 py::object to_python(const nlohmann::json& j);
+
+// A path argument: a str or an os.PathLike, as os.fspath reads it.
+bool is_path(const py::handle& h);
+std::string path_of(const py::handle& h);
 
 }  // namespace giq::python

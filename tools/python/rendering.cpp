@@ -59,8 +59,8 @@ Scene load_scene(const std::filesystem::path& path, const py::object& sun, const
   cli::SceneSetup setup;
   setup.sun = words_of(sun, "sun");
   // env: a path, a radiance (one number or r, g, b), as --env takes them.
-  if (py::isinstance<py::str>(env) || py::hasattr(env, "__fspath__")) {
-    setup.env = py::str(py::module_::import("os").attr("fspath")(env));
+  if (is_path(env)) {
+    setup.env = path_of(env);
   } else if (py::isinstance<py::list>(env) || py::isinstance<py::tuple>(env)) {
     for (const py::handle v : env) setup.env += (setup.env.empty() ? "" : ",") + py::repr(py::float_(py::reinterpret_borrow<py::object>(v))).cast<std::string>();
   } else if (!env.is_none()) {
@@ -73,7 +73,7 @@ Scene load_scene(const std::filesystem::path& path, const py::object& sun, const
 // The scene argument: a giq.Scene or a path.
 Scene scene_of(const py::object& o) {
   if (py::isinstance<Scene>(o)) return o.cast<Scene>();
-  return load_scene(py::str(py::module_::import("os").attr("fspath")(o)).cast<std::string>(), py::none(), py::none());
+  return load_scene(path_of(o), py::none(), py::none());
 }
 
 // The scene with the camera= view added (for an image of this aspect), or as it is.

@@ -88,8 +88,9 @@ class Renderer {
   const RenderSettings& settings() const;
   Film make_film() const;
 
-  // Fills the first-hit layers (albedo, N, Z, objectId) from each pixel centre's ray.
-  void render_aux(Film& film) const;
+  // Fills the first-hit layers (albedo, N, Z, objectId) from each pixel centre's ray; `only`
+  // as in render().
+  void render_aux(Film& film, const std::function<bool(int x0, int y0)>& only = {}) const;
 
   // Adds samples until every pixel has `target_spp`. Work is split in tiles; when `cancel`
   // becomes true, tiles not yet started are skipped (their pixels keep fewer samples; the
