@@ -49,6 +49,23 @@ Receiver load_receiver(ivec2 px) {
   return r;
 }
 
+// The receiver's geometric normal, on the viewer's side.
+vec3 receiver_geometric_normal(Receiver r) {
+  vec3 a, b, c;
+  triangle_vertices(r.tri, a, b, c);
+  return normalize(cross(b - a, c - a)) * (r.back ? -1.0 : 1.0);
+}
+
+// The origin of a ray that leaves the receiver (shaders/sampling.glsl's offset_ray), lifted
+// further along ng by 2^-16 of the larger of the point's and the camera's (`eye`) coordinates:
+// the G-buffer point is where the camera ray meets the triangle's plane, so its error along
+// the normal grows with both, and a plane through the origin seen from far away would
+// otherwise have its rays start below it.
+vec3 receiver_ray_origin(Receiver r, vec3 ng, vec3 eye) {
+  vec3 m = max(abs(r.x), abs(eye));
+  return offset_ray(r.x, ng) + ng * (max(m.x, max(m.y, m.z)) * (1.0 / 65536.0));
+}
+
 // The receiver's material at its G-buffer point, textures looked up again there at the
 // pixel's mip levels.
 Surface receiver_surface(Receiver r) { return hit_material(r.tri, r.bary.x, r.bary.y, r.n, r.footprint); }

@@ -10,7 +10,8 @@
   X(lpv)                  \
   X(vct)                  \
   X(ddgi)                 \
-  X(hybrid)
+  X(hybrid)               \
+  X(gi1)
 
 namespace giq::realtime {
 

@@ -59,8 +59,16 @@ TEST(ResultsPage, NumbersAndComparisonsFromResultsJson) {
                       "`worse` is worse than `direct` (0.750 vs 0.500, 1.50× worse)."),
             std::string::npos)
       << page;
+  // Every technique but `direct` against the best of them.
+  EXPECT_NE(page.find("- FLIP of the beauty, against the best other technique: `better` is the best (0.250); "
+                      "`worse` 3.00× worse (0.750)."),
+            std::string::npos)
+      << page;
   // Flicker below 1e-4 is float rounding: equal to direct's, which is below it too.
   EXPECT_NE(page.find("- flicker: `better` equals `direct` (0.00); `worse` is worse than `direct` (0.300 vs 0.00)."),
+            std::string::npos)
+      << page;
+  EXPECT_NE(page.find("- flicker, against the best other technique: `better` is the best (0.00); `worse` worse (0.300)."),
             std::string::npos)
       << page;
   EXPECT_NE(page.find("Local device: dev"), std::string::npos);

@@ -25,15 +25,17 @@ TEST(Techniques, EveryRegisteredTechniqueDeclaresValidParametersAndAQualityKnob)
       EXPECT_LE(p.default_value, p.max_value) << t.name << "." << p.name;
       EXPECT_FALSE(p.description.empty()) << t.name << "." << p.name;
     }
-    // The quality knob is a declared parameter, swept from cheapest to best within its range.
+    // The quality knob is a declared parameter, swept from cheapest to best within its range:
+    // strictly monotonic, increasing or (a temporal upscale factor) decreasing.
     const auto knob = std::find_if(t.parameters.begin(), t.parameters.end(),
                                    [&](const Parameter& p) { return p.name == t.quality.parameter; });
     ASSERT_NE(knob, t.parameters.end()) << t.name << "'s quality knob '" << t.quality.parameter << "'";
     ASSERT_GE(t.quality.values.size(), 2u) << t.name;
+    const double direction = t.quality.values[1] > t.quality.values[0] ? 1.0 : -1.0;
     for (size_t i = 0; i < t.quality.values.size(); ++i) {
       EXPECT_GE(t.quality.values[i], knob->min_value) << t.name;
       EXPECT_LE(t.quality.values[i], knob->max_value) << t.name;
-      if (i > 0) EXPECT_GT(t.quality.values[i], t.quality.values[i - 1]) << t.name;
+      if (i > 0) EXPECT_GT(direction * (t.quality.values[i] - t.quality.values[i - 1]), 0.0) << t.name;
     }
     EXPECT_EQ(&find_technique(t.name), &t);
   }

@@ -28,6 +28,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "command.h"
@@ -151,6 +152,35 @@ std::vector<std::string> comparison(const ordered& rows, const std::string& scen
   return out;
 }
 
+// Sentences placing every technique but `direct` against the best of them on a metric (lower
+// is better): the best first, then each other one as a ratio to it.
+std::vector<std::string> against_best(const ordered& rows, const std::string& scene, const std::string& layer,
+                                      const std::string& name) {
+  const double floor = page_floor(name);
+  std::vector<std::pair<double, std::string>> ranked;
+  for (const auto& r : rows) {
+    if (r["scene"] != scene || r["technique"] == "direct" || !r[layer].contains(name) || r[layer][name].is_null())
+      continue;
+    const double v = r[layer][name].get<double>();
+    ranked.emplace_back(std::abs(v) < floor ? 0.0 : v, "`" + r["technique"].get<std::string>() + "`");
+  }
+  if (ranked.size() < 2) return {};
+  std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  const auto& [best, best_name] = ranked[0];
+  if (ranked.back().first == best) return {"all equal (" + fmt(ordered(best)) + ")"};
+  auto versus = [&](double v) {
+    if (v == best) return std::string("equals it");
+    if (best == 0.0) return std::string("worse");
+    char ratio[32];
+    std::snprintf(ratio, sizeof ratio, "%.2f× worse", v / best);
+    return std::string(ratio);
+  };
+  std::vector<std::string> out = {best_name + " is the best (" + fmt(ordered(best)) + ")"};
+  for (size_t i = 1; i < ranked.size(); ++i)
+    out.push_back(ranked[i].second + " " + versus(ranked[i].first) + " (" + fmt(ordered(ranked[i].first)) + ")");
+  return out;
+}
+
 std::string join(const std::vector<std::string>& parts, const std::string& sep) {
   std::string s;
   for (size_t i = 0; i < parts.size(); ++i) s += (i ? sep : "") + parts[i];
@@ -230,6 +260,8 @@ std::string page(const ordered& results) {
     for (const auto& [layer, name, label] : said_of) {
       const auto said = comparison(rows, scene, layer, name);
       if (!said.empty()) lines.push_back("- " + label + ": " + join(said, "; ") + ".");
+      const auto ranked = against_best(rows, scene, layer, name);
+      if (!ranked.empty()) lines.push_back("- " + label + ", against the best other technique: " + join(ranked, "; ") + ".");
     }
     lines.push_back("");
   }

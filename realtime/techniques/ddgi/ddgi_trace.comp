@@ -1,14 +1,13 @@
 #version 460
 // `ddgi`'s probe rays (Majercik et al. 2019): every active probe traces its rays
 // through the shared compute BVH; each hit is shaded with the light the shared direct pass
-// uses (punctual lights exactly, emissive meshes by the exact polygon irradiance of
-// shaders/polygon_irradiance.glsl), shadowed here by one BVH ray per light (towards an area
-// light's representative point) since the frame's shadow maps cover only what the camera sees,
-// plus the volume's own irradiance at the hit from the previous update (one more bounce per
-// frame; the albedo capped below 1 keeps the loop contracting). The hit's own emission is left
-// out: an emissive mesh's light reaches receivers through the shared direct pass (its area
-// light), and counting it here too would add it twice. Misses see the environment (a map too),
-// which the direct pass does not light surfaces with: that light lands in the indirect layer.
+// uses, shadowed by BVH rays (passes/hit_irradiance.glsl) since the frame's shadow maps cover
+// only what the camera sees, plus the volume's own irradiance at the hit from the previous
+// update (one more bounce per frame; the albedo capped below 1 keeps the loop contracting).
+// The hit's own emission is left out: an emissive mesh's light reaches receivers through the
+// shared direct pass (its area light), and counting it here too would add it twice. Misses
+// see the environment (a map too), which the direct pass does not light surfaces with: that
+// light lands in the indirect layer.
 // Output per ray: radiance, and the hit distance, negative for the back of a one-sided
 // surface (a probe that sees many is inside geometry).
 // Inactive probes (classification) trace only their fixed rays, which need no shading.
@@ -39,47 +38,7 @@ layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 6) writeonly buffer Rays { ve
 layout(push_constant) uniform Push { DdgiTracePush pc; };
 
 #include "techniques/ddgi/ddgi_volume.glsl"
-
-// Diffuse irradiance of area light l at p (normal n): each triangle exactly, unshadowed.
-vec3 area_irradiance(GpuAreaLight l, vec3 p, vec3 n) {
-  vec3 e = vec3(0.0);
-  for (uint k = 0u; k < l.range.y; ++k) {
-    GpuAreaTriangle t = area_triangles[l.range.x + k];
-    vec3 a = t.a.xyz - p, b = t.b.xyz - p, c = t.c.xyz - p;
-    // A one-sided emitter lights only the half-space in front of it.
-    if (t.a.w == 0.0 && dot(cross(b - a, c - a), -a) <= 0.0) continue;
-    e += t.radiance.rgb * polygon_irradiance(a, b, c, n);
-  }
-  return e;
-}
-
-// Irradiance from the light sources at p (geometric normal ng, shading normal ns), shadowed.
-vec3 direct_irradiance(vec3 p, vec3 ng, vec3 ns) {
-  vec3 origin = offset_ray(p, ng);
-  vec3 e = vec3(0.0);
-  for (uint i = 0u; i < pc.light_count; ++i) {
-    vec3 wi;
-    float dist;
-    vec3 li = punctual_incident(scene_lights[i], p, wi, dist);
-    float cos_i = dot(ns, wi);
-    if (cos_i <= 0.0 || dot(ng, wi) <= 0.0 || all(equal(li, vec3(0.0)))) continue;
-    if (occluded(origin, wi, dist < 1e30 ? dist * (1.0 - 1e-4) : 1e30)) continue;
-    e += li * cos_i;
-  }
-  for (uint i = 0u; i < pc.area_light_count; ++i) {
-    GpuAreaLight l = area_lights[i];
-    vec3 el = area_irradiance(l, p, ns);
-    if (all(equal(el, vec3(0.0)))) continue;
-    vec3 to = l.position.xyz - p;
-    float dist = length(to);
-    // Stop short of the emitter so that its own triangles do not shadow it (of a closed
-    // emitter, whose representative point is inside it, at the sphere that holds it).
-    float reach = (dist - l.extent.x) * 0.999;
-    if (reach > 0.0 && occluded(origin, to / dist, reach)) continue;
-    e += el;
-  }
-  return e;
-}
+#include "passes/hit_irradiance.glsl"
 
 void main() {
   uint ray = gl_GlobalInvocationID.x;
@@ -110,7 +69,7 @@ void main() {
   vec3 p = a + hit.u * (b - a) + hit.v * (c - a);
   Surface s = hit_material(hit.triangle, hit.u, hit.v, hn.ns);
   vec3 albedo = diffuse_albedo(s);
-  vec3 radiance = albedo / PI * direct_irradiance(p, hn.ng, hn.ns);
+  vec3 radiance = albedo / PI * hit_irradiance(p, hn.ng, hn.ns, pc.light_count, pc.area_light_count);
   if (pc.feedback != 0u)
     radiance += min(albedo, vec3(pc.albedo_cap)) / PI * ddgi_irradiance_at(p, hn.ns, dir);
   // A non-finite sample would poison the probe's history for good; it can only come from a

@@ -92,7 +92,9 @@ class Technique {
   virtual std::vector<std::pair<std::string, Image*>> outputs() = 0;
 };
 
-// The parameter a speed-for-accuracy sweep varies, and its values from cheapest to best.
+// The parameter a speed-for-accuracy sweep varies, and its values from cheapest to best:
+// increasing for most knobs (grid size, samples), decreasing for one whose larger values
+// cost less (a temporal upscale factor).
 struct QualityKnob {
   std::string parameter;
   std::vector<double> values;

@@ -1,0 +1,354 @@
+// `gi1` (realtime/techniques/gi1/): the projection table integrates the spherical harmonics
+// over the hemisphere exactly; a uniform environment gives every receiver albedo x radiance
+// (the white furnace) at every scale and brightness; with every light off the indirect layer
+// is exactly 0; the world cache's hash map finds a key where it put it, keeps keys apart
+// (the ray-length bit among them), refuses a key when its bucket is full and frees tiles no
+// ray reached for `cache_decay` frames; with a still camera every tile keeps its probe, a
+// quarter of them traced each frame; rendering twice gives the same bits, another seed others.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "giq/realtime/context.h"
+#include "giq/realtime/pipeline.h"
+#include "giq/realtime/renderer.h"
+#include "giq/realtime/resources.h"
+#include "giq/scenes/scene.h"
+#include "techniques/gi1/gi1_projection.h"
+#include "techniques/gi1/gi1_shared.h"
+#include "test_scenes.h"
+
+namespace giq::realtime {
+namespace {
+
+using test::layer;
+
+constexpr double kPi = 3.14159265358979323846;
+
+class Gi1Test : public test::VulkanTest {
+ protected:
+  image::Image render(const scenes::Scene& s, uint32_t size, int frames,
+                      std::vector<std::string> params = {}, const std::string& view = "0") {
+    RenderOptions o;
+    o.technique = "gi1";
+    o.view = view;
+    o.width = o.height = size;
+    o.frames = frames;
+    o.parameters = std::move(params);
+    o.parameters.push_back("shadow_map_size=256");
+    // The world cache's tables at a size a test needs (the default holds 65536 tiles).
+    o.parameters.push_back("cache_buckets_log2=8");
+    return render_last(s, o);
+  }
+};
+
+// Band 0 integrates to 2 pi Y_00 over the hemisphere, band 1's z term to pi Y_1 (the cosine's
+// integral), every other basis function to 0 by symmetry; the table holds floats of sums
+// computed in double, so each total is right to a few float roundings of its 64 terms.
+TEST(Gi1Projection, TheTableIntegratesTheHemisphereExactly) {
+  const std::vector<float> t = gi1_projection_table();
+  ASSERT_EQ(t.size(), size_t(GIQ_GI1_SH) * GIQ_GI1_CELLS);
+  const double y00 = 0.28209479177387814, y1 = 0.4886025119029199;
+  const double want[GIQ_GI1_SH] = {2.0 * kPi * y00, 0.0, kPi * y1, 0.0, 0.0, 0.0,
+                                   // Y_20 = 0.3154 (3 z^2 - 1): 2 pi 0.3154 (1 - 1) = 0.
+                                   0.0, 0.0, 0.0};
+  for (uint32_t k = 0; k < GIQ_GI1_SH; ++k) {
+    double sum = 0.0, magnitude = 0.0;
+    for (uint32_t c = 0; c < GIQ_GI1_CELLS; ++c) {
+      sum += t[k * GIQ_GI1_CELLS + c];
+      magnitude += std::abs(t[k * GIQ_GI1_CELLS + c]);
+    }
+    EXPECT_NEAR(sum, want[k], 1e-6 * magnitude) << "basis " << k;
+  }
+}
+
+// The white furnace: a plane under a constant environment of radiance L. Every probe ray
+// leaves the plane and sees L, so every cell of every probe holds L, its spherical harmonics
+// are L times the table's sums, and the irradiance at the probe's own normal is pi L exactly
+// (a hemisphere of constant radiance has no band-2 part along its axis: gi1_probe.glsl); the
+// receivers, which share the plane's normal, get albedo / pi x pi L = albedo L, up to float
+// rounding of the table (1e-6) and of the sums over 64 cells and 9 coefficients (1e-5
+// relative), at any scale and brightness. Four frames fill every tile at upscale 2 x 2.
+TEST_F(Gi1Test, AUniformEnvironmentGivesEveryReceiverAlbedoTimesItsRadiance) {
+  const float albedo = 0.6f;
+  for (float scale : {1e-3f, 1.0f, 1e4f})
+    for (float radiance : {1e-6f, 1.0f, 1e8f}) {
+      SCOPED_TRACE("scale " + std::to_string(scale) + " radiance " + std::to_string(radiance));
+      scenes::Scene s = test::lambert_plane(albedo, 4.0f * scale, 3.0f * scale);
+      s.views[0].camera.znear = 1e-3f * scale;
+      s.environment = glm::vec3(radiance, 0.5f * radiance, 0.25f * radiance);
+      s.derive();
+      const image::Image img = render(s, 32, 4, {}, "top");
+      for (size_t i = 0; i < img.pixel_count(); ++i)
+        for (int c = 0; c < 3; ++c) {
+          const float want = albedo * s.environment[c];
+          ASSERT_NEAR(img.channel(layer("indirect", c))[i], want, 1e-5f * want) << c << " " << i;
+        }
+    }
+}
+
+TEST_F(Gi1Test, WithEveryLightOffTheIndirectLightIsExactlyZero) {
+  const scenes::Scene s = test::cornell_with_every_light_off();
+  const image::Image img = render(s, 32, 6);
+  for (int c = 0; c < 3; ++c)
+    for (size_t i = 0; i < img.pixel_count(); ++i)
+      ASSERT_EQ(img.channel(layer("indirect", c))[i], 0.0f);
+}
+
+// A still camera on a plane that fills the image: from the fourth frame on, every tile has
+// exactly one probe, a quarter of them (one per 2 x 2 spawn tile) traced this frame and every
+// other one carried over from the last frame; none is moved to another pixel.
+TEST_F(Gi1Test, AStillCameraKeepsEveryProbe) {
+  scenes::Scene s = test::lambert_plane(0.5f);
+  s.environment = glm::vec3(1.0f);
+  s.derive();
+  const uint32_t size = 64, tiles = (size / 8) * (size / 8);
+  for (int frames : {4, 5, 9}) {
+    SCOPED_TRACE(frames);
+    const image::Image img = render(s, size, frames, {}, "top");
+    uint32_t probes = 0, traced = 0, carried = 0;
+    std::vector<int> per_tile(tiles, 0);
+    for (uint32_t y = 0; y < size; ++y)
+      for (uint32_t x = 0; x < size; ++x) {
+        const size_t i = y * size + x;
+        if (img.channel("probes.R")[i] == 0.0f) continue;
+        ++probes;
+        ++per_tile[(y / 8) * (size / 8) + x / 8];
+        traced += img.channel("probes.B")[i] > 0.0f ? 1 : 0;
+        carried += img.channel("probes.G")[i] > 0.0f && img.channel("probes.B")[i] == 0.0f ? 1 : 0;
+      }
+    EXPECT_EQ(probes, tiles);
+    for (int n : per_tile) EXPECT_EQ(n, 1);
+    EXPECT_EQ(traced, tiles / 4);
+    EXPECT_EQ(carried, tiles - tiles / 4);
+  }
+}
+
+// The same seed gives the same bits (the world cache's sums and the reconstruction are
+// integer atomics, every list is built in tile order), another seed other bits.
+TEST_F(Gi1Test, RenderingTwiceGivesTheSameBitsAndAnotherSeedOthers) {
+  const scenes::Scene s = test::builtin("cornell");
+  const image::Image a = render(s, 48, 6), b = render(s, 48, 6), c = render(s, 48, 6, {"seed=7"});
+  ASSERT_EQ(a.channel_names(), b.channel_names());
+  for (const auto& name : a.channel_names())
+    ASSERT_EQ(0, std::memcmp(a.channel(name), b.channel(name), a.pixel_count() * sizeof(float))) << name;
+  EXPECT_NE(0, std::memcmp(a.channel("indirect.R"), c.channel("indirect.R"), a.pixel_count() * sizeof(float)));
+}
+
+}  // namespace
+}  // namespace giq::realtime
+
+namespace giq::realtime {
+namespace {
+
+// The world cache's hash map (gi1_hash.glsl) run by a small compute shader: each invocation
+// files one hit (position, ray direction, ray length) and reports the tile it got, its key
+// and whether it was the first to use the tile this frame.
+class Gi1HashTest : public test::VulkanTest {
+ protected:
+  struct Hit {
+    glm::vec3 p;
+    float ray_length;
+    glm::vec3 dir;
+  };
+  struct Result {
+    uint32_t tile, fingerprint, bucket, first_use;
+  };
+
+  void SetUp() override {
+    test::VulkanTest::SetUp();
+    const std::string src = R"(#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "shaders/sampling.glsl"
+#include "techniques/gi1/gi1_shared.h"
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer Frame { GpuGi1Frame gi1; };
+layout(std430, binding = 1) coherent buffer CacheHash { uint cache_hash[]; };
+layout(std430, binding = 2) coherent buffer CacheStamp { uint cache_stamp[]; };
+layout(std430, binding = 3) readonly buffer Hits { vec4 hits[]; };
+layout(std430, binding = 4) writeonly buffer Results { uvec4 results[]; };
+layout(push_constant) uniform Push { uint count; uint frame; uint ray_length_bit; } pc;
+#include "techniques/gi1/gi1_probe.glsl"
+#include "techniques/gi1/gi1_hash.glsl"
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.count) return;
+  vec4 a = hits[2u * i], b = hits[2u * i + 1u];
+  Gi1CacheKey k = gi1_cache_key(gi1, a.xyz, b.xyz, a.w, 1.0, pc.ray_length_bit != 0u);
+  bool first;
+  uint tile = gi1_cache_insert(gi1, k, pc.frame, first);
+  results[i] = uvec4(tile, k.fingerprint, k.bucket, first ? 1u : 0u);
+}
+)";
+    const auto s = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    insert_ = Pipeline::compute(*ctx, compiler->compile_source("tests/gi1_hash.comp", src),
+                                {s, s, s, s, s}, 12);
+    evict_ =
+        Pipeline::compute(*ctx, compiler->compile("techniques/gi1/gi1_evict.comp"), {s, s, s}, 16);
+  }
+
+  // A map of `buckets` x `per_bucket` tiles, cells of size 1 (tiles of 8) everywhere.
+  void make_map(uint32_t buckets, uint32_t per_bucket) {
+    gpu::GpuGi1Frame f{};
+    f.cache = glm::uvec4(buckets, per_bucket, 50, 16);
+    f.pixel = glm::vec4(0.0f, 1.0f, 1.0f, 0.0f);
+    frame_ = Buffer::storage(*ctx, &f, sizeof(f));
+    tiles_ = buckets * per_bucket;
+    const std::vector<uint32_t> zeros(tiles_, 0u);
+    hash_ = Buffer::storage(*ctx, zeros, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    stamp_ = Buffer::storage(*ctx, zeros, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    const std::vector<glm::vec4> cells(size_t(tiles_) * GIQ_GI1_TILE_CELLS, glm::vec4(1.0f));
+    cells_ = Buffer::storage(*ctx, cells, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  }
+
+  std::vector<Result> insert(const std::vector<Hit>& hits, uint32_t frame,
+                             bool ray_length_bit = true) {
+    std::vector<glm::vec4> in;
+    for (const Hit& h : hits) {
+      in.emplace_back(h.p, h.ray_length);
+      in.emplace_back(h.dir, 0.0f);
+    }
+    Buffer input = Buffer::storage(*ctx, in);
+    Buffer output(*ctx, hits.size() * sizeof(Result), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    ctx->submit_and_wait([&](VkCommandBuffer cmd) {
+      insert_.bind(cmd);
+      insert_.push_descriptors(cmd, {Descriptor::storage(frame_), Descriptor::storage(hash_),
+                                     Descriptor::storage(stamp_), Descriptor::storage(input),
+                                     Descriptor::storage(output)});
+      const uint32_t pc[3] = {uint32_t(hits.size()), frame, ray_length_bit ? 1u : 0u};
+      insert_.push_constants(cmd, pc, sizeof(pc));
+      vkCmdDispatch(cmd, uint32_t((hits.size() + 63) / 64), 1, 1);
+    });
+    const auto bytes = output.download();
+    std::vector<Result> r(hits.size());
+    std::memcpy(r.data(), bytes.data(), r.size() * sizeof(Result));
+    return r;
+  }
+
+  void evict(uint32_t frame, uint32_t decay) {
+    ctx->submit_and_wait([&](VkCommandBuffer cmd) {
+      evict_.bind(cmd);
+      evict_.push_descriptors(cmd, {Descriptor::storage(hash_), Descriptor::storage(stamp_),
+                                    Descriptor::storage(cells_)});
+      const struct {
+        uint32_t tiles, frame, decay;
+        float react;
+      } pc{tiles_, frame, decay, 0.0f};
+      evict_.push_constants(cmd, pc);
+      vkCmdDispatch(cmd, (tiles_ + 63) / 64, 1, 1);
+    });
+  }
+
+  // The map's first `tiles_` words (a buffer holds at least 16 bytes).
+  std::vector<uint32_t> words(const Buffer& b) {
+    const auto bytes = b.download();
+    std::vector<uint32_t> w(tiles_);
+    std::memcpy(w.data(), bytes.data(), w.size() * 4);
+    return w;
+  }
+
+  Pipeline insert_, evict_;
+  Buffer frame_, hash_, stamp_, cells_;
+  uint32_t tiles_ = 0;
+};
+
+const glm::vec3 kDown(0.0f, -1.0f, 0.0f);
+
+// Hits 100 cells apart are distinct keys; filing them again (in another frame) finds the
+// same tiles; in each frame exactly one filing of a tile is its first use, and two filings of
+// one key in the same dispatch share a tile.
+TEST_F(Gi1HashTest, AKeyIsFoundWhereItWasPutAndDistinctKeysGetDistinctTiles) {
+  make_map(64, 4);
+  std::vector<Hit> hits;
+  for (int i = 0; i < 40; ++i)
+    hits.push_back({glm::vec3(100.0f * float(i), 0.5f, 0.5f), 50.0f, kDown});
+  hits.push_back(hits[7]);  // the same key twice in one dispatch
+  const auto first = insert(hits, 0);
+  std::set<uint32_t> tiles;
+  for (int i = 0; i < 40; ++i) {
+    ASSERT_NE(first[i].tile, GIQ_GI1_NONE) << i;
+    EXPECT_NE(first[i].fingerprint, 0u);
+    EXPECT_EQ(first[i].tile / 4, first[i].bucket) << "a tile lives in its key's bucket";
+    tiles.insert(first[i].tile);
+  }
+  EXPECT_EQ(tiles.size(), 40u);
+  EXPECT_EQ(first[40].tile, first[7].tile);
+  EXPECT_EQ(first[40].first_use + first[7].first_use, 1u);
+  const auto again = insert(hits, 1);
+  for (size_t i = 0; i < hits.size(); ++i) EXPECT_EQ(again[i].tile, first[i].tile) << i;
+  EXPECT_EQ(again[40].first_use + again[7].first_use, 1u);
+  // Within a tile (8 cells of 1), another cell of the same tile is the same key.
+  const auto near = insert({{glm::vec3(701.0f, 0.5f, 3.5f), 50.0f, kDown}}, 1);
+  EXPECT_EQ(near[0].tile, first[7].tile);
+  EXPECT_EQ(near[0].first_use, 0u);
+}
+
+// Section 2.2.2: a ray shorter than a tile files its hit under another key than a long ray
+// to the same place in the same direction (the thin-wall leak's two sides), unless the bit
+// is off; the direction's main axis and sign part keys too.
+TEST_F(Gi1HashTest, TheRayLengthBitAndTheDirectionKeepKeysApart) {
+  make_map(4096, 16);
+  const glm::vec3 p(3.5f, 0.5f, 2.5f);
+  const auto on = insert(
+      {{p, 2.0f, kDown}, {p, 20.0f, kDown}, {p, 20.0f, -kDown}, {p, 20.0f, glm::vec3(1, 0, 0)}}, 0);
+  EXPECT_NE(on[0].fingerprint, on[1].fingerprint);
+  EXPECT_NE(on[0].tile, on[1].tile);
+  EXPECT_NE(on[1].fingerprint, on[2].fingerprint);
+  EXPECT_NE(on[1].fingerprint, on[3].fingerprint);
+  const auto off = insert({{p, 2.0f, kDown}, {p, 20.0f, kDown}}, 0, false);
+  EXPECT_EQ(off[0].fingerprint, off[1].fingerprint);
+  EXPECT_EQ(off[0].tile, off[1].tile);
+}
+
+// One bucket of two tiles: three distinct keys, one of them filed twice, get two tiles; the
+// third is refused (GIQ_GI1_NONE), whichever it is. A tile no ray reached for `decay` frames
+// is freed with its cells cleared, one reached within them is kept, and a freed slot takes the
+// next new key.
+TEST_F(Gi1HashTest, AFullBucketRefusesAKeyAndUnusedTilesAreEvicted) {
+  make_map(1, 2);
+  const std::vector<Hit> three = {{glm::vec3(0.5f), 50.0f, kDown},
+                                  {glm::vec3(100.5f, 0.5f, 0.5f), 50.0f, kDown},
+                                  {glm::vec3(0.5f), 50.0f, kDown},
+                                  {glm::vec3(200.5f, 0.5f, 0.5f), 50.0f, kDown}};
+  const auto r = insert(three, 0);
+  int refused = 0;
+  std::set<uint32_t> tiles;
+  for (const Result& x : r) {
+    if (x.tile == GIQ_GI1_NONE)
+      ++refused;
+    else
+      tiles.insert(x.tile);
+  }
+  EXPECT_EQ(tiles.size(), 2u);
+  EXPECT_EQ(refused, r[0].tile == GIQ_GI1_NONE ? 2 : 1)
+      << "a key filed twice is refused or kept both times";
+  EXPECT_EQ(r[0].tile, r[2].tile);
+
+  // Keep key 0 alive at frame 5; the other tile was last used at frame 0.
+  const auto kept = insert({three[0]}, 5);
+  ASSERT_NE(kept[0].tile, GIQ_GI1_NONE);
+  evict(9, 10);  // frame 9: 9 frames since frame 0, not yet 10
+  const auto before = words(hash_);
+  EXPECT_EQ(std::count(before.begin(), before.end(), 0u), 0);
+  evict(10, 10);
+  const auto h = words(hash_);
+  const uint32_t freed = kept[0].tile == 0 ? 1u : 0u;
+  EXPECT_EQ(h[freed], 0u);
+  EXPECT_NE(h[kept[0].tile], 0u);
+  const auto cells = cells_.download();
+  const auto* c = reinterpret_cast<const glm::vec4*>(cells.data());
+  for (uint32_t i = 0; i < GIQ_GI1_TILE_CELLS; ++i) {
+    EXPECT_EQ(c[freed * GIQ_GI1_TILE_CELLS + i], glm::vec4(0.0f));
+    EXPECT_EQ(c[kept[0].tile * GIQ_GI1_TILE_CELLS + i], glm::vec4(1.0f));
+  }
+  const auto next = insert({{glm::vec3(300.5f, 0.5f, 0.5f), 50.0f, kDown}}, 11);
+  EXPECT_EQ(next[0].tile, freed);
+}
+
+}  // namespace
+}  // namespace giq::realtime
