@@ -136,7 +136,7 @@ class Gi1 : public IndirectLight {
                                ci.compiler.compile(std::string("techniques/gi1/") + name, defines),
                                bindings, push);
     };
-    reproject_ = compile("gi1_reproject.comp", with_common({img}));
+    reproject_ = compile("gi1_reproject.comp", with_common({img, img}));
     spawn_pass_ = compile("gi1_spawn.comp", with_common({s}));
     patch_ = compile("gi1_patch.comp", {s, s, s, s, s, s, s});
     reconstruct_ = compile("gi1_reconstruct.comp", with_common({s, s, s, s, s, s}));
@@ -195,7 +195,8 @@ class Gi1 : public IndirectLight {
     in.timer.begin(cmd, "gi1_reproject");
     reproject_.bind(cmd);
     auto d = common();
-    d.push_back(Descriptor::storage_image(frame.gbuffer().motion()));
+    d.insert(d.end(), {Descriptor::storage_image(frame.gbuffer().motion()),
+                       Descriptor::storage_image(irradiance_[prev])});
     reproject_.push_descriptors(cmd, d);
     vkCmdDispatch(cmd, tiles_.x, tiles_.y, 1);
     full_barrier(cmd);

@@ -1,12 +1,13 @@
 #version 460
-// `gi1`: last frame's screen probes follow the motion vectors onto this frame's
-// pixels (Boissé et al. 2022, Algorithm 1). Each tile is a work group; each of its pixels
-// looks up, where it was last frame, the probe of the tile it was in, and offers itself as
-// that probe's new place when the probe lies within a cell size of its plane and their
-// normals agree (cosine > 0.95); the closest offer wins (packed distance and lane, one atomic
-// minimum). The winner carries the probe's radiance, its spherical harmonics and its normal
-// (the frame its cells are in) into this tile; a tile nobody offers is empty until a probe is
-// spawned on it.
+// `gi1`: last frame's screen probes follow the motion vectors onto this frame's pixels (Boissé et
+// al. 2022, Algorithm 1). Each tile is a work group; each of its pixels looks up, where it was last
+// frame, the probe of the tile it was in, and offers itself as that probe's new place when the
+// probe lies within a cell size of its plane and their normals agree (cosine > 0.95); the closest
+// offer wins (packed distance and lane, one atomic minimum). A pixel whose point last frame's
+// image did not show (its depth there off by more than half a cell: it was hidden) offers
+// nothing, the disocclusion test Algorithm 1 leaves to the motion vectors.
+// The winner carries the probe's radiance, its spherical harmonics and its normal (the frame its
+// cells are in) into this tile; a tile nobody offers is empty until a probe is spawned on it.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/scene.glsl"
@@ -19,6 +20,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "passes/receiver.glsl"
 #include "techniques/gi1/gi1_common.glsl"
 layout(binding = GIQ_GI1_BINDING_COUNT + 0, rgba32f) uniform readonly image2D gb_motion;
+// Last frame's irradiance and view depth per pixel (gi1_denoise_temporal.comp): w is the depth
+// of the surface that pixel showed, -1 where none.
+layout(binding = GIQ_GI1_BINDING_COUNT + 1, rgba32f) uniform readonly image2D previous_irradiance;
 
 #include "techniques/gi1/gi1_probe.glsl"
 
@@ -40,7 +44,12 @@ void main() {
   if (r.lit) {
     vec4 motion = imageLoad(gb_motion, px);
     vec2 q = vec2(px) + 0.5 + motion.xy;
-    if (motion.w > 0.0 && all(greaterThanEqual(q, vec2(0.0))) && all(lessThan(q, vec2(gi1.size.xy)))) {
+    // Disocclusion: the pixel's point must be what last frame's pixel there showed (its depth
+    // in the previous view within half a cell), or it was hidden and no probe saw it.
+    float seen = motion.w > 0.0 ? imageLoad(previous_irradiance, ivec2(q)).w : -1.0;
+    float expected = gi1_view_depth(gi1.previous, r.x);
+    bool visible = seen >= 0.0 && abs(seen - expected) <= 0.5 * gi1_screen_cell(gi1, expected);
+    if (visible && all(greaterThanEqual(q, vec2(0.0))) && all(lessThan(q, vec2(gi1.size.xy)))) {
       from = gi1_tile_index(uvec2(q) / GIQ_GI1_PROBE);
       GpuGi1Probe p = previous_probes[from];
       float cell = gi1_screen_cell(gi1, gi1_view_depth(gi1.camera, r.x));
