@@ -86,12 +86,10 @@ void main() {
     vec3 p = r.x;
     vec3 n = r.n;
     vec3 wo = camera_to_eye(pc.camera, p);
-    vec3 ta, tb, tc;
-    triangle_vertices(r.tri, ta, tb, tc);
     // The geometric normal on the viewer's side: light from below it would leak through the
     // surface, whatever the (interpolated or mapped) shading normal says; the reference
     // drops it too.
-    vec3 ng = normalize(cross(tb - ta, tc - ta)) * (r.back ? -1.0 : 1.0);
+    vec3 ng = receiver_geometric_normal(r);
     // Textured materials are looked up at the G-buffer point (deferred texturing).
     if (mat.emissive.w != 0.0) radiance += emission_at(mat, r.tri, r.bary.x, r.bary.y, r.footprint);
     Surface s = receiver_surface(r);

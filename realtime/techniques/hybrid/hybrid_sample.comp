@@ -53,10 +53,8 @@ void main() {
     Surface s = receiver_surface(r);
     albedo = demodulation_albedo(s);
     vec3 wo = camera_to_eye(pc.camera, r.x);
-    vec3 ta, tb, tc;
-    triangle_vertices(r.tri, ta, tb, tc);
     // The geometric normal on the viewer's side: light from below it would leak through.
-    vec3 ng = normalize(cross(tb - ta, tc - ta)) * (r.back ? -1.0 : 1.0);
+    vec3 ng = receiver_geometric_normal(r);
     vec3 p_off = offset_ray(r.x, ng);
     PathParams params = PathParams(pc.environment, pc.max_bounces, pc.light_count, pc.emissive_count);
     for (uint k = 0u; k < pc.samples; ++k) {
