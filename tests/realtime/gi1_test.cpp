@@ -4,7 +4,8 @@
 // is exactly 0; the world cache's hash map finds a key where it put it, keeps keys apart
 // (the ray-length bit among them), refuses a key when its bucket is full and frees tiles no
 // ray reached for `cache_decay` frames; with a still camera every tile keeps its probe, a
-// quarter of them traced each frame; rendering twice gives the same bits, another seed others.
+// quarter of them traced each frame; a persistent instance keeps no stale direct light;
+// rendering twice gives the same bits, another seed others.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -127,6 +128,18 @@ TEST_F(Gi1Test, AStillCameraKeepsEveryProbe) {
     EXPECT_EQ(traced, tiles / 4);
     EXPECT_EQ(carried, tiles - tiles / 4);
   }
+}
+
+// What the technique keeps across frames is its own indirect light: one instance through
+// three frames of `movinglight` gives at every frame the direct light an instance created for
+// that pose alone gives, bit for bit (the light moved, the shared direct pass followed it).
+TEST_F(Gi1Test, APersistentInstanceKeepsNoStaleDirectLight) {
+  RenderOptions o;
+  o.technique = "gi1";
+  o.width = o.height = 32;
+  o.frames = 3;
+  o.parameters = {"shadow_map_size=256", "cache_buckets_log2=8"};
+  expect_persistent_matches_fresh(test::builtin("movinglight"), o, "direct.R");
 }
 
 // The same seed gives the same bits (the world cache's sums and the reconstruction are
