@@ -4,13 +4,18 @@
 // is exactly 0; the world cache's hash map finds a key where it put it, keeps keys apart
 // (the ray-length bit among them), refuses a key when its bucket is full and frees tiles no
 // ray reached for `cache_decay` frames; with a still camera every tile keeps its probe, a
-// quarter of them traced each frame; a persistent instance keeps no stale direct light;
+// quarter of them traced each frame; under camera motion adaptive sampling leaves fewer
+// tiles without a probe; a persistent instance keeps no stale direct light;
 // rendering twice gives the same bits, another seed others.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
@@ -130,6 +135,94 @@ TEST_F(Gi1Test, AStillCameraKeepsEveryProbe) {
   }
 }
 
+// The built-in Cornell box with its camera swinging sideways and turning (0.6 units and 30
+// degrees a second, back and forth over 2 s): new surfaces come into view every frame. The
+// animation's keys go to a .bin file beside the copy.
+scenes::Scene swinging_cornell(const std::filesystem::path& dir) {
+  nlohmann::json g;
+  std::ifstream(std::filesystem::path(GIQ_SCENES_DIR) / "cornell.gltf") >> g;
+  size_t camera = 0;
+  while (!g["nodes"][camera].contains("camera")) ++camera;
+  const std::vector<float> times = {0.0f, 1.0f, 2.0f};
+  std::vector<float> keys(times);
+  const glm::vec3 eye(0.278f, 0.273f, -0.8f);
+  for (float side : {-1.0f, 1.0f, -1.0f})
+    keys.insert(keys.end(), {eye.x + 0.3f * side, eye.y, eye.z});
+  for (float side : {-1.0f, 1.0f, -1.0f}) {  // 180 degrees about y (the camera's rest pose) +- 15
+    const float half = glm::radians(180.0f + 15.0f * side) / 2.0f;
+    keys.insert(keys.end(), {0.0f, std::sin(half), 0.0f, std::cos(half)});
+  }
+  std::ofstream(dir / "swing.bin", std::ios::binary)
+      .write(reinterpret_cast<const char*>(keys.data()),
+             std::streamsize(keys.size() * sizeof(float)));
+  const size_t buffer = g["buffers"].size(), view = g["bufferViews"].size(),
+               accessor = g["accessors"].size();
+  g["buffers"].push_back({{"byteLength", keys.size() * 4}, {"uri", "swing.bin"}});
+  g["bufferViews"].push_back({{"buffer", buffer}, {"byteOffset", 0}, {"byteLength", 12}});
+  g["bufferViews"].push_back({{"buffer", buffer}, {"byteOffset", 12}, {"byteLength", 36}});
+  g["bufferViews"].push_back({{"buffer", buffer}, {"byteOffset", 48}, {"byteLength", 48}});
+  g["accessors"].push_back({{"bufferView", view},
+                            {"componentType", 5126},
+                            {"count", 3},
+                            {"type", "SCALAR"},
+                            {"min", {0.0}},
+                            {"max", {2.0}}});
+  g["accessors"].push_back(
+      {{"bufferView", view + 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
+  g["accessors"].push_back(
+      {{"bufferView", view + 2}, {"componentType", 5126}, {"count", 3}, {"type", "VEC4"}});
+  g["animations"] = {
+      {{"name", "swing"},
+       {"samplers",
+        {{{"input", accessor}, {"output", accessor + 1}, {"interpolation", "LINEAR"}},
+         {{"input", accessor}, {"output", accessor + 2}, {"interpolation", "LINEAR"}}}},
+       {"channels",
+        {{{"sampler", 0}, {"target", {{"node", camera}, {"path", "translation"}}}},
+         {{"sampler", 1}, {"target", {{"node", camera}, {"path", "rotation"}}}}}}}};
+  std::ofstream(dir / "swing.gltf") << g.dump();
+  return scenes::load(dir / "swing.gltf");
+}
+
+// Section 2.1.2 under motion: with the camera swinging, tiles that show a surface but have no
+// probe (disoccluded, with no spawn this frame) are fewer when rays move to them from tiles
+// that have history (Algorithm 2 gives each of them a probe while override tiles last). Over
+// 20 frames of the swing, measured 44 such tiles with it and 166 without; the test asks only
+// that there are some without it and fewer with it.
+TEST_F(Gi1Test, AdaptiveSamplingFillsTheTilesMotionUncovers) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("giq_gi1_swing_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const scenes::Scene s = swinging_cornell(dir);
+  auto uncovered = [&](int adaptive) {
+    RenderOptions o;
+    o.technique = "gi1";
+    o.width = o.height = 128;
+    o.warmup = 8;
+    o.frames = 20;
+    o.parameters = {"shadow_map_size=256", "cache_buckets_log2=8",
+                    "adaptive_sampling=" + std::to_string(adaptive)};
+    int count = 0;
+    realtime::render_sequence(*ctx, *compiler, s, o, [&](realtime::RenderedFrame& f) {
+      for (int ty = 0; ty < 16; ++ty)
+        for (int tx = 0; tx < 16; ++tx) {
+          bool probe = false, surface = false;
+          for (int y = ty * 8; y < ty * 8 + 8; ++y)
+            for (int x = tx * 8; x < tx * 8 + 8; ++x) {
+              probe |= f.image.at("probes.R", x, y) > 0.0f;
+              surface |=
+                  f.image.at("R", x, y) + f.image.at("G", x, y) + f.image.at("B", x, y) > 0.0f;
+            }
+          count += surface && !probe ? 1 : 0;
+        }
+    });
+    return count;
+  };
+  const int with = uncovered(1), without = uncovered(0);
+  std::filesystem::remove_all(dir);
+  EXPECT_GT(without, 0) << "the swing uncovers no tile: the test shows nothing";
+  EXPECT_LT(with, without);
+}
+
 // What the technique keeps across frames is its own indirect light: one instance through
 // three frames of `movinglight` gives at every frame the direct light an instance created for
 // that pose alone gives, bit for bit (the light moved, the shared direct pass followed it).
@@ -149,8 +242,10 @@ TEST_F(Gi1Test, RenderingTwiceGivesTheSameBitsAndAnotherSeedOthers) {
   const image::Image a = render(s, 48, 6), b = render(s, 48, 6), c = render(s, 48, 6, {"seed=7"});
   ASSERT_EQ(a.channel_names(), b.channel_names());
   for (const auto& name : a.channel_names())
-    ASSERT_EQ(0, std::memcmp(a.channel(name), b.channel(name), a.pixel_count() * sizeof(float))) << name;
-  EXPECT_NE(0, std::memcmp(a.channel("indirect.R"), c.channel("indirect.R"), a.pixel_count() * sizeof(float)));
+    ASSERT_EQ(0, std::memcmp(a.channel(name), b.channel(name), a.pixel_count() * sizeof(float)))
+        << name;
+  EXPECT_NE(0, std::memcmp(a.channel("indirect.R"), c.channel("indirect.R"),
+                           a.pixel_count() * sizeof(float)));
 }
 
 }  // namespace

@@ -418,11 +418,11 @@ TechniqueInfo gi1_technique() {
   needs.motion_vectors = true;
   TechniqueInfo info = deferred_technique<Gi1>(
       "gi1",
-      "GI-1.0 (Boisse et al. 2022): screen probes on the visible surfaces, spawned at 1/upscale^2 "
-      "of the tiles a "
-      "frame and carried along the motion vectors, their rays' hits cached in a world-space hash "
-      "grid with mip "
-      "levels; spherical-harmonic interpolation per pixel",
+      "GI-1.0 (Boisse et al. 2022): screen probes on the visible surfaces, spawned on "
+      "1/upscale^2 of the tiles a frame and carried along the motion vectors, their rays guided "
+      "by the hemisphere rebuilt from the probes around them and their hits cached in a "
+      "world-space hash grid of tiles with mip levels; 7x7 probe filter, spherical-harmonic "
+      "interpolation per pixel, denoiser",
       needs,
       {{"upscale", 2, 1, 4, true,
         "temporal upscale per axis: one tile of each upscale x upscale spawn tile gets a new probe "
