@@ -145,7 +145,8 @@ scenes::Scene swinging_cornell(const std::filesystem::path& dir) {
   while (!g["nodes"][camera].contains("camera")) ++camera;
   const std::vector<float> times = {0.0f, 1.0f, 2.0f};
   std::vector<float> keys(times);
-  const glm::vec3 eye(0.278f, 0.273f, -0.8f);
+  const auto& at = g["nodes"][camera]["translation"];
+  const glm::vec3 eye(at[0].get<float>(), at[1].get<float>(), at[2].get<float>());
   for (float side : {-1.0f, 1.0f, -1.0f})
     keys.insert(keys.end(), {eye.x + 0.3f * side, eye.y, eye.z});
   for (float side : {-1.0f, 1.0f, -1.0f}) {  // 180 degrees about y (the camera's rest pose) +- 15

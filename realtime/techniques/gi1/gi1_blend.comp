@@ -54,7 +54,7 @@ void main() {
   GpuGi1Query q = queries[g * GIQ_GI1_CELLS + lane];
   vec3 l = q.radiance.rgb;
   if (q.cell.x != GIQ_GI1_NONE) {
-    uint first = q.cell.y * GIQ_GI1_TILE_CELLS, finest = q.cell.x - first;
+    uint first = q.cell.x * GIQ_GI1_TILE_CELLS, finest = q.cell.y;
     float enough = max(1.0, float(gi1.cache.w) / 4.0);
     for (uint level = 0u; level <= 3u; ++level) {
       vec4 v = cache_cells[first + gi1_tile_cell(finest, level)];

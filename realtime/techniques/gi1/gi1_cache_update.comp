@@ -25,7 +25,7 @@ void main() {
   if (g >= counters.probe_groups.w) return;
   GpuGi1Query q = queries[g * GIQ_GI1_CELLS + gl_LocalInvocationIndex];
   if (q.cell.x == GIQ_GI1_NONE) return;
-  uint cell = q.cell.y * GIQ_GI1_CELLS + (q.cell.x - q.cell.y * GIQ_GI1_TILE_CELLS);
+  uint cell = q.cell.x * GIQ_GI1_CELLS + q.cell.y;
   if (atomicAdd(cache_sums[cell].w, 1u) >= GIQ_GI1_MAX_CELL_SAMPLES) return;
   float largest = uintBitsToFloat(cache_max[cell]);
   if (!(largest > 0.0)) return;

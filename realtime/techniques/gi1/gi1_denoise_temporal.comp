@@ -43,7 +43,6 @@ void main() {
   vec4 motion = imageLoad(gb_motion, px);
   if ((gi1.counts.w & GIQ_GI1_HISTORY) != 0u && motion.w > 0.0 && gi1.params.z > 0.0) {
     float expected = gi1_view_depth(gi1.previous, r.x);
-    float tolerance = 0.5 * gi1_screen_cell(gi1, expected);
     vec2 q = vec2(px) + motion.xy;  // + 0.5 - 0.5: the taps' centres
     ivec2 base = ivec2(floor(q));
     vec2 w = q - vec2(base);
@@ -51,7 +50,7 @@ void main() {
       ivec2 o = ivec2(j & 1, j >> 1), t = base + o;
       if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, ivec2(gi1.size.xy)))) continue;
       vec4 h = imageLoad(previous_irradiance, t);
-      if (h.w < 0.0 || abs(h.w - expected) > tolerance) continue;
+      if (!gi1_seen_last_frame(gi1, h.w, expected, 0.5)) continue;
       float weight = (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y);
       history += weight * h.rgb;
       length_ += weight * imageLoad(previous_length, t).x;

@@ -73,6 +73,13 @@ float gi1_screen_cell(GpuGi1Frame f, float view_depth) { return float(GIQ_GI1_PR
 // frame enters each stream as its sample index.
 uint gi1_stream(GpuGi1Frame f, uint stream) { return pcg_hash(f.jitter.w ^ (stream * 0x9e3779b9u)); }
 
+// Whether last frame's pixel, which showed a surface at view depth `seen` (< 0: none), showed
+// the point whose depth in the previous view is `expected`: the two within `cells` screen
+// cells there. The disocclusion test of the reprojection, the feedback and the denoiser.
+bool gi1_seen_last_frame(GpuGi1Frame f, float seen, float expected, float cells) {
+  return seen >= 0.0 && abs(seen - expected) <= cells * gi1_screen_cell(f, expected);
+}
+
 uint gi1_pack_pixel(uvec2 p) { return p.x | (p.y << 16); }
 uvec2 gi1_unpack_pixel(uint v) { return uvec2(v & 0xffffu, v >> 16); }
 

@@ -47,8 +47,7 @@ void main() {
     // Disocclusion: the pixel's point must be what last frame's pixel there showed (its depth
     // in the previous view within half a cell), or it was hidden and no probe saw it.
     float seen = motion.w > 0.0 ? imageLoad(previous_irradiance, ivec2(q)).w : -1.0;
-    float expected = gi1_view_depth(gi1.previous, r.x);
-    bool visible = seen >= 0.0 && abs(seen - expected) <= 0.5 * gi1_screen_cell(gi1, expected);
+    bool visible = gi1_seen_last_frame(gi1, seen, gi1_view_depth(gi1.previous, r.x), 0.5);
     if (visible && all(greaterThanEqual(q, vec2(0.0))) && all(lessThan(q, vec2(gi1.size.xy)))) {
       from = gi1_tile_index(uvec2(q) / GIQ_GI1_PROBE);
       GpuGi1Probe p = previous_probes[from];

@@ -77,8 +77,8 @@ struct GpuGi1Counters {
 
 // A probe ray's world-cache query: the cell its hit falls in and the light leaving the hit.
 struct GpuGi1Query {
-  uvec4 cell;     // x the finest cell (tile * GIQ_GI1_TILE_CELLS + offset) or GIQ_GI1_NONE: the
-                  // ray missed, or hit the back of a one-sided surface, or its bucket was full
+  uvec4 cell;     // x the world-cache tile, or GIQ_GI1_NONE: the ray missed, hit the back of a
+                  // one-sided surface, or found its bucket full; y the finest cell in it (0..63)
   vec4 radiance;  // rgb this frame's sample of the light leaving the hit towards the probe, or
                   // what a miss saw (the environment); w the hit distance (1e30: a miss, small
                    // enough that filters can sum a few)

@@ -57,8 +57,7 @@ vec3 feedback_irradiance(vec3 p) {
   if (!(q.z > 0.0) || any(lessThan(q.xy, vec2(0.0))) || any(greaterThanEqual(q.xy, vec2(gi1.size.xy))))
     return vec3(0.0);
   vec4 e = imageLoad(previous_irradiance, ivec2(q.xy));
-  if (e.w < 0.0 || abs(e.w - q.z) > gi1_screen_cell(gi1, q.z)) return vec3(0.0);
-  return e.rgb;
+  return gi1_seen_last_frame(gi1, e.w, q.z, 1.0) ? e.rgb : vec3(0.0);
 }
 
 void main() {
@@ -103,7 +102,7 @@ void main() {
   bool first_use;
   uint tile = gi1_cache_insert(gi1, key, gi1.jitter.z, first_use);
   if (tile != GIQ_GI1_NONE) {
-    q.cell = uvec4(tile * GIQ_GI1_TILE_CELLS + key.cell, tile, 0u, 0u);
+    q.cell = uvec4(tile, key.cell, 0u, 0u);
     // Non-negative floats order as their bits do.
     atomicMax(cache_max[tile * GIQ_GI1_CELLS + key.cell], floatBitsToUint(max(sample_.r, max(sample_.g, sample_.b))));
     if (first_use) touched[atomicAdd(counters.tile_groups.w, 1u)] = tile;
