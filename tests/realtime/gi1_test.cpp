@@ -98,6 +98,29 @@ TEST_F(Gi1Test, AUniformEnvironmentGivesEveryReceiverAlbedoTimesItsRadiance) {
     }
 }
 
+// The near field (section 3) where nothing rises above a surface's tangent plane: every
+// pixel's visible share is exactly 1 and its bent normal its normal, so the probes' light is
+// what it is without the near field, bit for bit, and the near field adds nothing. A plane
+// seen at a slant, so that the slices' projected normals tilt, at three scales.
+TEST_F(Gi1Test, TheNearFieldLeavesAnOpenPlaneAsItIs) {
+  for (float scale : {1e-3f, 1.0f, 1e4f}) {
+    SCOPED_TRACE("scale " + std::to_string(scale));
+    scenes::Scene s = test::lambert_plane(0.6f, 4.0f * scale, 3.0f * scale);
+    s.views[0].camera.znear = 1e-3f * scale;
+    s.environment = glm::vec3(1.0f, 0.5f, 0.25f);
+    s.views.push_back({"slant", scenes::Camera::look_at(glm::vec3(0.0f, 1.5f, 3.0f) * scale, glm::vec3(0.0f),
+                                                       {0, 1, 0}, 1.0471976f),
+                       -1});
+    s.views.back().camera.znear = 1e-3f * scale;
+    s.derive();
+    const image::Image on = render(s, 32, 6, {"near_field=1"}, "slant"),
+                       off = render(s, 32, 6, {"near_field=0"}, "slant");
+    for (int c = 0; c < 3; ++c)
+      ASSERT_EQ(0, std::memcmp(on.channel(layer("indirect", c)), off.channel(layer("indirect", c)),
+                               on.pixel_count() * sizeof(float)));
+  }
+}
+
 TEST_F(Gi1Test, WithEveryLightOffTheIndirectLightIsExactlyZero) {
   const scenes::Scene s = test::cornell_with_every_light_off();
   const image::Image img = render(s, 32, 6);

@@ -68,7 +68,9 @@ class Gi1 : public IndirectLight {
     switches_ = (p.get_int("ray_length_bit") ? GIQ_GI1_RAY_LENGTH_BIT : 0u) |
                 (p.get_int("adaptive_sampling") ? GIQ_GI1_ADAPTIVE_SAMPLING : 0u) |
                 (p.get_int("feedback") ? GIQ_GI1_FEEDBACK : 0u) |
-                (p.get_int("ray_guiding") ? GIQ_GI1_RAY_GUIDING : 0u);
+                (p.get_int("ray_guiding") ? GIQ_GI1_RAY_GUIDING : 0u) |
+                (p.get_int("near_field") ? GIQ_GI1_NEAR_FIELD : 0u);
+    near_ = glm::vec4(float(p.get("near_field_radius")), float(p.get_int("near_field_steps")), 0.0f, 0.0f);
 
     width_ = frame.width();
     height_ = frame.height();
@@ -96,6 +98,11 @@ class Gi1 : public IndirectLight {
     }
     raw_ = Image(ci.ctx,
                  {width_, height_, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
+    // The near field's images, a texel each where it is off (bound, never read).
+    const bool near = (switches_ & GIQ_GI1_NEAR_FIELD) != 0u;
+    const uint32_t near_w = near ? width_ : 1u, near_h = near ? height_ : 1u;
+    near_field_ = Image(ci.ctx, {near_w, near_h, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
+    bent_normal_ = Image(ci.ctx, {near_w, near_h, 1, VK_FORMAT_R16G16B16A16_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
     mask_levels_ = 1;
     uint64_t mask_entries = 0;
     for (glm::uvec2 m = tiles_;; m = (m + 1u) / 2u, ++mask_levels_) {
@@ -148,7 +155,8 @@ class Gi1 : public IndirectLight {
     mask_pass_ = compile("gi1_mask.comp", {s, s, s}, 4);
     filter_ = compile("gi1_filter.comp", {s, s, s, s, s, s, s, s, s}, 16);
     evict_ = compile("gi1_evict.comp", {s, s, s}, 16);
-    interpolate_ = compile("gi1_interpolate.comp", with_common({img, img, s}));
+    near_pass_ = compile("gi1_near_field.comp", with_common({img, img, img, img}));
+    interpolate_ = compile("gi1_interpolate.comp", with_common({img, img, s, img, img}));
     auto receiver = [&](std::vector<VkDescriptorType> extra) {
       auto b = GBufferPass::receiver_bindings();
       b.insert(b.end(), extra.begin(), extra.end());
@@ -171,8 +179,8 @@ class Gi1 : public IndirectLight {
       const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
       for (Image& i : history_length_) i.clear(cmd, zero);
     }
-    for (Image* i :
-         {&irradiance_[0], &irradiance_[1], &history_length_[0], &history_length_[1], &raw_})
+    for (Image* i : {&irradiance_[0], &irradiance_[1], &history_length_[0], &history_length_[1], &raw_,
+                     &near_field_, &bent_normal_})
       i->transition(cmd, VK_IMAGE_LAYOUT_GENERAL);
     probes_layer_->transition(cmd, VK_IMAGE_LAYOUT_GENERAL);
     Image& target = frame.indirect_target();
@@ -305,11 +313,25 @@ class Gi1 : public IndirectLight {
     }
     in.timer.end(cmd);
 
+    if (switches_ & GIQ_GI1_NEAR_FIELD) {
+      in.timer.begin(cmd, "gi1_near_field");
+      near_pass_.bind(cmd);
+      d = common();
+      d.insert(d.end(), {Descriptor::storage_image(frame.direct_light().output()),
+                         Descriptor::storage_image(irradiance_[prev]), Descriptor::storage_image(near_field_),
+                         Descriptor::storage_image(bent_normal_)});
+      near_pass_.push_descriptors(cmd, d);
+      near_pass_.dispatch_2d(cmd, width_, height_);
+      full_barrier(cmd);
+      in.timer.end(cmd);
+    }
+
     in.timer.begin(cmd, "gi1_interpolate");
     interpolate_.bind(cmd);
     d = common();
     d.insert(d.end(), {Descriptor::storage_image(raw_), Descriptor::storage_image(*probes_layer_),
-                       Descriptor::storage(mask_)});
+                       Descriptor::storage(mask_), Descriptor::storage_image(near_field_),
+                       Descriptor::storage_image(bent_normal_)});
     interpolate_.push_descriptors(cmd, d);
     interpolate_.dispatch_2d(cmd, width_, height_);
     full_barrier(cmd);
@@ -390,6 +412,7 @@ class Gi1 : public IndirectLight {
                                                          : std::min(denoise_history_, kChangeHistory);
     f.params = glm::vec4(kAlbedoCap, hysteresis_, history, denoise_radius_);
     f.mask = glm::uvec4(mask_levels_, 0u, 0u, 0u);
+    f.near = near_;
     return f;
   }
 
@@ -401,14 +424,15 @@ class Gi1 : public IndirectLight {
            cache_decay_ = 50;
   uint32_t seed_ = 0, switches_ = 0, filter_radius_ = 3, mask_levels_ = 1;
   float hysteresis_ = 1.0f, denoise_history_ = 16.0f, denoise_radius_ = 8.0f;
+  glm::vec4 near_{0.0f};
   scenes::Camera previous_camera_;
   Buffer frame_buffer_, guide_, ray_cells_, fresh_, probes_[2], radiance_[2], harmonics_[2], mask_,
       scratch_, spawn_, spawn_list_, overrides_, empties_, counters_, queries_, cache_hash_,
       cache_stamp_, cache_cells_, cache_max_, cache_sums_, touched_, projection_;
-  Image irradiance_[2], history_length_[2], raw_;
+  Image irradiance_[2], history_length_[2], raw_, near_field_, bent_normal_;
   Image* probes_layer_ = nullptr;
   Pipeline reproject_, spawn_pass_, patch_, reconstruct_, trace_, update_, args_, resolve_, blend_,
-      mask_pass_, filter_, evict_, interpolate_, temporal_, spatial_;
+      mask_pass_, filter_, evict_, near_pass_, interpolate_, temporal_, spatial_;
 };
 
 }  // namespace
@@ -465,6 +489,11 @@ TechniqueInfo gi1_technique() {
        {"feedback", 1, 0, 1, true,
         "1: hits on screen add last frame's indirect irradiance there (multi-bounce, section "
         "2.2.4)"},
+       {"near_field", 1, 0, 1, true,
+        "1: the screen-space near field (section 3): horizon-based occlusion and light of the surfaces "
+        "within near_field_radius pixels, where the probes are too sparse"},
+       {"near_field_radius", 16, 2, 128, false, "the near field's reach in pixels (probes are 8 apart)"},
+       {"near_field_steps", 8, 1, 64, true, "the near field's samples on each side of its slice"},
        {"seed", 0, 0, 2147483647, true, "random sequence; same seed, same image"}},
       {"upscale", {4, 3, 2, 1}});
   info.lights_with_environment = true;  // probe rays that miss see it

@@ -27,14 +27,17 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = GIQ_GI1_BINDING_COUNT + 0, rgba32f) uniform writeonly image2D out_raw;
 layout(binding = GIQ_GI1_BINDING_COUNT + 1, rgba32f) uniform writeonly image2D out_probes;
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 2) readonly buffer Mask { uint probe_mask[]; };
+// The near field (gi1_near_field.comp), read where it is on.
+layout(binding = GIQ_GI1_BINDING_COUNT + 3, rgba32f) uniform readonly image2D near_field;
+layout(binding = GIQ_GI1_BINDING_COUNT + 4, rgba16f) uniform readonly image2D bent_normal;
 
 #include "techniques/gi1/gi1_probe.glsl"
 #include "techniques/gi1/gi1_mask.glsl"
 
-vec3 probe_irradiance(uint t, vec3 n) {
+vec3 probe_irradiance(uint t, vec3 n, float visible) {
   vec4 sh[GIQ_GI1_SH];
   for (uint k = 0u; k < GIQ_GI1_SH; ++k) sh[k] = harmonics[t * GIQ_GI1_SH + k];
-  return gi1_sh_irradiance(sh, to_local(n, probes[t].normal.xyz));
+  return gi1_sh_irradiance(sh, to_local(n, probes[t].normal.xyz), visible);
 }
 
 void main() {
@@ -52,6 +55,16 @@ void main() {
   }
   float depth = gi1_view_depth(gi1.camera, r.x);
   float cell = gi1_screen_cell(gi1, depth);
+  // With the near field the probes light only the visible cone about the bent normal, and
+  // the near field the rest (section 3.1).
+  vec3 near = vec3(0.0), far_normal = r.n;
+  float visible = 1.0;
+  if ((gi1.counts.w & GIQ_GI1_NEAR_FIELD) != 0u) {
+    vec4 nf = imageLoad(near_field, px);
+    near = nf.rgb;
+    visible = nf.w;
+    if (visible < 1.0) far_normal = normalize(imageLoad(bent_normal, px).xyz);
+  }
   // The jitter, up to half a tile, dropped where it lands off the pixel's plane.
   Rng rng = rng_init(uvec2(px), gi1.jitter.z, gi1_stream(gi1, 3u));
   vec2 jitter = (vec2(rng_next(rng), rng_next(rng)) - 0.5) * float(GIQ_GI1_PROBE);
@@ -72,7 +85,7 @@ void main() {
     uint t = gi1_find_probe(base, o);
     if (t == GIQ_GI1_NONE) continue;
     GpuGi1Probe p = probes[t];
-    vec3 et = probe_irradiance(t, r.n);
+    vec3 et = probe_irradiance(t, far_normal, visible);
     float plane = abs(dot(p.position.xyz - r.x, r.n));
     float weight = (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y) *
                    max(dot(p.normal.xyz, r.n), 0.0) * max(1.0 - plane / cell, 0.0);
@@ -89,5 +102,5 @@ void main() {
   // near the pixel's plane if any.
   bool relaxed = !(total > 0.0);
   e = !relaxed ? e / total : (n_near > 0.0 ? e_near / n_near : (n_any > 0.0 ? e_any / n_any : vec3(0.0)));
-  imageStore(out_raw, px, vec4(e, relaxed ? 1.0 : 0.0));
+  imageStore(out_raw, px, vec4(e + near, relaxed ? 1.0 : 0.0));
 }

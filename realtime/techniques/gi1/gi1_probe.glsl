@@ -48,10 +48,17 @@ void gi1_sh_basis(vec3 d, out float y[GIQ_GI1_SH]) {
 // Efficient Representation for Irradiance Environment Maps"). Radiance that lies in the
 // probe's hemisphere only has no band-2 part along the normal, so for n = the probe's normal
 // bands 0 to 2 give the exact cosine integral (docs/techniques/gi1.md).
-vec3 gi1_sh_irradiance(vec4 sh[GIQ_GI1_SH], vec3 n) {
+//
+// With the near field (section 3.1), the cosine lobe is cut to the cone about n (the bent
+// normal) that holds the `visible` share of it: a cone of half-angle a holds sin^2 a of the
+// lobe, and band l's coefficient is 2 pi times the integral of mu P_l(mu) from cos a to 1:
+// pi sin^2 a, 2 pi / 3 (1 - cos^3 a), pi (1/4 + cos^2 a / 2 - 3 cos^4 a / 4). visible = 1 gives
+// the whole lobe's, bit for bit.
+vec3 gi1_sh_irradiance(vec4 sh[GIQ_GI1_SH], vec3 n, float visible) {
   float y[GIQ_GI1_SH];
   gi1_sh_basis(n, y);
-  const float a[3] = float[3](PI, 2.0 * PI / 3.0, 0.25 * PI);
+  float c2 = 1.0 - visible, c = sqrt(c2);
+  float a[3] = float[3](PI * visible, 2.0 * PI / 3.0 * (1.0 - c2 * c), PI * (0.25 + 0.5 * c2 - 0.75 * c2 * c2));
   vec3 e = a[0] * y[0] * sh[0].rgb;
   for (uint k = 1u; k < 4u; ++k) e += a[1] * y[k] * sh[k].rgb;
   for (uint k = 4u; k < GIQ_GI1_SH; ++k) e += a[2] * y[k] * sh[k].rgb;

@@ -31,6 +31,7 @@ using uint = uint32_t;
 #define GIQ_GI1_FEEDBACK 4u
 #define GIQ_GI1_HISTORY 8u  // the previous frame's probes and irradiance exist
 #define GIQ_GI1_RAY_GUIDING 16u
+#define GIQ_GI1_NEAR_FIELD 32u  // screen-space near field (section 3, gi1_near_field.comp)
 // Radiance is added into the world cache's cells as integers, each sample in units of
 // 1 / GIQ_GI1_QUANTUM of the largest sample the cell received this frame (gi1_hash.glsl).
 #define GIQ_GI1_QUANTUM 65535.0
@@ -56,6 +57,7 @@ struct GpuGi1Frame {
                 // (Algorithm 3), 0: new radiance replaces the history; z the frames the
                 // denoiser's history holds at most; w its spatial radius in pixels
   uvec4 mask;   // x mip levels of the probe mask (gi1_mask.glsl)
+  vec4 near;    // the near field: x its radius in pixels, y steps per side of its slice
 };
 
 // A screen tile's probe.

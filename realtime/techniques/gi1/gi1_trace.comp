@@ -49,16 +49,7 @@ layout(std430, binding = GIQ_GI1_BINDING_COUNT + 11) readonly buffer RayCells { 
 #include "techniques/gi1/gi1_probe.glsl"
 #include "techniques/gi1/gi1_hash.glsl"
 #include "techniques/gi1/gi1_dispatch.glsl"
-
-// The indirect irradiance at p from last frame's image, where p was on screen and the
-// surface there is p's (within a screen cell of its depth).
-vec3 feedback_irradiance(vec3 p) {
-  vec3 q = camera_project(gi1.previous, p, vec2(gi1.size.xy));
-  if (!(q.z > 0.0) || any(lessThan(q.xy, vec2(0.0))) || any(greaterThanEqual(q.xy, vec2(gi1.size.xy))))
-    return vec3(0.0);
-  vec4 e = imageLoad(previous_irradiance, ivec2(q.xy));
-  return gi1_seen_last_frame(gi1, e.w, q.z, 1.0) ? e.rgb : vec3(0.0);
-}
+#include "techniques/gi1/gi1_feedback.glsl"
 
 void main() {
   uint g = gi1_group();
@@ -90,8 +81,7 @@ void main() {
   vec3 p = a + hit.u * (b - a) + hit.v * (c - a);
   vec3 albedo = diffuse_albedo(hit_material(hit.triangle, hit.u, hit.v, hn.ns));
   vec3 sample_ = albedo / PI * hit_irradiance(p, hn.ng, hn.ns, gi1.counts.x, gi1.counts.y);
-  if ((gi1.counts.w & (GIQ_GI1_FEEDBACK | GIQ_GI1_HISTORY)) == (GIQ_GI1_FEEDBACK | GIQ_GI1_HISTORY))
-    sample_ += min(albedo, vec3(gi1.params.x)) / PI * feedback_irradiance(p);
+  if (gi1_feedback_on()) sample_ += min(albedo, vec3(gi1.params.x)) / PI * feedback_irradiance(p);
   // A non-finite sample would poison the cell for good; it can only come from a degenerate
   // configuration and is dropped.
   if (!all(lessThan(abs(sample_), vec3(3.0e38)))) sample_ = vec3(0.0);
