@@ -69,7 +69,8 @@ class Gi1 : public IndirectLight {
                 (p.get_int("adaptive_sampling") ? GIQ_GI1_ADAPTIVE_SAMPLING : 0u) |
                 (p.get_int("feedback") ? GIQ_GI1_FEEDBACK : 0u) |
                 (p.get_int("ray_guiding") ? GIQ_GI1_RAY_GUIDING : 0u) |
-                (p.get_int("near_field") ? GIQ_GI1_NEAR_FIELD : 0u);
+                (p.get_int("near_field") ? GIQ_GI1_NEAR_FIELD : 0u) |
+                (p.get_int("side_cache") ? GIQ_GI1_SIDE_CACHE : 0u);
     near_ = glm::vec4(float(p.get("near_field_radius")), float(p.get_int("near_field_steps")), 0.0f, 0.0f);
 
     width_ = frame.width();
@@ -128,6 +129,20 @@ class Gi1 : public IndirectLight {
     touched_ = buffer(uint64_t(cache_tiles_) * 4);
     projection_ = Buffer::storage(ci.ctx, gi1_projection_table());
     probes_layer_ = &frame.add_layer("probes");
+    // The side cache: as many entries as screen tiles (the report's texture the size of the
+    // probe grid), one where it is off (bound, never read).
+    side_entries_ = (switches_ & GIQ_GI1_SIDE_CACHE) ? uint32_t(tiles) : 0u;
+    const uint64_t entries = std::max<uint32_t>(side_entries_, 1u);
+    side_probes_ = buffer(entries * sizeof(gpu::GpuGi1Probe));
+    side_radiance_ = buffer(entries * GIQ_GI1_CELLS * 16);
+    // gi1_side.glsl: a stamp per entry, a word per screen tile, a claim per entry.
+    side_state_ = buffer((2 * entries + tiles) * 4);
+    side_stamp_bytes_ = entries * 4;
+    side_writes_ = buffer(slots * sizeof(gpu::GpuGi1SideWrite));
+    std::vector<uint32_t> identity(entries);
+    for (uint32_t i = 0; i < entries; ++i) identity[i] = i;
+    for (Buffer& b : side_order_) b = Buffer::storage(ci.ctx, identity);
+    side_rank_ = Buffer::storage(ci.ctx, identity);
 
     const auto s = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, img = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     const auto defines = feature_defines(ci.scene.features);
@@ -146,12 +161,14 @@ class Gi1 : public IndirectLight {
     reproject_ = compile("gi1_reproject.comp", with_common({img, img}));
     spawn_pass_ = compile("gi1_spawn.comp", with_common({s}));
     patch_ = compile("gi1_patch.comp", {s, s, s, s, s, s, s});
-    reconstruct_ = compile("gi1_reconstruct.comp", with_common({s, s, s, s, s, s}));
+    reconstruct_ = compile("gi1_reconstruct.comp", with_common({s, s, s, s, s, s, s, s, s, s, s}));
+    side_bin_ = compile("gi1_side_bin.comp", {s, s, s, s});
+    side_order_pass_ = compile("gi1_side_order.comp", {s, s, s, s, s});
     trace_ = compile("gi1_trace.comp", with_common({s, s, s, s, s, s, s, s, s, s, img, s}));
     update_ = compile("gi1_cache_update.comp", {s, s, s, s});
     args_ = compile("gi1_args.comp", {s});
     resolve_ = compile("gi1_cache_resolve.comp", {s, s, s, s, s, s});
-    blend_ = compile("gi1_blend.comp", {s, s, s, s, s, s, s, s, s, s});
+    blend_ = compile("gi1_blend.comp", {s, s, s, s, s, s, s, s, s, s, s, s, s, s});
     mask_pass_ = compile("gi1_mask.comp", {s, s, s}, 4);
     filter_ = compile("gi1_filter.comp", {s, s, s, s, s, s, s, s, s}, 16);
     evict_ = compile("gi1_evict.comp", {s, s, s}, 16);
@@ -172,8 +189,10 @@ class Gi1 : public IndirectLight {
     if (in.frame == 0) {
       for (Buffer* b :
            {&cache_hash_, &cache_stamp_, &cache_cells_, &cache_max_, &cache_sums_, &probes_[0],
-            &probes_[1], &radiance_[0], &radiance_[1], &harmonics_[0], &harmonics_[1]})
+            &probes_[1], &radiance_[0], &radiance_[1], &harmonics_[0], &harmonics_[1], &side_state_})
         vkCmdFillBuffer(cmd, b->handle(), 0, VK_WHOLE_SIZE, 0);
+      // Every side-cache entry empty (GIQ_GI1_NONE in info.x).
+      vkCmdFillBuffer(cmd, side_probes_.handle(), 0, VK_WHOLE_SIZE, GIQ_GI1_NONE);
       const float none[4] = {0.0f, 0.0f, 0.0f, -1.0f};
       for (Image& i : irradiance_) i.clear(cmd, none);
       const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -188,6 +207,7 @@ class Gi1 : public IndirectLight {
     const gpu::GpuGi1Frame f = frame_constants(in, frame);
     vkCmdUpdateBuffer(cmd, frame_buffer_.handle(), 0, sizeof(f), &f);
     vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, side_state_.handle(), side_stamp_bytes_, VK_WHOLE_SIZE, 0xffffffffu);
     full_barrier(cmd);
 
     auto common = [&] {
@@ -210,6 +230,17 @@ class Gi1 : public IndirectLight {
     full_barrier(cmd);
     in.timer.end(cmd);
 
+    Buffer &order = side_order_[in.frame & 1], &next_order = side_order_[(in.frame + 1) & 1];
+    if (side_entries_ > 0) {
+      in.timer.begin(cmd, "gi1_side_bin");
+      side_bin_.bind(cmd);
+      side_bin_.push_descriptors(cmd, {Descriptor::storage(frame_buffer_), Descriptor::storage(side_probes_),
+                                       Descriptor::storage(side_rank_), Descriptor::storage(side_state_)});
+      vkCmdDispatch(cmd, (side_entries_ + 63) / 64, 1, 1);
+      full_barrier(cmd);
+      in.timer.end(cmd);
+    }
+
     in.timer.begin(cmd, "gi1_spawn");
     spawn_pass_.bind(cmd);
     d = common();
@@ -231,7 +262,9 @@ class Gi1 : public IndirectLight {
     d = common();
     d.insert(d.end(), {Descriptor::storage(spawn_), Descriptor::storage(spawn_list_),
                        Descriptor::storage(counters_), Descriptor::storage(guide_),
-                       Descriptor::storage(ray_cells_), Descriptor::storage(fresh_)});
+                       Descriptor::storage(ray_cells_), Descriptor::storage(fresh_),
+                       Descriptor::storage(side_probes_), Descriptor::storage(side_radiance_),
+                       Descriptor::storage(order), Descriptor::storage(side_state_), Descriptor::storage(side_writes_)});
     reconstruct_.push_descriptors(cmd, d);
     vkCmdDispatchIndirect(cmd, counters_.handle(), 0);
     full_barrier(cmd);
@@ -279,10 +312,23 @@ class Gi1 : public IndirectLight {
                              Descriptor::storage(spawn_list_), Descriptor::storage(probes_[cur]),
                              Descriptor::storage(queries_), Descriptor::storage(cache_cells_),
                              Descriptor::storage(radiance_[cur]), Descriptor::storage(guide_),
-                             Descriptor::storage(ray_cells_), Descriptor::storage(fresh_)});
+                             Descriptor::storage(ray_cells_), Descriptor::storage(fresh_),
+                             Descriptor::storage(side_writes_), Descriptor::storage(side_state_),
+                             Descriptor::storage(side_probes_), Descriptor::storage(side_radiance_)});
     vkCmdDispatchIndirect(cmd, counters_.handle(), 0);
     full_barrier(cmd);
     in.timer.end(cmd);
+
+    if (side_entries_ > 0) {
+      in.timer.begin(cmd, "gi1_side_order");
+      side_order_pass_.bind(cmd);
+      side_order_pass_.push_descriptors(cmd, {Descriptor::storage(frame_buffer_), Descriptor::storage(side_state_),
+                                              Descriptor::storage(order), Descriptor::storage(next_order),
+                                              Descriptor::storage(side_rank_)});
+      vkCmdDispatch(cmd, 1, 1, 1);
+      full_barrier(cmd);
+      in.timer.end(cmd);
+    }
 
     in.timer.begin(cmd, "gi1_filter");
     mask_pass_.bind(cmd);
@@ -413,6 +459,7 @@ class Gi1 : public IndirectLight {
     f.params = glm::vec4(kAlbedoCap, hysteresis_, history, denoise_radius_);
     f.mask = glm::uvec4(mask_levels_, 0u, 0u, 0u);
     f.near = near_;
+    f.side = glm::uvec4(side_entries_, uint32_t(in.frame) + 1u, 0u, 0u);
     return f;
   }
 
@@ -422,17 +469,19 @@ class Gi1 : public IndirectLight {
   float world_cell_pixels_ = 32.0f, world_cell_min_ = 0.0f;
   uint32_t buckets_ = 4096, tiles_per_bucket_ = 16, cache_tiles_ = 0, cache_samples_ = 16,
            cache_decay_ = 50;
-  uint32_t seed_ = 0, switches_ = 0, filter_radius_ = 3, mask_levels_ = 1;
+  uint32_t seed_ = 0, switches_ = 0, filter_radius_ = 3, mask_levels_ = 1, side_entries_ = 0;
+  uint64_t side_stamp_bytes_ = 0;
   float hysteresis_ = 1.0f, denoise_history_ = 16.0f, denoise_radius_ = 8.0f;
   glm::vec4 near_{0.0f};
   scenes::Camera previous_camera_;
   Buffer frame_buffer_, guide_, ray_cells_, fresh_, probes_[2], radiance_[2], harmonics_[2], mask_,
       scratch_, spawn_, spawn_list_, overrides_, empties_, counters_, queries_, cache_hash_,
-      cache_stamp_, cache_cells_, cache_max_, cache_sums_, touched_, projection_;
+      cache_stamp_, cache_cells_, cache_max_, cache_sums_, touched_, projection_, side_probes_, side_radiance_,
+      side_order_[2], side_rank_, side_state_, side_writes_;
   Image irradiance_[2], history_length_[2], raw_, near_field_, bent_normal_;
   Image* probes_layer_ = nullptr;
   Pipeline reproject_, spawn_pass_, patch_, reconstruct_, trace_, update_, args_, resolve_, blend_,
-      mask_pass_, filter_, evict_, near_pass_, interpolate_, temporal_, spatial_;
+      mask_pass_, filter_, evict_, near_pass_, interpolate_, temporal_, spatial_, side_bin_, side_order_pass_;
 };
 
 }  // namespace
@@ -489,6 +538,9 @@ TechniqueInfo gi1_technique() {
        {"feedback", 1, 0, 1, true,
         "1: hits on screen add last frame's indirect irradiance there (multi-bounce, section "
         "2.2.4)"},
+       {"side_cache", 1, 0, 1, true,
+        "1: probes the screen cache evicts are kept in a persistent LRU side cache and reused by later "
+        "probes on their surface (section 2.1.8; thin geometry)"},
        {"near_field", 1, 0, 1, true,
         "1: the screen-space near field (section 3): horizon-based occlusion and light of the surfaces "
         "within near_field_radius pixels, where the probes are too sparse"},

@@ -11,6 +11,10 @@
 // hysteresis (Algorithm 3): a value darker than the history replaces it at once, one more
 // than twice as bright is mostly held back (a firefly); parameter `hysteresis` 0 lets the new
 // radiance replace the history instead. The new probe then takes its tile.
+//
+// The side cache (section 2.1.8): where the slot won its claims (gi1_reconstruct.comp), the
+// tile's carried probe, which the new probe did not reuse, goes into its entry before the new
+// probe replaces it, and the new probe into the entry that matched it.
 #extension GL_GOOGLE_include_directive : require
 
 #include "techniques/gi1/gi1_shared.h"
@@ -20,16 +24,21 @@ layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Frame { GpuGi1Frame gi1; };
 layout(std430, binding = 1) readonly buffer Counters { GpuGi1Counters counters; };
 layout(std430, binding = 2) readonly buffer SpawnList { uint spawn_list[]; };
-layout(std430, binding = 3) writeonly buffer Probes { GpuGi1Probe probes[]; };
+layout(std430, binding = 3) buffer Probes { GpuGi1Probe probes[]; };
 layout(std430, binding = 4) readonly buffer Queries { GpuGi1Query queries[]; };
 layout(std430, binding = 5) readonly buffer CacheCells { vec4 cache_cells[]; };
-layout(std430, binding = 6) writeonly buffer Radiance { vec4 radiance[]; };
+layout(std430, binding = 6) buffer Radiance { vec4 radiance[]; };
 layout(std430, binding = 7) readonly buffer Guide { vec4 guide[]; };
 layout(std430, binding = 8) readonly buffer RayCells { uvec2 ray_cells[]; };
 layout(std430, binding = 9) readonly buffer Fresh { GpuGi1Probe fresh[]; };
+layout(std430, binding = 10) readonly buffer SideWrites { GpuGi1SideWrite side_writes[]; };
+layout(std430, binding = 11) readonly buffer SideState { uint side_state[]; };
+layout(std430, binding = 12) writeonly buffer SideProbes { GpuGi1Probe side_probes[]; };
+layout(std430, binding = 13) writeonly buffer SideRadiance { vec4 side_radiance[]; };
 
 #include "techniques/gi1/gi1_dispatch.glsl"
 #include "techniques/gi1/gi1_cache_tile.glsl"
+#include "techniques/gi1/gi1_side.glsl"
 
 shared vec4 rays[GIQ_GI1_CELLS];  // rgb radiance, w ray length
 shared uint cells[GIQ_GI1_CELLS];
@@ -63,6 +72,14 @@ void main() {
     }
   }
   rays[lane] = vec4(l, q.radiance.w);
+  GpuGi1SideWrite side = GpuGi1SideWrite(GIQ_GI1_NONE, GIQ_GI1_NONE);
+  if (gi1.side.x > 0u) side = GpuGi1SideWrite(side_writes[g].evicted, side_writes[g].fresh);
+  bool keep_evicted = side.evicted != GIQ_GI1_NONE && side_state[gi1_side_claim(side.evicted)] == 2u * g;
+  bool keep_fresh = side.fresh != GIQ_GI1_NONE && side_state[gi1_side_claim(side.fresh)] == 2u * g + 1u;
+  if (keep_evicted) {  // before the new probe replaces it
+    side_radiance[side.evicted * GIQ_GI1_CELLS + lane] = radiance[t * GIQ_GI1_CELLS + lane];
+    if (lane == 0u) side_probes[side.evicted] = probes[t];
+  }
   uvec2 ray = ray_cells[g * GIQ_GI1_CELLS + lane];
   cells[lane] = ray.x;
   inverse_pdf[lane] = 1.0 / (float(GIQ_GI1_CELLS) * uintBitsToFloat(ray.y));
@@ -95,4 +112,8 @@ void main() {
     v = history.w > 0.0 ? vec4(history.rgb, backup.w) : backup;
   }
   radiance[t * GIQ_GI1_CELLS + lane] = v;
+  if (keep_fresh) {
+    side_radiance[side.fresh * GIQ_GI1_CELLS + lane] = v;
+    if (lane == 0u) side_probes[side.fresh] = fresh[g];
+  }
 }

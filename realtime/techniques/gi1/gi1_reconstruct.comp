@@ -11,6 +11,18 @@
 // `ray_guiding`, the 64 rays pick cells with probability proportional to the reconstructed
 // luminance (a prefix sum over the cells; a cell the reconstruction did not reach counts as
 // the mean of those it did, so that it is still explored); without, one ray per cell.
+//
+// The side cache (section 2.1.8): the entries the 3x3 tiles list (gi1_side_bin.comp) that lie
+// on the new probe's plane with its normal (as reprojection asks) count in the reconstruction
+// as the carried probes do. Then the slot schedules the blend's writes into it: where the
+// tile's carried probe is not reused (the new probe is on another surface: evicted, as with
+// thin geometry, Figure 11), the carried probe goes into the entry that matches it among
+// those listed, else into a new entry at the back of the LRU order (the slot's own: the
+// g-th from the back); the entry that matched the new probe best takes the new probe, so that
+// the cache follows changing light. Each write claims its entry with an atomic minimum of
+// its key (2g, 2g + 1): the lowest claim wins on every run, where the report's compare-and-
+// swap lets timing choose. Every entry used is stamped as used this frame (most recently
+// used: gi1_side_order.comp).
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/scene.glsl"
@@ -33,35 +45,101 @@ layout(std430, binding = GIQ_GI1_BINDING_COUNT + 4) writeonly buffer RayCells { 
 // Per spawn slot: the new probe, which the blend puts in its tile (the probes stay as they
 // are until every new probe has read its neighbours).
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 5) writeonly buffer Fresh { GpuGi1Probe fresh[]; };
+// The side cache (gi1_side_bin.comp, gi1_side_order.comp, gi1_blend.comp).
+layout(std430, binding = GIQ_GI1_BINDING_COUNT + 6) readonly buffer SideProbes { GpuGi1Probe side_probes[]; };
+layout(std430, binding = GIQ_GI1_BINDING_COUNT + 7) readonly buffer SideRadiance { vec4 side_radiance[]; };
+layout(std430, binding = GIQ_GI1_BINDING_COUNT + 8) readonly buffer SideOrder { uint side_order[]; };
+layout(std430, binding = GIQ_GI1_BINDING_COUNT + 9) buffer SideState { uint side_state[]; };
+layout(std430, binding = GIQ_GI1_BINDING_COUNT + 10) writeonly buffer SideWrites { GpuGi1SideWrite side_writes[]; };
 
 #include "techniques/gi1/gi1_probe.glsl"
 #include "techniques/gi1/gi1_dispatch.glsl"
+#include "techniques/gi1/gi1_side.glsl"
 
 shared uint largest;
 shared uint sums[GIQ_GI1_CELLS][4];
 shared float weights[GIQ_GI1_CELLS];
 shared float cdf[GIQ_GI1_CELLS + 1];
+shared uint listed[9];  // the side-cache entry each of the 3x3 tiles lists, or GIQ_GI1_NONE
+shared uint side[9];    // those of them on the new probe's plane, or GIQ_GI1_NONE
+
+// Tile k (0 .. 8) of the 3x3 around tile t, or GIQ_GI1_NONE off the screen.
+uint around(uint t, uint k) {
+  ivec2 u = ivec2(t % gi1.size.z, t / gi1.size.z) + ivec2(int(k % 3u) - 1, int(k / 3u) - 1);
+  if (any(lessThan(u, ivec2(0))) || any(greaterThanEqual(u, ivec2(gi1.size.zw)))) return GIQ_GI1_NONE;
+  return gi1_tile_index(uvec2(u));
+}
 
 // Neighbour k (0 .. 8) of tile t that carries a probe from last frame near the plane of the
 // receiver r; GIQ_GI1_NONE if it has none.
 uint neighbour(uint t, uint k, Receiver r, float cell) {
-  ivec2 u = ivec2(t % gi1.size.z, t / gi1.size.z) + ivec2(int(k % 3u) - 1, int(k / 3u) - 1);
-  if (any(lessThan(u, ivec2(0))) || any(greaterThanEqual(u, ivec2(gi1.size.zw)))) return GIQ_GI1_NONE;
-  uint i = gi1_tile_index(uvec2(u));
+  uint i = around(t, k);
+  if (i == GIQ_GI1_NONE) return GIQ_GI1_NONE;
   GpuGi1Probe p = probes[i];
   if (p.info.x == GIQ_GI1_NONE || (p.info.y & GIQ_GI1_REPROJECTED) == 0u) return GIQ_GI1_NONE;
   return abs(dot(p.position.xyz - r.x, r.n)) < cell ? i : GIQ_GI1_NONE;
 }
 
-// Where cell c of probe u lands as seen from the receiver: its cell there, or GIQ_GI1_NONE
-// when the hit lies behind the receiver's plane; v is the cell's radiance and ray length.
-uint moved_cell(uint u, uint c, Receiver r, out vec4 v) {
-  GpuGi1Probe p = probes[u];
-  v = radiance[u * GIQ_GI1_CELLS + c];
+// Whether probe (or entry) p lies within `cell` of the plane through x with normal n, facing
+// as n does: the reprojection's test (Algorithm 1).
+bool on_plane(GpuGi1Probe p, vec3 x, vec3 n, float cell) {
+  return abs(dot(p.position.xyz - x, n)) < cell && dot(p.normal.xyz, n) > 0.95;
+}
+
+// Source k of the reconstruction: the carried probes of the 3x3 tiles (k < 9), then the
+// side-cache entries they list (k >= 9). For this lane's cell c of it: where the cell lands
+// as seen from the receiver, or GIQ_GI1_NONE (no such source, or the hit lies behind the
+// receiver's plane); v is the cell's radiance and ray length.
+uint moved_cell(uint t, uint k, uint c, Receiver r, float cell, out vec4 v) {
+  v = vec4(0.0);
+  GpuGi1Probe p;
+  if (k < 9u) {
+    uint u = neighbour(t, k, r, cell);
+    if (u == GIQ_GI1_NONE) return GIQ_GI1_NONE;
+    p = probes[u];
+    v = radiance[u * GIQ_GI1_CELLS + c];
+  } else {
+    uint e = side[k - 9u];
+    if (e == GIQ_GI1_NONE) return GIQ_GI1_NONE;
+    p = side_probes[e];
+    v = side_radiance[e * GIQ_GI1_CELLS + c];
+  }
   vec3 dir = to_world(gi1_cell_direction(c, vec2(0.5)), p.normal.xyz);
   vec3 to_hit = p.position.xyz + dir * v.w - r.x;
   if (!(dot(to_hit, r.n) > 0.0)) return GIQ_GI1_NONE;
   return gi1_direction_cell(to_local(normalize(to_hit), r.n));
+}
+
+// The side cache's writes for slot g (tile t, new probe at receiver r), as described above.
+void schedule_side_writes(uint g, uint t, Receiver r, float cell) {
+  GpuGi1SideWrite w = GpuGi1SideWrite(GIQ_GI1_NONE, GIQ_GI1_NONE);
+  GpuGi1Probe carried = probes[t];
+  bool has_carried = carried.info.x != GIQ_GI1_NONE && (carried.info.y & GIQ_GI1_REPROJECTED) != 0u;
+  if (has_carried && neighbour(t, 4u, r, cell) == GIQ_GI1_NONE) {  // evicted
+    float nearest = 1e38;
+    for (uint k = 0u; k < 9u; ++k) {
+      uint e = listed[k];
+      if (e == GIQ_GI1_NONE || !on_plane(side_probes[e], carried.position.xyz, carried.normal.xyz, carried.normal.w))
+        continue;
+      float d = distance(side_probes[e].position.xyz, carried.position.xyz);
+      if (d < nearest) nearest = d, w.evicted = e;
+    }
+    if (w.evicted == GIQ_GI1_NONE && g < gi1.side.x) w.evicted = side_order[gi1.side.x - 1u - g];
+  }
+  float nearest = 1e38;
+  for (uint k = 0u; k < 9u; ++k) {
+    uint e = side[k];
+    if (e == GIQ_GI1_NONE) continue;
+    side_state[gi1_side_stamp(e)] = gi1.side.y;
+    float d = distance(side_probes[e].position.xyz, r.x);
+    if (d < nearest && e != w.evicted) nearest = d, w.fresh = e;
+  }
+  if (w.evicted != GIQ_GI1_NONE) {
+    side_state[gi1_side_stamp(w.evicted)] = gi1.side.y;
+    atomicMin(side_state[gi1_side_claim(w.evicted)], 2u * g);
+  }
+  if (w.fresh != GIQ_GI1_NONE) atomicMin(side_state[gi1_side_claim(w.fresh)], 2u * g + 1u);
+  side_writes[g] = w;
 }
 
 void main() {
@@ -72,20 +150,25 @@ void main() {
   float cell = gi1_screen_cell(gi1, gi1_view_depth(gi1.camera, r.x));
   if (lane == 0u) largest = 0u;
   sums[lane] = uint[4](0u, 0u, 0u, 0u);
+  if (lane < 9u) {
+    uint i = gi1.side.x > 0u ? around(t, lane) : GIQ_GI1_NONE;
+    uint rank = i != GIQ_GI1_NONE ? side_state[gi1_side_tile(i)] : 0xffffffffu;
+    listed[lane] = rank != 0xffffffffu ? side_order[rank] : GIQ_GI1_NONE;
+    side[lane] = listed[lane] != GIQ_GI1_NONE && on_plane(side_probes[listed[lane]], r.x, r.n, cell) ? listed[lane]
+                                                                                                     : GIQ_GI1_NONE;
+  }
   barrier();
-  for (uint k = 0u; k < 9u; ++k) {
-    uint u = neighbour(t, k, r, cell);
+  const uint sources = gi1.side.x > 0u ? 18u : 9u;
+  for (uint k = 0u; k < sources; ++k) {
     vec4 v;
-    if (u != GIQ_GI1_NONE && moved_cell(u, lane, r, v) != GIQ_GI1_NONE)
+    if (moved_cell(t, k, lane, r, cell, v) != GIQ_GI1_NONE)
       atomicMax(largest, floatBitsToUint(max(v.r, max(v.g, v.b))));  // >= 0: ordered as its bits
   }
   barrier();
   float scale = uintBitsToFloat(largest);
-  for (uint k = 0u; k < 9u; ++k) {
-    uint u = neighbour(t, k, r, cell);
-    if (u == GIQ_GI1_NONE) continue;
+  for (uint k = 0u; k < sources; ++k) {
     vec4 v;
-    uint c = moved_cell(u, lane, r, v);
+    uint c = moved_cell(t, k, lane, r, cell, v);
     if (c == GIQ_GI1_NONE) continue;
     uvec3 q = scale > 0.0 ? uvec3(round(clamp(v.rgb / scale, 0.0, 1.0) * GIQ_GI1_QUANTUM)) : uvec3(0u);
     atomicAdd(sums[c][0], q.x);
@@ -114,6 +197,7 @@ void main() {
     p.position = vec4(r.x, gi1_view_depth(gi1.camera, r.x));
     p.normal = vec4(r.n, cell);
     fresh[g] = p;
+    if (gi1.side.x > 0u) schedule_side_writes(g, t, r, cell);
     cdf[0] = 0.0;
     for (uint c = 0u; c < GIQ_GI1_CELLS; ++c) cdf[c + 1u] = cdf[c] + (weights[c] >= 0.0 ? weights[c] : unknown);
   }

@@ -32,6 +32,7 @@ using uint = uint32_t;
 #define GIQ_GI1_HISTORY 8u  // the previous frame's probes and irradiance exist
 #define GIQ_GI1_RAY_GUIDING 16u
 #define GIQ_GI1_NEAR_FIELD 32u  // screen-space near field (section 3, gi1_near_field.comp)
+#define GIQ_GI1_SIDE_CACHE 64u  // the persistent side cache (section 2.1.8, gi1_side_*.comp)
 // Radiance is added into the world cache's cells as integers, each sample in units of
 // 1 / GIQ_GI1_QUANTUM of the largest sample the cell received this frame (gi1_hash.glsl).
 #define GIQ_GI1_QUANTUM 65535.0
@@ -58,6 +59,7 @@ struct GpuGi1Frame {
                 // denoiser's history holds at most; w its spatial radius in pixels
   uvec4 mask;   // x mip levels of the probe mask (gi1_mask.glsl)
   vec4 near;    // the near field: x its radius in pixels, y steps per side of its slice
+  uvec4 side;   // the side cache: x its entries (0: off), y this frame + 1 (an entry's stamp)
 };
 
 // A screen tile's probe.
@@ -84,6 +86,13 @@ struct GpuGi1Query {
   vec4 radiance;  // rgb this frame's sample of the light leaving the hit towards the probe, or
                   // what a miss saw (the environment); w the hit distance (1e30: a miss, small
                    // enough that filters can sum a few)
+};
+
+// Per spawn slot: the side-cache entries the blend writes (section 2.1.8), each GIQ_GI1_NONE or
+// an entry the slot won (gi1_reconstruct.comp claims, the lowest claim wins).
+struct GpuGi1SideWrite {
+  uint evicted;  // receives the tile's carried probe, which the new probe did not reuse
+  uint fresh;    // receives the new probe: the entry that matched it best in the reconstruction
 };
 
 #ifdef __cplusplus
