@@ -109,8 +109,9 @@ TEST_F(Gi1Test, TheNearFieldLeavesAnOpenPlaneAsItIs) {
     scenes::Scene s = test::lambert_plane(0.6f, 4.0f * scale, 3.0f * scale);
     s.views[0].camera.znear = 1e-3f * scale;
     s.environment = glm::vec3(1.0f, 0.5f, 0.25f);
-    s.views.push_back({"slant", scenes::Camera::look_at(glm::vec3(0.0f, 1.5f, 3.0f) * scale, glm::vec3(0.0f),
-                                                       {0, 1, 0}, 1.0471976f),
+    s.views.push_back({"slant",
+                       scenes::Camera::look_at(glm::vec3(0.0f, 1.5f, 3.0f) * scale, glm::vec3(0.0f),
+                                               {0, 1, 0}, 1.0471976f),
                        -1});
     s.views.back().camera.znear = 1e-3f * scale;
     s.derive();
@@ -174,7 +175,8 @@ TEST_F(Gi1Test, TheSideCacheGivesProbesOnThinPolesTheirHistory) {
     const float x = -2.0f + 0.5f * float(i), w = 0.04f;
     test::add_quad(s, {x, -3, 0}, {x + w, -3, 0}, {x + w, 3, 0}, {x, 3, 0}, grey);
   }
-  s.views.push_back({"front", scenes::Camera::look_at({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, 1.0471976f), -1});
+  s.views.push_back(
+      {"front", scenes::Camera::look_at({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, 1.0471976f), -1});
   s.environment = glm::vec3(1.0f);
   s.derive();
   const int size = 64;
@@ -185,13 +187,15 @@ TEST_F(Gi1Test, TheSideCacheGivesProbesOnThinPolesTheirHistory) {
     o.width = o.height = size;
     o.warmup = 16;
     o.frames = 24;
-    o.parameters = {"shadow_map_size=256", "cache_buckets_log2=8", "side_cache=" + std::to_string(side_cache)};
+    o.parameters = {"shadow_map_size=256", "cache_buckets_log2=8",
+                    "side_cache=" + std::to_string(side_cache)};
     int with_history = 0;
     spawned_on_poles = 0;
     render_sequence(*ctx, *compiler, s, o, [&](RenderedFrame& f) {
       for (size_t i = 0; i < f.image.pixel_count(); ++i) {
         // A pole's pixels: the pixel centre's ray crosses z = 0 on a pole.
-        const float x = ((float(i % size) + 0.5f) / float(size) * 2.0f - 1.0f) * 4.0f * std::tan(0.5f * 1.0471976f);
+        const float x = ((float(i % size) + 0.5f) / float(size) * 2.0f - 1.0f) * 4.0f *
+                        std::tan(0.5f * 1.0471976f);
         const float k = (x + 2.0f) / 0.5f;
         const bool on_pole = k >= 0.0f && k < 9.0f && (x + 2.0f) - 0.5f * std::floor(k) < 0.04f;
         if (!on_pole || !(f.image.channel("probes.B")[i] > 0.0f)) continue;
@@ -202,9 +206,10 @@ TEST_F(Gi1Test, TheSideCacheGivesProbesOnThinPolesTheirHistory) {
     return with_history;
   };
   int on_poles_with = 0, on_poles_without = 0;
-  const int with = pole_probes_with_history(1, on_poles_with), without = pole_probes_with_history(0, on_poles_without);
-  std::printf("new probes on poles with history: %d of %d with the side cache, %d of %d without\n", with,
-              on_poles_with, without, on_poles_without);
+  const int with = pole_probes_with_history(1, on_poles_with),
+            without = pole_probes_with_history(0, on_poles_without);
+  std::printf("new probes on poles with history: %d of %d with the side cache, %d of %d without\n",
+              with, on_poles_with, without, on_poles_without);
   ASSERT_GT(on_poles_with, 20);
   EXPECT_GT(double(with) / on_poles_with, 1.5 * double(without) / std::max(on_poles_without, 1));
 }

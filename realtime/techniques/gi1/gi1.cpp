@@ -70,7 +70,11 @@ class Gi1 : public IndirectLight {
                 (p.get_int("feedback") ? GIQ_GI1_FEEDBACK : 0u) |
                 (p.get_int("ray_guiding") ? GIQ_GI1_RAY_GUIDING : 0u) |
                 (p.get_int("near_field") ? GIQ_GI1_NEAR_FIELD : 0u) |
-                (p.get_int("side_cache") ? GIQ_GI1_SIDE_CACHE : 0u);
+                (p.get_int("side_cache") ? GIQ_GI1_SIDE_CACHE : 0u) |
+                (p.get_int("light_sampling") ? GIQ_GI1_LIGHT_SAMPLING : 0u);
+    light_candidates_ = uint32_t(p.get_int("light_candidates"));
+    grid_cells_ = uint32_t(p.get_int("light_grid_cells"));
+    grid_lights_ = uint32_t(p.get_int("light_grid_lights"));
     near_ = glm::vec4(float(p.get("near_field_radius")), float(p.get_int("near_field_steps")), 0.0f, 0.0f);
 
     width_ = frame.width();
@@ -139,6 +143,8 @@ class Gi1 : public IndirectLight {
     side_state_ = buffer((2 * entries + tiles) * 4);
     side_stamp_bytes_ = entries * 4;
     side_writes_ = buffer(slots * sizeof(gpu::GpuGi1SideWrite));
+    // The light grid: at most light_grid_cells^3 cells, each a count and its lights.
+    light_grid_ = buffer(uint64_t(grid_cells_) * grid_cells_ * grid_cells_ * (grid_lights_ + 1) * 4);
     std::vector<uint32_t> identity(entries);
     for (uint32_t i = 0; i < entries; ++i) identity[i] = i;
     for (Buffer& b : side_order_) b = Buffer::storage(ci.ctx, identity);
@@ -164,7 +170,13 @@ class Gi1 : public IndirectLight {
     reconstruct_ = compile("gi1_reconstruct.comp", with_common({s, s, s, s, s, s, s, s, s, s, s}));
     side_bin_ = compile("gi1_side_bin.comp", {s, s, s, s});
     side_order_pass_ = compile("gi1_side_order.comp", {s, s, s, s, s});
-    trace_ = compile("gi1_trace.comp", with_common({s, s, s, s, s, s, s, s, s, s, img, s}));
+    auto receiver = [&](std::vector<VkDescriptorType> extra) {
+      auto b = GBufferPass::receiver_bindings();
+      b.insert(b.end(), extra.begin(), extra.end());
+      return b;
+    };
+    light_grid_pass_ = compile("gi1_light_grid.comp", with_common({s, s, s}));
+    trace_ = compile("gi1_trace.comp", receiver({s, s, s, s, s, s, s, s, s, s, s, img, s, s}));
     update_ = compile("gi1_cache_update.comp", {s, s, s, s});
     args_ = compile("gi1_args.comp", {s});
     resolve_ = compile("gi1_cache_resolve.comp", {s, s, s, s, s, s});
@@ -174,11 +186,6 @@ class Gi1 : public IndirectLight {
     evict_ = compile("gi1_evict.comp", {s, s, s}, 16);
     near_pass_ = compile("gi1_near_field.comp", with_common({img, img, img, img}));
     interpolate_ = compile("gi1_interpolate.comp", with_common({img, img, s, img, img}));
-    auto receiver = [&](std::vector<VkDescriptorType> extra) {
-      auto b = GBufferPass::receiver_bindings();
-      b.insert(b.end(), extra.begin(), extra.end());
-      return b;
-    };
     temporal_ = compile("gi1_denoise_temporal.comp", receiver({s, img, img, img, img, img, img}));
     spatial_ = compile("gi1_denoise_spatial.comp", receiver({s, img, img, img}));
   }
@@ -270,17 +277,31 @@ class Gi1 : public IndirectLight {
     full_barrier(cmd);
     in.timer.end(cmd);
 
+    if (switches_ & GIQ_GI1_LIGHT_SAMPLING) {
+      in.timer.begin(cmd, "gi1_light_grid");
+      light_grid_pass_.bind(cmd);
+      d = common();
+      d.insert(d.end(), {Descriptor::storage(frame.direct_light().area_light_buffer()),
+                         Descriptor::storage(frame.direct_light().area_triangle_buffer()),
+                         Descriptor::storage(light_grid_)});
+      light_grid_pass_.push_descriptors(cmd, d);
+      vkCmdDispatch(cmd, (f.grid_cells.x * f.grid_cells.y * f.grid_cells.z + 63) / 64, 1, 1);
+      full_barrier(cmd);
+      in.timer.end(cmd);
+    }
+
     in.timer.begin(cmd, "gi1_trace");
     trace_.bind(cmd);
-    d = common();
+    d = frame.gbuffer().receiver_descriptors();
     d.insert(d.end(),
-             {Descriptor::storage(spawn_), Descriptor::storage(spawn_list_),
+             {Descriptor::storage(frame_buffer_), Descriptor::storage(spawn_), Descriptor::storage(spawn_list_),
               Descriptor::storage(counters_), Descriptor::storage(queries_),
               Descriptor::storage(cache_hash_), Descriptor::storage(cache_stamp_),
               Descriptor::storage(cache_max_), Descriptor::storage(touched_),
               Descriptor::storage(frame.direct_light().area_light_buffer()),
               Descriptor::storage(frame.direct_light().area_triangle_buffer()),
-              Descriptor::storage_image(irradiance_[prev]), Descriptor::storage(ray_cells_)});
+              Descriptor::storage_image(irradiance_[prev]), Descriptor::storage(ray_cells_),
+              Descriptor::storage(light_grid_)});
     trace_.push_descriptors(cmd, d);
     vkCmdDispatchIndirect(cmd, counters_.handle(), 0);
     full_barrier(cmd);
@@ -460,6 +481,15 @@ class Gi1 : public IndirectLight {
     f.mask = glm::uvec4(mask_levels_, 0u, 0u, 0u);
     f.near = near_;
     f.side = glm::uvec4(side_entries_, uint32_t(in.frame) + 1u, 0u, 0u);
+    // The light grid: cubic cells over the scene's bounds, light_grid_cells along the longest
+    // side (gi1_light_grid.comp).
+    const scenes::Bounds& b = in.scene.bounds;
+    const float cell = b.largest_side() / float(grid_cells_);
+    const glm::uvec3 cells = glm::clamp(glm::uvec3(glm::ceil(b.extent() / cell)), glm::uvec3(1u), glm::uvec3(grid_cells_));
+    f.grid = glm::vec4(b.empty() ? glm::vec3(0.0f) : b.lo, cell);
+    f.grid_cells = glm::uvec4(cells, grid_lights_);
+    const bool environment = in.scene.environment != glm::vec3(0.0f) || in.scene.environment_map >= 0;
+    f.lights = glm::uvec4(f.counts.x + f.counts.y + (environment ? 1u : 0u), light_candidates_, 0u, 0u);
     return f;
   }
 
@@ -471,17 +501,19 @@ class Gi1 : public IndirectLight {
            cache_decay_ = 50;
   uint32_t seed_ = 0, switches_ = 0, filter_radius_ = 3, mask_levels_ = 1, side_entries_ = 0;
   uint64_t side_stamp_bytes_ = 0;
+  uint32_t light_candidates_ = 8, grid_cells_ = 16, grid_lights_ = 32;
   float hysteresis_ = 1.0f, denoise_history_ = 16.0f, denoise_radius_ = 8.0f;
   glm::vec4 near_{0.0f};
   scenes::Camera previous_camera_;
   Buffer frame_buffer_, guide_, ray_cells_, fresh_, probes_[2], radiance_[2], harmonics_[2], mask_,
       scratch_, spawn_, spawn_list_, overrides_, empties_, counters_, queries_, cache_hash_,
       cache_stamp_, cache_cells_, cache_max_, cache_sums_, touched_, projection_, side_probes_, side_radiance_,
-      side_order_[2], side_rank_, side_state_, side_writes_;
+      side_order_[2], side_rank_, side_state_, side_writes_, light_grid_;
   Image irradiance_[2], history_length_[2], raw_, near_field_, bent_normal_;
   Image* probes_layer_ = nullptr;
   Pipeline reproject_, spawn_pass_, patch_, reconstruct_, trace_, update_, args_, resolve_, blend_,
-      mask_pass_, filter_, evict_, near_pass_, interpolate_, temporal_, spatial_, side_bin_, side_order_pass_;
+      mask_pass_, filter_, evict_, near_pass_, interpolate_, temporal_, spatial_, side_bin_, side_order_pass_,
+      light_grid_pass_;
 };
 
 }  // namespace
@@ -538,6 +570,13 @@ TechniqueInfo gi1_technique() {
        {"feedback", 1, 0, 1, true,
         "1: hits on screen add last frame's indirect irradiance there (multi-bounce, section "
         "2.2.4)"},
+       {"light_sampling", 1, 0, 1, true,
+        "1: the lights at the probe rays' hits are sampled, the environment among them: candidates from "
+        "the light grid resampled into a reservoir, one shadow ray (section 2.3); 0: every light "
+        "evaluated exactly, one shadow ray each, the environment left out"},
+       {"light_candidates", 8, 1, 64, true, "candidates resampled per hit (section 2.3.1)"},
+       {"light_grid_cells", 16, 1, 64, true, "the light grid's cells along the scene's longest side"},
+       {"light_grid_lights", 32, 1, 64, true, "the lights a light-grid cell lists at most, the most important"},
        {"side_cache", 1, 0, 1, true,
         "1: probes the screen cache evicts are kept in a persistent LRU side cache and reused by later "
         "probes on their surface (section 2.1.8; thin geometry)"},

@@ -33,6 +33,7 @@ using uint = uint32_t;
 #define GIQ_GI1_RAY_GUIDING 16u
 #define GIQ_GI1_NEAR_FIELD 32u  // screen-space near field (section 3, gi1_near_field.comp)
 #define GIQ_GI1_SIDE_CACHE 64u  // the persistent side cache (section 2.1.8, gi1_side_*.comp)
+#define GIQ_GI1_LIGHT_SAMPLING 128u  // lights sampled at the hits through the light grid (section 2.3)
 // Radiance is added into the world cache's cells as integers, each sample in units of
 // 1 / GIQ_GI1_QUANTUM of the largest sample the cell received this frame (gi1_hash.glsl).
 #define GIQ_GI1_QUANTUM 65535.0
@@ -60,6 +61,10 @@ struct GpuGi1Frame {
   uvec4 mask;   // x mip levels of the probe mask (gi1_mask.glsl)
   vec4 near;    // the near field: x its radius in pixels, y steps per side of its slice
   uvec4 side;   // the side cache: x its entries (0: off), y this frame + 1 (an entry's stamp)
+  vec4 grid;    // the light grid (section 2.3.2): xyz its lowest corner, w its cells' side
+  uvec4 grid_cells;  // xyz its cells per axis, w the lights a cell lists at most
+  uvec4 lights;      // x the lights the grid ranks (punctual, then area, then the environment
+                     // where it shines), y candidates per hit (section 2.3.1)
 };
 
 // A screen tile's probe.

@@ -2,8 +2,10 @@
 // `gi1`: the new probes' rays (Boissé et al. 2022, sections 2.1.3 and 2.2). A work group per probe
 // on the spawn list, a lane per ray, through a random point of the cell gi1_reconstruct.comp chose
 // for it, through the shared compute BVH. A miss sees the environment. At a hit the light leaving
-// it towards the probe is sampled (section 2.2.4): diffuse albedo / pi x (the lights' irradiance
-// there, shadowed by BVH rays, passes/hit_irradiance.glsl, plus, with feedback, the indirect
+// it towards the probe is sampled (section 2.2.4): diffuse albedo / pi x (the light sources'
+// irradiance there: with `light_sampling` sampled through the light grid, the environment among
+// them, one shadow ray (section 2.3, gi1_light_sample.glsl), else every light exactly, one BVH
+// shadow ray each (passes/hit_irradiance.glsl); plus, with feedback, the indirect
 // irradiance this technique found there last frame where the hit was on screen: one more bounce per
 // frame, the albedo capped below 1 so that the loop contracts). The hit's own emission is left out:
 // the shared direct pass already carries it to the receivers, as `ddgi` does. The sample is filed
@@ -28,6 +30,7 @@
 layout(local_size_x = 64) in;
 
 #include "passes/receiver.glsl"
+#define GIQ_GI1_FRAME_ONLY
 #include "techniques/gi1/gi1_common.glsl"
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 0) readonly buffer Spawn { uvec2 spawn[]; };
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 1) readonly buffer SpawnList { uint spawn_list[]; };
@@ -44,12 +47,16 @@ layout(std430, binding = GIQ_GI1_BINDING_COUNT + 9) readonly buffer AreaTriangle
 layout(binding = GIQ_GI1_BINDING_COUNT + 10, rgba32f) uniform readonly image2D previous_irradiance;
 // Per spawn slot and ray: the cell it is traced through (gi1_reconstruct.comp).
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 11) readonly buffer RayCells { uvec2 ray_cells[]; };
+// The light grid (gi1_light_grid.comp), read with `light_sampling`.
+layout(std430, binding = GIQ_GI1_BINDING_COUNT + 12) readonly buffer LightGrid { uint light_grid[]; };
 
 #include "passes/hit_irradiance.glsl"
 #include "techniques/gi1/gi1_probe.glsl"
 #include "techniques/gi1/gi1_hash.glsl"
 #include "techniques/gi1/gi1_dispatch.glsl"
 #include "techniques/gi1/gi1_feedback.glsl"
+#include "techniques/gi1/gi1_light.glsl"
+#include "techniques/gi1/gi1_light_sample.glsl"
 
 void main() {
   uint g = gi1_group();
@@ -80,7 +87,9 @@ void main() {
   triangle_vertices(hit.triangle, a, b, c);
   vec3 p = a + hit.u * (b - a) + hit.v * (c - a);
   vec3 albedo = diffuse_albedo(hit_material(hit.triangle, hit.u, hit.v, hn.ns));
-  vec3 sample_ = albedo / PI * hit_irradiance(p, hn.ng, hn.ns, gi1.counts.x, gi1.counts.y);
+  vec3 e = (gi1.counts.w & GIQ_GI1_LIGHT_SAMPLING) != 0u ? gi1_sampled_irradiance(p, hn.ng, hn.ns, rng)
+                                                         : hit_irradiance(p, hn.ng, hn.ns, gi1.counts.x, gi1.counts.y);
+  vec3 sample_ = albedo / PI * e;
   if (gi1_feedback_on()) sample_ += min(albedo, vec3(gi1.params.x)) / PI * feedback_irradiance(p);
   // A non-finite sample would poison the cell for good; it can only come from a degenerate
   // configuration and is dropped.
