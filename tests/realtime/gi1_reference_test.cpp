@@ -17,8 +17,8 @@
 // frames (each longer than the drift's correlation) and allowed 4 times; the reference's own
 // noise (1024 samples) is far below either.
 //
-// That holds for the estimator with the parts that carry a bias of their own switched off or
-// made small, each measured on this box at 64 x 64 (docs/techniques/gi1.md):
+// That holds on this box for the estimator with the parts that carry a bias of their own
+// switched off or made small, each measured here at 64 x 64 (docs/techniques/gi1.md):
 //  - the world cache's cells (2 pixels here, `world_cell_pixels` 2): the mean over a cell is
 //    not what a probe's cosine-weighted cells read back; one bounce comes out 0.96-0.99 of the
 //    truth with cells of 2 pixels, 0.93-0.96 with 8 and 0.88-0.90 with the default 32;
@@ -27,6 +27,10 @@
 //  - the hysteresis (Algorithm 3), dark by design (-1 to -4 %);
 //  - the near field (section 3), which swaps the probes' light in the directions its occluders
 //    hide for the occluders' own through a cone that approximates the visible set.
+// It is not a bound for every scene: with twelve small point lights added near the walls
+// (ReusingReservoirsSteadiesTheHits) the same estimator reads 0.90-0.92 of the one-bounce truth,
+// with the probe filter and the cache's averaging off as well; which part loses that light is
+// not separated yet.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -174,6 +178,64 @@ TEST_F(Gi1ReferenceTest, TheSkyReachesTheHitsWhenLightsAreSampled) {
     EXPECT_GT(sampled.mean[c] - exact.mean[c],
               4.0 * std::hypot(sampled.standard_error[c], exact.standard_error[c]));
   }
+}
+
+// World-space reuse (section 2.3.1) on the Cornell box with twelve small point lights added: one
+// candidate per hit, so each hit's own draw picks one light of thirteen, and the reservoir left
+// in its cell last frame brings the candidates drawn there before. Frame to frame the image
+// then changes less (the world cache keeps one sample a cell and the denoiser is off, so the
+// hits' noise shows): measured rms change 0.069 with reuse, 0.085 without, at 64 x 64. Reuse
+// moves the mean too (the reused reservoirs' candidates are weighted 1/M, not by MIS, and
+// their visibility is not tested): 0.86 of the one-bounce truth with it, 0.83 without (printed;
+// the lights near the walls put this scene outside the bound above, docs/techniques/gi1.md).
+TEST_F(Gi1ReferenceTest, ReusingReservoirsSteadiesTheHits) {
+  scenes::Scene s = test::builtin("cornell");
+  for (int i = 0; i < 12; ++i) {
+    scenes::Light l;
+    l.type = scenes::LightType::Point;
+    l.position =
+        s.bounds.centre() + s.bounds.extent() * glm::vec3(0.4f * std::sin(0.7f * float(i)),
+                                                          0.3f * std::cos(1.3f * float(i)),
+                                                          0.3f * std::sin(2.1f * float(i)));
+    l.intensity = 0.05f;
+    s.lights.push_back(l);
+  }
+  s.derive();
+  const std::array<double, 3> one_bounce = truth(s, 2);
+  auto steadiness = [&](int reuse, double& mean) {
+    RenderOptions o;
+    o.technique = "gi1";
+    o.width = o.height = kSize;
+    o.frames = 48;
+    o.parameters = with("light_reuse=" + std::to_string(reuse));
+    o.parameters.insert(o.parameters.end(),
+                        {"light_candidates=1", "cache_samples=1", "denoise_history=0",
+                         "shadow_map_size=256", "cache_buckets_log2=8"});
+    std::vector<float> last;
+    double change = 0.0, sum = 0.0;
+    size_t n = 0;
+    int frame = 0;
+    render_sequence(*ctx, *compiler, s, o, [&](RenderedFrame& f) {
+      const float* g = f.image.channel("indirect.G");
+      std::vector<float> now(g, g + f.image.pixel_count());
+      if (++frame > 16) {
+        for (size_t i = 0; i < now.size(); ++i)
+          change += double(now[i] - last[i]) * (now[i] - last[i]), sum += now[i];
+        n += now.size();
+      }
+      last = std::move(now);
+    });
+    mean = sum / double(n) / one_bounce[1];
+    return std::sqrt(change / double(n));
+  };
+  double mean_with = 0.0, mean_without = 0.0;
+  const double with_reuse = steadiness(8, mean_with), without = steadiness(0, mean_without);
+  std::printf(
+      "gi1, 13 lights, one candidate a hit: rms change a frame %.5f with reuse (mean %.4f of the "
+      "one-bounce "
+      "truth), %.5f without (%.4f)\n",
+      with_reuse, mean_with, without, mean_without);
+  EXPECT_LT(with_reuse, without);
 }
 
 }  // namespace

@@ -75,6 +75,7 @@ class Gi1 : public IndirectLight {
     light_candidates_ = uint32_t(p.get_int("light_candidates"));
     grid_cells_ = uint32_t(p.get_int("light_grid_cells"));
     grid_lights_ = uint32_t(p.get_int("light_grid_lights"));
+    reuse_ = uint32_t(p.get_int("light_reuse"));
     near_ = glm::vec4(float(p.get("near_field_radius")), float(p.get_int("near_field_steps")), 0.0f, 0.0f);
 
     width_ = frame.width();
@@ -145,6 +146,10 @@ class Gi1 : public IndirectLight {
     side_writes_ = buffer(slots * sizeof(gpu::GpuGi1SideWrite));
     // The light grid: at most light_grid_cells^3 cells, each a count and its lights.
     light_grid_ = buffer(uint64_t(grid_cells_) * grid_cells_ * grid_cells_ * (grid_lights_ + 1) * 4);
+    // The reservoir grid: as many slots as the world cache has tiles.
+    reservoirs_ = buffer(uint64_t(cache_tiles_) * sizeof(gpu::GpuGi1Reservoir));
+    reservoir_claims_ = buffer(uint64_t(cache_tiles_) * 4);
+    reservoir_stash_ = buffer(slots * GIQ_GI1_CELLS * sizeof(gpu::GpuGi1Reservoir));
     std::vector<uint32_t> identity(entries);
     for (uint32_t i = 0; i < entries; ++i) identity[i] = i;
     for (Buffer& b : side_order_) b = Buffer::storage(ci.ctx, identity);
@@ -176,7 +181,8 @@ class Gi1 : public IndirectLight {
       return b;
     };
     light_grid_pass_ = compile("gi1_light_grid.comp", with_common({s, s, s}));
-    trace_ = compile("gi1_trace.comp", receiver({s, s, s, s, s, s, s, s, s, s, s, img, s, s}));
+    trace_ = compile("gi1_trace.comp", receiver({s, s, s, s, s, s, s, s, s, s, s, img, s, s, s, s, s}));
+    reservoir_store_ = compile("gi1_reservoir_store.comp", {s, s, s, s});
     update_ = compile("gi1_cache_update.comp", {s, s, s, s});
     args_ = compile("gi1_args.comp", {s});
     resolve_ = compile("gi1_cache_resolve.comp", {s, s, s, s, s, s});
@@ -196,7 +202,8 @@ class Gi1 : public IndirectLight {
     if (in.frame == 0) {
       for (Buffer* b :
            {&cache_hash_, &cache_stamp_, &cache_cells_, &cache_max_, &cache_sums_, &probes_[0],
-            &probes_[1], &radiance_[0], &radiance_[1], &harmonics_[0], &harmonics_[1], &side_state_})
+            &probes_[1], &radiance_[0], &radiance_[1], &harmonics_[0], &harmonics_[1], &side_state_, &reservoirs_,
+            &reservoir_stash_})
         vkCmdFillBuffer(cmd, b->handle(), 0, VK_WHOLE_SIZE, 0);
       // Every side-cache entry empty (GIQ_GI1_NONE in info.x).
       vkCmdFillBuffer(cmd, side_probes_.handle(), 0, VK_WHOLE_SIZE, GIQ_GI1_NONE);
@@ -215,6 +222,7 @@ class Gi1 : public IndirectLight {
     vkCmdUpdateBuffer(cmd, frame_buffer_.handle(), 0, sizeof(f), &f);
     vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(cmd, side_state_.handle(), side_stamp_bytes_, VK_WHOLE_SIZE, 0xffffffffu);
+    vkCmdFillBuffer(cmd, reservoir_claims_.handle(), 0, VK_WHOLE_SIZE, 0xffffffffu);
     full_barrier(cmd);
 
     auto common = [&] {
@@ -301,10 +309,18 @@ class Gi1 : public IndirectLight {
               Descriptor::storage(frame.direct_light().area_light_buffer()),
               Descriptor::storage(frame.direct_light().area_triangle_buffer()),
               Descriptor::storage_image(irradiance_[prev]), Descriptor::storage(ray_cells_),
-              Descriptor::storage(light_grid_)});
+              Descriptor::storage(light_grid_), Descriptor::storage(reservoirs_),
+              Descriptor::storage(reservoir_claims_), Descriptor::storage(reservoir_stash_)});
     trace_.push_descriptors(cmd, d);
     vkCmdDispatchIndirect(cmd, counters_.handle(), 0);
     full_barrier(cmd);
+    if (switches_ & GIQ_GI1_LIGHT_SAMPLING) {
+      reservoir_store_.bind(cmd);
+      reservoir_store_.push_descriptors(cmd, {Descriptor::storage(counters_), Descriptor::storage(reservoir_stash_),
+                                              Descriptor::storage(reservoir_claims_), Descriptor::storage(reservoirs_)});
+      vkCmdDispatchIndirect(cmd, counters_.handle(), 0);
+      full_barrier(cmd);
+    }
     in.timer.end(cmd);
 
     in.timer.begin(cmd, "gi1_cache");
@@ -489,7 +505,11 @@ class Gi1 : public IndirectLight {
     f.grid = glm::vec4(b.empty() ? glm::vec3(0.0f) : b.lo, cell);
     f.grid_cells = glm::uvec4(cells, grid_lights_);
     const bool environment = in.scene.environment != glm::vec3(0.0f) || in.scene.environment_map >= 0;
-    f.lights = glm::uvec4(f.counts.x + f.counts.y + (environment ? 1u : 0u), light_candidates_, 0u, 0u);
+    // Reservoirs carry over only while nothing moved: a stored point on an emitter that moved
+    // is not on it any more.
+    const bool reuse = reuse_ > 0 && in.frame > 0 && in.change == SceneChange::None;
+    f.lights = glm::uvec4(f.counts.x + f.counts.y + (environment ? 1u : 0u), light_candidates_,
+                          reuse ? reuse_ * light_candidates_ : 0u, cache_tiles_);
     return f;
   }
 
@@ -501,19 +521,20 @@ class Gi1 : public IndirectLight {
            cache_decay_ = 50;
   uint32_t seed_ = 0, switches_ = 0, filter_radius_ = 3, mask_levels_ = 1, side_entries_ = 0;
   uint64_t side_stamp_bytes_ = 0;
-  uint32_t light_candidates_ = 8, grid_cells_ = 16, grid_lights_ = 32;
+  uint32_t light_candidates_ = 8, grid_cells_ = 16, grid_lights_ = 32, reuse_ = 8;
   float hysteresis_ = 1.0f, denoise_history_ = 16.0f, denoise_radius_ = 8.0f;
   glm::vec4 near_{0.0f};
   scenes::Camera previous_camera_;
   Buffer frame_buffer_, guide_, ray_cells_, fresh_, probes_[2], radiance_[2], harmonics_[2], mask_,
       scratch_, spawn_, spawn_list_, overrides_, empties_, counters_, queries_, cache_hash_,
       cache_stamp_, cache_cells_, cache_max_, cache_sums_, touched_, projection_, side_probes_, side_radiance_,
-      side_order_[2], side_rank_, side_state_, side_writes_, light_grid_;
+      side_order_[2], side_rank_, side_state_, side_writes_, light_grid_, reservoirs_, reservoir_claims_,
+      reservoir_stash_;
   Image irradiance_[2], history_length_[2], raw_, near_field_, bent_normal_;
   Image* probes_layer_ = nullptr;
   Pipeline reproject_, spawn_pass_, patch_, reconstruct_, trace_, update_, args_, resolve_, blend_,
       mask_pass_, filter_, evict_, near_pass_, interpolate_, temporal_, spatial_, side_bin_, side_order_pass_,
-      light_grid_pass_;
+      light_grid_pass_, reservoir_store_;
 };
 
 }  // namespace
@@ -575,6 +596,9 @@ TechniqueInfo gi1_technique() {
         "the light grid resampled into a reservoir, one shadow ray (section 2.3); 0: every light "
         "evaluated exactly, one shadow ray each, the environment left out"},
        {"light_candidates", 8, 1, 64, true, "candidates resampled per hit (section 2.3.1)"},
+       {"light_reuse", 8, 0, 64, true,
+        "frames of candidates a hit's reservoir may carry into the next frame's in its cell of the "
+        "reservoir grid (section 2.3.1, world-space temporal reuse; 0: none)"},
        {"light_grid_cells", 16, 1, 64, true, "the light grid's cells along the scene's longest side"},
        {"light_grid_lights", 32, 1, 64, true, "the lights a light-grid cell lists at most, the most important"},
        {"side_cache", 1, 0, 1, true,

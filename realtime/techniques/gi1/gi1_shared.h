@@ -64,7 +64,9 @@ struct GpuGi1Frame {
   vec4 grid;    // the light grid (section 2.3.2): xyz its lowest corner, w its cells' side
   uvec4 grid_cells;  // xyz its cells per axis, w the lights a cell lists at most
   uvec4 lights;      // x the lights the grid ranks (punctual, then area, then the environment
-                     // where it shines), y candidates per hit (section 2.3.1)
+                     // where it shines), y candidates per hit (section 2.3.1), z the most
+                     // candidates a stored reservoir carries into the next frame (0: no reuse
+                     // this frame), w the reservoir grid's slots
 };
 
 // A screen tile's probe.
@@ -91,6 +93,16 @@ struct GpuGi1Query {
   vec4 radiance;  // rgb this frame's sample of the light leaving the hit towards the probe, or
                   // what a miss saw (the environment); w the hit distance (1e30: a miss, small
                    // enough that filters can sum a few)
+};
+
+// A light-sampling reservoir (section 2.3.1), kept per cell of the reservoir grid
+// (gi1_reservoir.glsl) from one frame to the next.
+struct GpuGi1Reservoir {
+  vec4 point;   // xyz the point on an area light or the environment's direction; w in the
+                 // trace's stash (gi1_reservoir_store.comp) the grid slot, as float bits
+  uvec4 info;    // x the cell's fingerprint (0: empty), y the light, z its triangle (area
+                 // lights), w the candidates it stands for (M)
+  vec4 weight;   // x its unbiased contribution weight W (unshadowed), yzw the surface normal
 };
 
 // Per spawn slot: the side-cache entries the blend writes (section 2.1.8), each GIQ_GI1_NONE or

@@ -49,6 +49,11 @@ layout(binding = GIQ_GI1_BINDING_COUNT + 10, rgba32f) uniform readonly image2D p
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 11) readonly buffer RayCells { uvec2 ray_cells[]; };
 // The light grid (gi1_light_grid.comp), read with `light_sampling`.
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 12) readonly buffer LightGrid { uint light_grid[]; };
+// The reservoir grid as last frame left it, this frame's claims on its slots, and each ray's
+// reservoir for gi1_reservoir_store.comp (gi1_light_sample.glsl).
+layout(std430, binding = GIQ_GI1_BINDING_COUNT + 13) readonly buffer Reservoirs { GpuGi1Reservoir reservoirs[]; };
+layout(std430, binding = GIQ_GI1_BINDING_COUNT + 14) buffer ReservoirClaims { uint reservoir_claims[]; };
+layout(std430, binding = GIQ_GI1_BINDING_COUNT + 15) writeonly buffer ReservoirStash { GpuGi1Reservoir reservoir_stash[]; };
 
 #include "passes/hit_irradiance.glsl"
 #include "techniques/gi1/gi1_probe.glsl"
@@ -56,6 +61,7 @@ layout(std430, binding = GIQ_GI1_BINDING_COUNT + 12) readonly buffer LightGrid {
 #include "techniques/gi1/gi1_dispatch.glsl"
 #include "techniques/gi1/gi1_feedback.glsl"
 #include "techniques/gi1/gi1_light.glsl"
+#include "techniques/gi1/gi1_reservoir.glsl"
 #include "techniques/gi1/gi1_light_sample.glsl"
 
 void main() {
@@ -87,8 +93,10 @@ void main() {
   triangle_vertices(hit.triangle, a, b, c);
   vec3 p = a + hit.u * (b - a) + hit.v * (c - a);
   vec3 albedo = diffuse_albedo(hit_material(hit.triangle, hit.u, hit.v, hn.ns));
-  vec3 e = (gi1.counts.w & GIQ_GI1_LIGHT_SAMPLING) != 0u ? gi1_sampled_irradiance(p, hn.ng, hn.ns, rng)
-                                                         : hit_irradiance(p, hn.ng, hn.ns, gi1.counts.x, gi1.counts.y);
+  float distance_to_eye = camera_orthographic(gi1.camera) ? 0.0 : distance(p, gi1.camera.position.xyz);
+  vec3 e = (gi1.counts.w & GIQ_GI1_LIGHT_SAMPLING) != 0u
+               ? gi1_sampled_irradiance(p, hn.ng, hn.ns, distance_to_eye, g * GIQ_GI1_CELLS + lane, rng)
+               : hit_irradiance(p, hn.ng, hn.ns, gi1.counts.x, gi1.counts.y);
   vec3 sample_ = albedo / PI * e;
   if (gi1_feedback_on()) sample_ += min(albedo, vec3(gi1.params.x)) / PI * feedback_irradiance(p);
   // A non-finite sample would poison the cell for good; it can only come from a degenerate
@@ -96,7 +104,6 @@ void main() {
   if (!all(lessThan(abs(sample_), vec3(3.0e38)))) sample_ = vec3(0.0);
   q.radiance.rgb = sample_;
 
-  float distance_to_eye = camera_orthographic(gi1.camera) ? 0.0 : distance(p, gi1.camera.position.xyz);
   Gi1CacheKey key = gi1_cache_key(gi1, p, dir, hit.t, distance_to_eye, (gi1.counts.w & GIQ_GI1_RAY_LENGTH_BIT) != 0u);
   bool first_use;
   uint tile = gi1_cache_insert(gi1, key, gi1.jitter.z, first_use);
