@@ -9,10 +9,16 @@
 //                 from the probes around it (gi1_reconstruct.comp), traced (gi1_trace.comp),
 //                 blended with that history (gi1_blend.comp), filtered and projected to
 //                 spherical harmonics (gi1_mask.comp, gi1_filter.comp), interpolated at every
-//                 pixel (gi1_interpolate.comp) and denoised (gi1_denoise_*.comp);
+//                 pixel (gi1_interpolate.comp) and denoised (gi1_denoise_*.comp); probes it
+//                 evicts kept in a persistent side cache for later probes on their surface
+//                 (gi1_side_*.comp);
 //   world cache   outgoing radiance at the probe rays' hits, in a hash map of tiles of 8x8
 //                 cells with mip levels (gi1_hash.glsl, gi1_cache_update.comp,
-//                 gi1_cache_resolve.comp), unused tiles evicted (gi1_evict.comp).
+//                 gi1_cache_resolve.comp), unused tiles evicted (gi1_evict.comp); the light
+//                 at the hits sampled through a light grid and reservoirs kept in world
+//                 space (gi1_light_grid.comp, gi1_light_sample.glsl);
+//   near field    screen-space horizon-based occlusion and light within a few probe spacings
+//                 (gi1_near_field.comp), combined with the probes in the interpolation.
 // docs/techniques/gi1.md maps the report's sections to this code and lists where it departs.
 #include <algorithm>
 #include <cmath>
@@ -144,12 +150,15 @@ class Gi1 : public IndirectLight {
     side_state_ = buffer((2 * entries + tiles) * 4);
     side_stamp_bytes_ = entries * 4;
     side_writes_ = buffer(slots * sizeof(gpu::GpuGi1SideWrite));
-    // The light grid: at most light_grid_cells^3 cells, each a count and its lights.
-    light_grid_ = buffer(uint64_t(grid_cells_) * grid_cells_ * grid_cells_ * (grid_lights_ + 1) * 4);
-    // The reservoir grid: as many slots as the world cache has tiles.
-    reservoirs_ = buffer(uint64_t(cache_tiles_) * sizeof(gpu::GpuGi1Reservoir));
-    reservoir_claims_ = buffer(uint64_t(cache_tiles_) * 4);
-    reservoir_stash_ = buffer(slots * GIQ_GI1_CELLS * sizeof(gpu::GpuGi1Reservoir));
+    // The light grid (at most light_grid_cells^3 cells, each a count and its lights) and the
+    // reservoir grid (as many slots as the world cache has tiles), a word each where lights are
+    // evaluated exactly (bound, never read).
+    const bool sampling = (switches_ & GIQ_GI1_LIGHT_SAMPLING) != 0u;
+    const uint64_t grid_words = uint64_t(grid_cells_) * grid_cells_ * grid_cells_ * (grid_lights_ + 1);
+    light_grid_ = buffer(sampling ? grid_words * 4 : 4);
+    reservoirs_ = buffer(sampling ? uint64_t(cache_tiles_) * sizeof(gpu::GpuGi1Reservoir) : 4);
+    reservoir_claims_ = buffer(sampling ? uint64_t(cache_tiles_) * 4 : 4);
+    reservoir_stash_ = buffer(sampling ? slots * GIQ_GI1_CELLS * sizeof(gpu::GpuGi1Reservoir) : 4);
     std::vector<uint32_t> identity(entries);
     for (uint32_t i = 0; i < entries; ++i) identity[i] = i;
     for (Buffer& b : side_order_) b = Buffer::storage(ci.ctx, identity);

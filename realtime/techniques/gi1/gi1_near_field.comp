@@ -96,8 +96,7 @@ void main() {
         float t = 1.0 + (radius_px - 1.0) * (float(k) + jitter) / float(steps);
         ivec2 qp = ivec2(floor(vec2(px) + 0.5 + sgn * t * d));
         if (qp == px || any(lessThan(qp, ivec2(0))) || any(greaterThanEqual(qp, ivec2(gi1.size.xy)))) continue;
-        Receiver q = load_receiver(qp);
-        if (!q.hit) continue;
+        if (imageLoad(gb_ids, qp).x == 0u) continue;  // the sky: no occluder
         vec3 w = imageLoad(gb_position, qp).xyz - r.x;
         float dist = length(w);
         // Only what lies above the tangent plane by more than the G-buffer points' error (as
@@ -107,6 +106,8 @@ void main() {
         if (sgn * theta >= sgn * horizon[side]) continue;  // not above the horizon so far
         // The sector from the new horizon to the old one receives the sample's light.
         float sector = slice_integral(horizon[side], gamma) - slice_integral(theta, gamma);
+        // The occluder's material only where it raises the horizon (textures cost).
+        Receiver q = load_receiver(qp);
         if (q.lit) near += abs(sector) * occluder_radiance(q, qp);
         horizon[side] = theta;
         raised = true;

@@ -3,7 +3,7 @@
 // the entries used this frame (stamped by the reconstruction and the blend) move to the
 // front, the others keep their order behind them, so the least recently used fall to the back,
 // where new entries are made. One work group, a stable partition by a prefix sum over the
-// order in chunks: the same on every run.
+// order in chunks of it: the same on every run.
 #extension GL_GOOGLE_include_directive : require
 
 #include "techniques/gi1/gi1_shared.h"
@@ -18,7 +18,7 @@ layout(std430, binding = 4) writeonly buffer SideRank { uint side_rank[]; };
 
 #include "techniques/gi1/gi1_side.glsl"
 
-shared uint used_before[1024];  // per chunk: the used entries in the chunks before it
+shared uint used_before[1024];  // per chunk: the used entries in it and the chunks before it
 shared uint total_used;
 
 void main() {
@@ -28,17 +28,17 @@ void main() {
   for (uint k = first; k < last; ++k) used += side_state[gi1_side_stamp(order[k])] == gi1.side.y ? 1u : 0u;
   used_before[i] = used;
   barrier();
-  if (i == 0u) {
-    uint sum = 0u;
-    for (uint k = 0u; k < 1024u; ++k) {
-      uint c = used_before[k];
-      used_before[k] = sum;
-      sum += c;
-    }
-    total_used = sum;
+  // An inclusive scan over the chunks in log2(1024) steps (Hillis and Steele 1986).
+  for (uint step = 1u; step < 1024u; step <<= 1) {
+    uint add = i >= step ? used_before[i - step] : 0u;
+    barrier();
+    used_before[i] += add;
+    barrier();
   }
+  if (i == 1023u) total_used = used_before[1023];
   barrier();
-  uint front = used_before[i], back = total_used + (first - used_before[i]);
+  uint before = used_before[i] - used;  // exclusive
+  uint front = before, back = total_used + (first - before);
   for (uint k = first; k < last; ++k) {
     uint e = order[k];
     uint rank = side_state[gi1_side_stamp(e)] == gi1.side.y ? front++ : back++;
