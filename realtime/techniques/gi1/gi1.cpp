@@ -24,6 +24,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,7 @@
 #include "passes/deferred_gi.h"
 #include "techniques/gi1/gi1_projection.h"
 #include "techniques/gi1/gi1_shared.h"
+#include "techniques/gi1/gi1_side_cache.h"
 
 namespace giq::realtime {
 namespace {
@@ -140,16 +142,6 @@ class Gi1 : public IndirectLight {
     touched_ = buffer(uint64_t(cache_tiles_) * 4);
     projection_ = Buffer::storage(ci.ctx, gi1_projection_table());
     probes_layer_ = &frame.add_layer("probes");
-    // The side cache: as many entries as screen tiles (the report's texture the size of the
-    // probe grid), one where it is off (bound, never read).
-    side_entries_ = (switches_ & GIQ_GI1_SIDE_CACHE) ? uint32_t(tiles) : 0u;
-    const uint64_t entries = std::max<uint32_t>(side_entries_, 1u);
-    side_probes_ = buffer(entries * sizeof(gpu::GpuGi1Probe));
-    side_radiance_ = buffer(entries * GIQ_GI1_CELLS * 16);
-    // gi1_side.glsl: a stamp per entry, a word per screen tile, a claim per entry.
-    side_state_ = buffer((2 * entries + tiles) * 4);
-    side_stamp_bytes_ = entries * 4;
-    side_writes_ = buffer(slots * sizeof(gpu::GpuGi1SideWrite));
     // The light grid (at most light_grid_cells^3 cells, each a count and its lights) and the
     // reservoir grid (as many slots as the world cache has tiles), a word each where lights are
     // evaluated exactly (bound, never read).
@@ -159,10 +151,6 @@ class Gi1 : public IndirectLight {
     reservoirs_ = buffer(sampling ? uint64_t(cache_tiles_) * sizeof(gpu::GpuGi1Reservoir) : 4);
     reservoir_claims_ = buffer(sampling ? uint64_t(cache_tiles_) * 4 : 4);
     reservoir_stash_ = buffer(sampling ? slots * GIQ_GI1_CELLS * sizeof(gpu::GpuGi1Reservoir) : 4);
-    std::vector<uint32_t> identity(entries);
-    for (uint32_t i = 0; i < entries; ++i) identity[i] = i;
-    for (Buffer& b : side_order_) b = Buffer::storage(ci.ctx, identity);
-    side_rank_ = Buffer::storage(ci.ctx, identity);
 
     const auto s = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, img = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     const auto defines = feature_defines(ci.scene.features);
@@ -182,8 +170,11 @@ class Gi1 : public IndirectLight {
     spawn_pass_ = compile("gi1_spawn.comp", with_common({s}));
     patch_ = compile("gi1_patch.comp", {s, s, s, s, s, s, s});
     reconstruct_ = compile("gi1_reconstruct.comp", with_common({s, s, s, s, s, s, s, s, s, s, s}));
-    side_bin_ = compile("gi1_side_bin.comp", {s, s, s, s});
-    side_order_pass_ = compile("gi1_side_order.comp", {s, s, s, s, s});
+    // The side cache: as many entries as screen tiles (the report's texture the size of the
+    // probe grid).
+    side_ = std::make_unique<Gi1SideCache>(
+        ci.ctx, [&](const char* name, std::vector<VkDescriptorType> b) { return compile(name, std::move(b)); },
+        (switches_ & GIQ_GI1_SIDE_CACHE) ? uint32_t(tiles) : 0u, tiles, slots);
     auto receiver = [&](std::vector<VkDescriptorType> extra) {
       auto b = GBufferPass::receiver_bindings();
       b.insert(b.end(), extra.begin(), extra.end());
@@ -211,11 +202,9 @@ class Gi1 : public IndirectLight {
     if (in.frame == 0) {
       for (Buffer* b :
            {&cache_hash_, &cache_stamp_, &cache_cells_, &cache_max_, &cache_sums_, &probes_[0],
-            &probes_[1], &radiance_[0], &radiance_[1], &harmonics_[0], &harmonics_[1], &side_state_, &reservoirs_,
-            &reservoir_stash_})
+            &probes_[1], &radiance_[0], &radiance_[1], &harmonics_[0], &harmonics_[1], &reservoirs_, &reservoir_stash_})
         vkCmdFillBuffer(cmd, b->handle(), 0, VK_WHOLE_SIZE, 0);
-      // Every side-cache entry empty (GIQ_GI1_NONE in info.x).
-      vkCmdFillBuffer(cmd, side_probes_.handle(), 0, VK_WHOLE_SIZE, GIQ_GI1_NONE);
+      side_->clear(cmd);
       const float none[4] = {0.0f, 0.0f, 0.0f, -1.0f};
       for (Image& i : irradiance_) i.clear(cmd, none);
       const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -230,7 +219,7 @@ class Gi1 : public IndirectLight {
     const gpu::GpuGi1Frame f = frame_constants(in, frame);
     vkCmdUpdateBuffer(cmd, frame_buffer_.handle(), 0, sizeof(f), &f);
     vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
-    vkCmdFillBuffer(cmd, side_state_.handle(), side_stamp_bytes_, VK_WHOLE_SIZE, 0xffffffffu);
+    side_->begin_frame(cmd);
     vkCmdFillBuffer(cmd, reservoir_claims_.handle(), 0, VK_WHOLE_SIZE, 0xffffffffu);
     full_barrier(cmd);
 
@@ -254,16 +243,7 @@ class Gi1 : public IndirectLight {
     full_barrier(cmd);
     in.timer.end(cmd);
 
-    Buffer &order = side_order_[in.frame & 1], &next_order = side_order_[(in.frame + 1) & 1];
-    if (side_entries_ > 0) {
-      in.timer.begin(cmd, "gi1_side_bin");
-      side_bin_.bind(cmd);
-      side_bin_.push_descriptors(cmd, {Descriptor::storage(frame_buffer_), Descriptor::storage(side_probes_),
-                                       Descriptor::storage(side_rank_), Descriptor::storage(side_state_)});
-      vkCmdDispatch(cmd, (side_entries_ + 63) / 64, 1, 1);
-      full_barrier(cmd);
-      in.timer.end(cmd);
-    }
+    side_->bin(cmd, in.timer, frame_buffer_);
 
     in.timer.begin(cmd, "gi1_spawn");
     spawn_pass_.bind(cmd);
@@ -286,9 +266,8 @@ class Gi1 : public IndirectLight {
     d = common();
     d.insert(d.end(), {Descriptor::storage(spawn_), Descriptor::storage(spawn_list_),
                        Descriptor::storage(counters_), Descriptor::storage(guide_),
-                       Descriptor::storage(ray_cells_), Descriptor::storage(fresh_),
-                       Descriptor::storage(side_probes_), Descriptor::storage(side_radiance_),
-                       Descriptor::storage(order), Descriptor::storage(side_state_), Descriptor::storage(side_writes_)});
+                       Descriptor::storage(ray_cells_), Descriptor::storage(fresh_)});
+    for (const Descriptor& x : side_->reconstruct_descriptors(in.frame)) d.push_back(x);
     reconstruct_.push_descriptors(cmd, d);
     vkCmdDispatchIndirect(cmd, counters_.handle(), 0);
     full_barrier(cmd);
@@ -353,28 +332,18 @@ class Gi1 : public IndirectLight {
 
     in.timer.begin(cmd, "gi1_blend");
     blend_.bind(cmd);
-    blend_.push_descriptors(cmd,
-                            {Descriptor::storage(frame_buffer_), Descriptor::storage(counters_),
-                             Descriptor::storage(spawn_list_), Descriptor::storage(probes_[cur]),
-                             Descriptor::storage(queries_), Descriptor::storage(cache_cells_),
-                             Descriptor::storage(radiance_[cur]), Descriptor::storage(guide_),
-                             Descriptor::storage(ray_cells_), Descriptor::storage(fresh_),
-                             Descriptor::storage(side_writes_), Descriptor::storage(side_state_),
-                             Descriptor::storage(side_probes_), Descriptor::storage(side_radiance_)});
+    d = {Descriptor::storage(frame_buffer_), Descriptor::storage(counters_),
+         Descriptor::storage(spawn_list_),   Descriptor::storage(probes_[cur]),
+         Descriptor::storage(queries_),      Descriptor::storage(cache_cells_),
+         Descriptor::storage(radiance_[cur]), Descriptor::storage(guide_),
+         Descriptor::storage(ray_cells_),    Descriptor::storage(fresh_)};
+    for (const Descriptor& x : side_->blend_descriptors()) d.push_back(x);
+    blend_.push_descriptors(cmd, d);
     vkCmdDispatchIndirect(cmd, counters_.handle(), 0);
     full_barrier(cmd);
     in.timer.end(cmd);
 
-    if (side_entries_ > 0) {
-      in.timer.begin(cmd, "gi1_side_order");
-      side_order_pass_.bind(cmd);
-      side_order_pass_.push_descriptors(cmd, {Descriptor::storage(frame_buffer_), Descriptor::storage(side_state_),
-                                              Descriptor::storage(order), Descriptor::storage(next_order),
-                                              Descriptor::storage(side_rank_)});
-      vkCmdDispatch(cmd, 1, 1, 1);
-      full_barrier(cmd);
-      in.timer.end(cmd);
-    }
+    side_->reorder(cmd, in.timer, frame_buffer_, in.frame);
 
     in.timer.begin(cmd, "gi1_filter");
     mask_pass_.bind(cmd);
@@ -505,7 +474,7 @@ class Gi1 : public IndirectLight {
     f.params = glm::vec4(kAlbedoCap, hysteresis_, history, denoise_radius_);
     f.mask = glm::uvec4(mask_levels_, 0u, 0u, 0u);
     f.near = near_;
-    f.side = glm::uvec4(side_entries_, uint32_t(in.frame) + 1u, 0u, 0u);
+    f.side = glm::uvec4(side_->entries(), uint32_t(in.frame) + 1u, 0u, 0u);
     // The light grid: cubic cells over the scene's bounds, light_grid_cells along the longest
     // side (gi1_light_grid.comp).
     const scenes::Bounds& b = in.scene.bounds;
@@ -528,22 +497,21 @@ class Gi1 : public IndirectLight {
   float world_cell_pixels_ = 32.0f, world_cell_min_ = 0.0f;
   uint32_t buckets_ = 4096, tiles_per_bucket_ = 16, cache_tiles_ = 0, cache_samples_ = 16,
            cache_decay_ = 50;
-  uint32_t seed_ = 0, switches_ = 0, filter_radius_ = 3, mask_levels_ = 1, side_entries_ = 0;
-  uint64_t side_stamp_bytes_ = 0;
+  uint32_t seed_ = 0, switches_ = 0, filter_radius_ = 3, mask_levels_ = 1;
   uint32_t light_candidates_ = 8, grid_cells_ = 16, grid_lights_ = 32, reuse_ = 8;
   float hysteresis_ = 1.0f, denoise_history_ = 16.0f, denoise_radius_ = 8.0f;
   glm::vec4 near_{0.0f};
   scenes::Camera previous_camera_;
   Buffer frame_buffer_, guide_, ray_cells_, fresh_, probes_[2], radiance_[2], harmonics_[2], mask_,
       scratch_, spawn_, spawn_list_, overrides_, empties_, counters_, queries_, cache_hash_,
-      cache_stamp_, cache_cells_, cache_max_, cache_sums_, touched_, projection_, side_probes_, side_radiance_,
-      side_order_[2], side_rank_, side_state_, side_writes_, light_grid_, reservoirs_, reservoir_claims_,
-      reservoir_stash_;
+      cache_stamp_, cache_cells_, cache_max_, cache_sums_, touched_, projection_, light_grid_, reservoirs_,
+      reservoir_claims_, reservoir_stash_;
   Image irradiance_[2], history_length_[2], raw_, near_field_, bent_normal_;
   Image* probes_layer_ = nullptr;
   Pipeline reproject_, spawn_pass_, patch_, reconstruct_, trace_, update_, args_, resolve_, blend_,
-      mask_pass_, filter_, evict_, near_pass_, interpolate_, temporal_, spatial_, side_bin_, side_order_pass_,
-      light_grid_pass_, reservoir_store_;
+      mask_pass_, filter_, evict_, near_pass_, interpolate_, temporal_, spatial_, light_grid_pass_,
+      reservoir_store_;
+  std::unique_ptr<Gi1SideCache> side_;
 };
 
 }  // namespace
