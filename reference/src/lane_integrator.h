@@ -79,15 +79,12 @@ struct Frame {
   [[gnu::always_inline]] V3 to_world(V3 v) const { return t * v.x + b * v.y + n * v.z; }
 };
 
-// ray_offset.h's offset_ray_origin.
-[[gnu::always_inline]] inline V3 offset_ray_origin(V3 p, V3 n, float extent) {
-  const auto axis = [extent](F pk, F nk) {
-    const I of = to_int(RayOffset::kIntScale * nk);
-    const F p_i = float_bits(bits(pk) + select(pk < 0.0f, -of, of));
-    return select(abs(pk) < RayOffset::kOrigin * extent, pk + RayOffset::kFloatScale * extent * nk, p_i);
-  };
-  return {axis(p.x, n.x), axis(p.y, n.y), axis(p.z, n.z)};
+// ray_offset.h's ray_offset and offset_ray_origin.
+[[gnu::always_inline]] inline F ray_offset(V3 p0, V3 p1, V3 p2) {
+  const auto axis = [](F a, F b, F c) { return max(abs(a), max(abs(b), abs(c))); };
+  return (RayOffset::kUnits * 0x1p-24f) * max(axis(p0.x, p1.x, p2.x), max(axis(p0.y, p1.y, p2.y), axis(p0.z, p1.z, p2.z)));
 }
+[[gnu::always_inline]] inline V3 offset_ray_origin(V3 p, V3 n, F offset) { return p + offset * n; }
 
 // sampling.h's power_heuristic, special cases included.
 [[gnu::always_inline]] inline F power_heuristic(F a, F b) {
@@ -192,7 +189,7 @@ class LaneIntegrator {
         const V3 wo = -s.dir;
         const lanes::Frame frame = lanes::Frame::from_normal(sf.ns);
         const V3 wo_l = frame.to_local(wo);
-        const V3 origin = offset_ray_origin(sf.p, sf.ng, c_.extent);
+        const V3 origin = offset_ray_origin(sf.p, sf.ng, sf.offset);
         const LI vertex_direct = s.depth == 0;
 
         // Next-event estimation: one light sample per lane.
@@ -211,7 +208,7 @@ class LaneIntegrator {
             shadow.value = ((s.beta * e.f) * ls.radiance) * ((w * cos_s) / ls.pdf);
             for (int l = 0; l < kWidth; ++l) s.rays[l] += lit[l] != 0;
             // An area light's shadow ray ends just off the light's surface, on this side.
-            const V3 v = offset_ray_origin(ls.point, ls.normal, c_.extent) - origin;
+            const V3 v = offset_ray_origin(ls.point, ls.normal, ls.offset) - origin;
             const LF len = sqrt(dot(v, v));
             const LI at_light = ls.area & ~(len > 0.0f);  // nothing between: unshadowed
             add(s, lit & at_light, vertex_direct, shadow.value);
@@ -309,13 +306,13 @@ class LaneIntegrator {
 
   struct Surfaces {
     V3 p, ng, ns, base, emission;
-    LF metallic{}, t{}, area{}, cos_ray{}, light_pmf{};
+    LF metallic{}, t{}, area{}, cos_ray{}, light_pmf{}, offset{};
     LI black{};
   };
 
   struct LightSamples {
     V3 wi, radiance, point, normal;
-    LF distance{}, pdf{};
+    LF distance{}, pdf{}, offset{};
     LI delta{}, area{};
   };
 
@@ -323,7 +320,7 @@ class LaneIntegrator {
   struct Emitters {
     LI on{};
     V3 p0, p1, p2, n, radiance;
-    LF area{}, pmf{};
+    LF area{}, pmf{}, offset{};
     LI double_sided{};
   };
 
@@ -393,6 +390,7 @@ class LaneIntegrator {
     }
     const LF b1 = load(rh.hit.u), b2 = load(rh.hit.v), b0 = 1.0f - b1 - b2;
     sf.p = b0 * p0 + b1 * p1 + b2 * p2;
+    sf.offset = ray_offset(p0, p1, p2);
     const LF cos_ray = dot(ng, s.dir);
     sf.cos_ray = abs(cos_ray);
     const LI back = ~(cos_ray < 0.0f);
@@ -429,14 +427,14 @@ class LaneIntegrator {
           // otherwise) it is the material's.
           if (e.material->alpha_mode != scenes::AlphaMode::Opaque) radiance *= e.material->coverage(e.material->base_color.a);
           set(em.radiance, l, radiance);
-          em.area[l] = e.area, em.pmf[l] = pick.pmf;
+          em.area[l] = e.area, em.pmf[l] = pick.pmf, em.offset[l] = e.offset;
           em.double_sided[l] = e.material->double_sided ? -1 : 0;
           continue;
         }
       }
       const LightSample one = c_.lights.sample<F>(get(p, l), u.u[2][l], u.u[3][l], {u.u[0][l], u.u[1][l]});
       set(ls.wi, l, one.wi), set(ls.radiance, l, one.radiance), set(ls.point, l, one.point), set(ls.normal, l, one.normal);
-      ls.distance[l] = one.distance, ls.pdf[l] = one.pdf;
+      ls.distance[l] = one.distance, ls.pdf[l] = one.pdf, ls.offset[l] = one.offset;
       ls.delta[l] = one.delta ? -1 : 0, ls.area[l] = one.area ? -1 : 0;
     }
     if constexpr (has(F, kEmissive)) {
@@ -463,6 +461,7 @@ class LaneIntegrator {
         ls.delta &= ~em.on;
         ls.area = select(em.on, ok, ls.area);
         ls.point = select(em.on, point, ls.point);
+        ls.offset = select(em.on, em.offset, ls.offset);
         ls.normal = select(em.on, select(flip, -em.n, em.n), ls.normal);
       }
     }

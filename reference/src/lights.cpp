@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "giq/reference/ray_offset.h"
+
 namespace giq::reference {
 
 using scenes::luminance;
@@ -30,6 +32,7 @@ LightSampler::LightSampler(const scenes::Scene& scene, const EmbreeScene& bvh, g
     const TriangleShape& shape = bvh.shapes()[t.mesh][t.triangle];
     em.area = shape.area;
     em.n = shape.normal;
+    em.offset = ray_offset(em.p0, em.p1, em.p2);
     weights.push_back(t.power);
   }
   const double r2 = double(scene_radius) * double(scene_radius);

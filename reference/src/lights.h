@@ -32,6 +32,7 @@ struct LightSample {
   bool area = false;       // emissive triangle: the shadow ray ends at `point`
   glm::vec3 point{0.0f};   // on the triangle
   glm::vec3 normal{0.0f};  // triangle's geometric normal, facing the shading point
+  float offset = 0.0f;     // ray_offset of the triangle
   LightKind kind = LightKind::Point;
 };
 
@@ -52,6 +53,7 @@ class LightSampler {
     glm::vec3 p0{0.0f}, p1{0.0f}, p2{0.0f};  // renderer's frame
     glm::vec3 n{0.0f};                         // unit geometric normal (counter-clockwise front)
     float area = 0.0f;
+    float offset = 0.0f;                       // ray_offset of the triangle
     const scenes::Mesh* mesh = nullptr;
     const scenes::Material* material = nullptr;
     glm::uvec3 triangle{0u};
@@ -121,6 +123,7 @@ LightSample LightSampler::sample(glm::vec3 p, float u_pick, float u_alias, glm::
       const glm::vec2 b = square_to_triangle_barycentrics(u);
       s.point = (1.0f - b.x - b.y) * em.p0 + b.x * em.p1 + b.y * em.p2;
       const float area = em.area;
+      s.offset = em.offset;
       glm::vec3 n = em.n;
       const glm::vec3 d = s.point - p;
       const float d2 = glm::dot(d, d);

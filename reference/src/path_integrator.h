@@ -113,7 +113,7 @@ class PathIntegrator {
       const glm::vec3 wo = -d;
       const Frame frame = Frame::from_normal(sf.ns);
       const glm::vec3 wo_l = frame.to_local(wo);
-      const glm::vec3 origin = offset_ray_origin(sf.p, sf.ng, c_.extent);
+      const glm::vec3 origin = offset_ray_origin(sf.p, sf.ng, sf.offset);
 
       // Next-event estimation: one light sample.
       if (!c_.lights.empty()) {
@@ -185,7 +185,7 @@ class PathIntegrator {
   bool shadowed(glm::vec3 origin, const LightSample& ls) const {
     if (ls.area) {
       // End the shadow ray just off the light's surface, on the shading point's side.
-      const glm::vec3 target = offset_ray_origin(ls.point, ls.normal, c_.extent);
+      const glm::vec3 target = offset_ray_origin(ls.point, ls.normal, ls.offset);
       const glm::vec3 v = target - origin;
       const float len = glm::length(v);
       return len > 0.0f && c_.bvh.occluded(origin, v / len, len);

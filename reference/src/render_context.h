@@ -12,9 +12,8 @@
 namespace giq::reference {
 
 struct RenderContext {
-  RenderContext(const scenes::Scene& s, const scenes::Camera& cam, const RenderSettings& rs, glm::vec3 c, float e,
-                float radius)
-      : scene(s), settings(rs), camera(cam), rays(cam, rs.width, rs.height), centre(c), extent(e), eye(cam.position - c),
+  RenderContext(const scenes::Scene& s, const scenes::Camera& cam, const RenderSettings& rs, glm::vec3 c, float radius)
+      : scene(s), settings(rs), camera(cam), rays(cam, rs.width, rs.height), centre(c), eye(cam.position - c),
         bvh(s, c, s.features.alpha_mask), lights(s, bvh, c, radius) {}
 
   const scenes::Scene& scene;
@@ -22,7 +21,6 @@ struct RenderContext {
   scenes::Camera camera;
   scenes::ImageRays rays;  // the camera's rays through the settings' image
   glm::vec3 centre;  // the scene's local frame minus this is the renderer's frame
-  float extent;      // largest side of the scene's bounds: the scale of ray offsets
   glm::vec3 eye;     // camera position in the renderer's frame
   EmbreeScene bvh;
   LightSampler lights;

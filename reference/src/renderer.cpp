@@ -73,18 +73,11 @@ void validate(const RenderSettings& s) {
   if (s.threads < 0) throw InputError("", "--threads", "threads " + std::to_string(s.threads) + " must be >= 0 (0 = all cores)");
 }
 
-float bounds_extent(const scenes::Scene& scene) {
-  const glm::vec3 e = scene.bounds.extent();
-  const float m = std::max(e.x, std::max(e.y, e.z));
-  return m > 0.0f && std::isfinite(m) ? m : 1.0f;
-}
-
 }  // namespace
 
 struct Renderer::Impl {
   Impl(const scenes::Scene& scene, const scenes::Camera& camera, const RenderSettings& settings)
-      : ctx(scene, camera, settings, scene.bounds.centre(), bounds_extent(scene),
-            std::max(1e-30f, 0.5f * glm::length(scene.bounds.extent()))),
+      : ctx(scene, camera, settings, scene.bounds.centre(), std::max(1e-30f, 0.5f * glm::length(scene.bounds.extent()))),
         mask(settings.all_features ? (1u << kFeatureCount) - 1 : reference::feature_mask(scene.features)),
         kernels(kKernels[mask]) {}
   RenderContext ctx;

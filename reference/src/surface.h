@@ -7,6 +7,7 @@
 
 #include "feature_mask.h"
 #include "giq/reference/bsdf.h"
+#include "giq/reference/ray_offset.h"
 #include "render_context.h"
 
 namespace giq::reference {
@@ -17,6 +18,7 @@ struct Surface {
   glm::vec3 ns{0.0f};  // unit shading normal on the same side, with wo above it
   glm::vec3 emission{0.0f};
   float area = 0.0f;    // of the hit triangle (for the light pdf of MIS)
+  float offset = 0.0f;  // ray_offset of the hit triangle
   float cos_ray = 0.0f; // |cos| between the ray and the geometric normal
   const scenes::Material* material = nullptr;
   BsdfParams bsdf;
@@ -32,6 +34,7 @@ Surface make_surface(const RenderContext& ctx, const Hit& hit, glm::vec3 dir) {
   const float b1 = hit.b1, b2 = hit.b2, b0 = 1.0f - b1 - b2;
   const glm::vec3 p0 = pos[tri.x], p1 = pos[tri.y], p2 = pos[tri.z];
   s.p = b0 * p0 + b1 * p1 + b2 * p2;
+  s.offset = ray_offset(p0, p1, p2);
   const TriangleShape& shape = ctx.bvh.shapes()[hit.mesh][hit.triangle];
   s.area = shape.area;
   glm::vec3 ng = shape.normal;

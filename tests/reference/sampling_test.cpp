@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "giq/reference/alias_table.h"
-#include "giq/reference/ray_offset.h"
 #include "giq/reference/sampling.h"
 
 namespace giq::reference {
@@ -168,22 +167,6 @@ TEST(AliasTable, ReproducesItsDistribution) {
   }
   EXPECT_THROW(AliasTable(std::vector<double>{0.0, 0.0}), std::invalid_argument);
   EXPECT_THROW(AliasTable(std::vector<double>{1.0, -1.0}), std::invalid_argument);
-}
-
-TEST(RayOffset, LeavesTheSurfaceAtEveryScaleAndDistance) {
-  // The offset origin must lie strictly on the normal's side, and not further than a
-  // millionth-ish of the scene's size plus the coordinates' own precision.
-  const glm::vec3 n = glm::normalize(glm::vec3(0.3f, 0.9f, -0.2f));
-  for (float extent : {1e-3f, 1.0f, 1e4f})
-    for (float dist : {0.0f, 1e-3f, 1.0f, 1e4f, 1e5f})
-      for (glm::vec3 dir : {glm::vec3(1, 0, 0), glm::normalize(glm::vec3(-1, 2, 3))}) {
-        const glm::vec3 p = dir * dist;
-        const glm::vec3 o = offset_ray_origin(p, n, extent);
-        const double along = glm::dot(glm::dvec3(o) - glm::dvec3(p), glm::dvec3(n));
-        EXPECT_GT(along, 0.0) << "extent " << extent << " at " << dist;
-        const double ulp = std::ldexp(1.0, std::ilogb(std::max(dist, 1e-30f)) - 23);
-        EXPECT_LT(glm::length(glm::dvec3(o) - glm::dvec3(p)), 2e-5 * extent + 300.0 * ulp);
-      }
 }
 
 }  // namespace
