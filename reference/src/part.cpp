@@ -15,7 +15,7 @@
 namespace giq::reference {
 namespace {
 
-constexpr char kMagic[] = "giq-reference-part 1\n";
+constexpr char kMagic[] = "giq-reference-part 2\n";
 static_assert(std::is_trivially_copyable_v<PixelAccumulator> && std::is_trivially_copyable_v<PixelAux>);
 
 void put_camera(std::string& out, const scenes::Camera& c) {
@@ -29,16 +29,6 @@ scenes::Camera get_camera(RecordReader& r) {
     for (int k = 0; k < 3; ++k) (*v)[k] = r.get<float>();
   for (float* f : {&c.yfov, &c.ymag, &c.znear, &c.zfar}) *f = r.get<float>();
   return c;
-}
-
-// The pixel rectangle of a tile.
-struct Rect {
-  int x0, y0, x1, y1;
-  size_t pixels() const { return size_t(x1 - x0) * size_t(y1 - y0); }
-};
-Rect tile_rect(const WorkUnits& u, uint32_t tile) {
-  const int x0 = int(tile % uint32_t(u.tiles_x())) * kUnitSize, y0 = int(tile / uint32_t(u.tiles_x())) * kUnitSize;
-  return {x0, y0, std::min(x0 + kUnitSize, u.width), std::min(y0 + kUnitSize, u.height)};
 }
 
 WorkUnits units_of(const Part& p) {
@@ -63,7 +53,7 @@ PartFrame part_frame(const Film& film, int frame, const scenes::Camera& camera, 
   for (int t = 0; t < units.tiles_per_frame(); ++t) {
     if (!WorkUnits::owned(units.unit(frame, t), shard)) continue;
     pf.tiles.push_back(uint32_t(t));
-    const Rect r = tile_rect(units, uint32_t(t));
+    const WorkUnits::Rect r = units.rect(uint32_t(t));
     for (int y = r.y0; y < r.y1; ++y)
       for (int x = r.x0; x < r.x1; ++x) {
         const size_t i = size_t(y) * size_t(film.width) + size_t(x);
@@ -93,23 +83,30 @@ void write_part(const std::filesystem::path& path, const Part& p) {
     out.append(reinterpret_cast<const char*>(f.pixels.data()), f.pixels.size() * sizeof(PixelAccumulator));
     out.append(reinterpret_cast<const char*>(f.aux.data()), f.aux.size() * sizeof(PixelAux));
   }
+  put(out, uint32_t(p.written.size()));
+  for (int f : p.written) put(out, int32_t(f));
   put(out, Hasher().add(out).value());
   write_file_atomically(path, out);
 }
 
-Part read_part(const std::filesystem::path& path) {
+Part read_part(const std::filesystem::path& path, PartUse use) {
   const std::string file = path.string();
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(file, "", "cannot open the file");
   const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const size_t magic = sizeof(kMagic) - 1;
   if (data.size() < magic + sizeof(uint64_t) || data.compare(0, magic, kMagic) != 0)
-    throw InputError(file, "part", "not a part of a sharded reference render (expected it to start with 'giq-reference-part 1')");
+    throw InputError(file, "part",
+                     std::string(use == PartUse::Shard ? "not a part of a sharded reference render"
+                                                       : "not a checkpoint of a reference render across MPI ranks") +
+                         " (expected it to start with 'giq-reference-part 2')");
   const size_t end = data.size() - sizeof(uint64_t);
   uint64_t stored_hash;
   std::memcpy(&stored_hash, data.data() + end, sizeof(uint64_t));
   if (Hasher().add(data.data(), end).value() != stored_hash)
-    throw InputError(file, "part", "checksum mismatch: the file is corrupt or incomplete; render this shard again");
+    throw InputError(file, "part",
+                     std::string("checksum mismatch: the file is corrupt or incomplete; ") +
+                         (use == PartUse::Shard ? "render this shard again" : "start again with --overwrite"));
   RecordReader r(data, end, file, "part", "the file is truncated");
   std::string skip(magic, '\0');
   r.bytes(skip.data(), magic);
@@ -150,7 +147,7 @@ Part read_part(const std::filesystem::path& path) {
           !WorkUnits::owned(units.unit(f.frame, int(t)), p.shard))
         r.fail("tile " + std::to_string(t) + " of frame " + std::to_string(f.frame) + " is not one of this shard's");
       f.tiles.push_back(t);
-      pixels += tile_rect(units, t).pixels();
+      pixels += units.rect(t).pixels();
     }
     // The declared size against the file before anything is allocated.
     if (pixels * (sizeof(PixelAccumulator) + sizeof(PixelAux)) > r.left()) r.fail("the file is truncated");
@@ -159,9 +156,19 @@ Part read_part(const std::filesystem::path& path) {
     r.bytes(f.pixels.data(), pixels * sizeof(PixelAccumulator));
     r.bytes(f.aux.data(), pixels * sizeof(PixelAux));
     for (const PixelAccumulator& a : f.pixels)
-      if (a.samples != p.spp) r.fail("a pixel of frame " + std::to_string(f.frame) + " has " + std::to_string(a.samples) +
-                                     " samples, not the render's " + std::to_string(p.spp));
+      if (use == PartUse::Shard ? a.samples != p.spp : a.samples > p.spp)
+        r.fail("a pixel of frame " + std::to_string(f.frame) + " has " + std::to_string(a.samples) +
+               (use == PartUse::Shard ? " samples, not the render's " : " samples, more than the render's ") +
+               std::to_string(p.spp));
     p.frames.push_back(std::move(f));
+  }
+  const uint32_t written = r.get<uint32_t>();
+  if (uint64_t(written) > uint64_t(p.last_frame - p.first_frame) + 1) r.fail("more frames written than the render has");
+  for (uint32_t i = 0; i < written; ++i) {
+    const int f = r.get<int32_t>();
+    if (f < p.first_frame || f > p.last_frame || (!p.written.empty() && f <= p.written.back()))
+      r.fail("written frame " + std::to_string(f) + " is outside the render's frames or out of order");
+    p.written.push_back(f);
   }
   if (r.left() != 0) r.fail(std::to_string(r.left()) + " bytes follow the last frame");
   return p;
@@ -208,7 +215,7 @@ std::vector<MergedFrame> merge_parts(const std::vector<Part>& parts, const std::
         size_t at = 0;
         for (uint32_t t : f.tiles) {
           covered[t] = 1;
-          const Rect r = tile_rect(units, t);
+          const WorkUnits::Rect r = units.rect(t);
           for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x, ++at) {
               const size_t p = size_t(y) * size_t(units.width) + size_t(x);

@@ -5,6 +5,7 @@
 #include <memory>
 #include <mutex>
 #include <set>
+#include <sstream>
 
 #include "command.h"
 #include "gate_runner.h"
@@ -20,12 +21,15 @@ namespace fs = std::filesystem;
 struct GoldenArgs {
   CaseOptions cases;
   bool force = false;
+  std::string launcher;
 };
 
 int run_golden_update(const GoldenArgs& a) {
   gate::Config config;
   const auto cases = load_cases(a.cases, config);
-  const Toolchain tools = toolchain(a.cases);
+  Toolchain tools = toolchain(a.cases);
+  std::istringstream words(a.launcher);
+  for (std::string w; words >> w;) tools.launcher.push_back(w);
   fs::create_directories(config.golden_dir);
   gate::Manifest manifest = gate::read_manifest(config.golden_dir / "manifest.json");
   // One golden per key, even when several cases share it.
@@ -60,6 +64,9 @@ void add_golden_command(CLI::App& app, int& exit_code) {
       golden->add_subcommand("update", "Render the missing or stale golden references of a gate config");
   add_case_options(update, a->cases);
   update->add_flag("--force", a->force, "Render every golden again, fresh or not");
+  update->add_option("--launcher", a->launcher,
+                     "Words put before each giq reference, e.g. 'mpirun -n 16' or 'srun': every golden rendered across MPI "
+                     "ranks, with the same bits (needs goldens with spp; docs/reference.md, 'MPI')");
   update->footer("Example: render what a new case needs, nothing that is fresh:\n  giq golden update --config golden/gate.json");
   update->callback([a, &exit_code] { exit_code = run_golden_update(*a); });
 }

@@ -9,7 +9,9 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <memory>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -23,6 +25,7 @@
 #include "giq/base/error.h"
 #include "giq/base/frames.h"
 #include "giq/image/io.h"
+#include "giq/reference/distributed_render.h"
 #include "giq/reference/part.h"
 #include "giq/reference/progressive_render.h"
 #include "giq/reference/reference_exr.h"
@@ -121,6 +124,17 @@ ref::Shard shard_of(const Options& o) {
   return shard;
 }
 
+// What a render across ranks needs, checked on every rank before the scene is loaded (each
+// rank reaches the same verdict, so all of them stop with the same message).
+void ranks_check(const Options& o, bool shard) {
+  if (shard) throw InputError("", "--shard", "a render across MPI ranks shares its work itself; give --shard without mpirun");
+  if (o.spp == 0 || o.seconds > 0.0 || o.rel_error > 0.0)
+    throw InputError("", "--spp",
+                     "a render across MPI ranks stops at a sample count: give --spp alone (each rank renders whole units "
+                     "to it)");
+  if (o.record_time) throw InputError("", "--record-time", "does not apply to a render across MPI ranks");
+}
+
 int run_shard(const Options& o, ref::Shard shard, const sc::Scene& scene, const ref::RenderSettings& settings, int first,
               int last) {
   ref::Part part;
@@ -162,6 +176,90 @@ int run_shard(const Options& o, ref::Shard shard, const sc::Scene& scene, const 
   return 0;
 }
 
+// Each rank's renderer of the frame its units are in (distributed_render.h).
+class PosedFrames final : public ref::FrameRenderers {
+ public:
+  PosedFrames(const Options& o, const sc::Scene& scene, const ref::RenderSettings& settings)
+      : o_(o), scene_(scene), settings_(settings) {}
+  const ref::Renderer& renderer(int frame) override {
+    if (frame != frame_) {
+      renderer_.reset();
+      job_ = std::make_unique<ReferenceFrame>(reference_frame(scene_, o_.scene, o_.view, o_.setup.camera, frame, settings_));
+      renderer_ = std::make_unique<ref::Renderer>(job_->posed, job_->metadata.camera, settings_);
+      frame_ = frame;
+    }
+    return *renderer_;
+  }
+
+ private:
+  const Options& o_;
+  const sc::Scene& scene_;
+  const ref::RenderSettings& settings_;
+  int frame_ = -1;
+  std::unique_ptr<ReferenceFrame> job_;
+  std::unique_ptr<ref::Renderer> renderer_;
+};
+
+// `mpirun -n R giq reference ... --spp N`: the render across R ranks, written by rank 0 as
+// the files one process would have written (distributed_render.h). An error any rank meets
+// ends every rank, with exit code 2 for bad input.
+int run_across_ranks(const Options& o, const ref::Ranks& ranks, const sc::Scene& scene, ref::RenderSettings settings,
+                     int first, int last) try {
+  // One rank per core by default: the machine's threads shared among its ranks.
+  if (settings.threads == 0)
+    settings.threads = std::max(1, int(std::thread::hardware_concurrency()) / std::max(1, ranks.local_size()));
+  const bool many = first != last;
+  ref::DistributedJob job;
+  ref::Part& h = job.header;
+  h.scene = o.scene, h.scene_hash = scene.content_hash, h.settings = settings, h.spp = o.spp;
+  h.first_frame = first, h.last_frame = last;
+  const ReferenceFrame first_job = reference_frame(scene, o.scene, o.view, o.setup.camera, first, settings);
+  h.view = first_job.metadata.view, h.camera_given = first_job.metadata.camera_given;
+  h.identity = "scene " + scene.content_hash + " view " + h.view + " camera '" + h.camera_given + "' frames " +
+               std::to_string(first) + ":" + std::to_string(last) + " spp " + std::to_string(o.spp) + " settings " +
+               ref::settings_json(settings);
+  job.checkpoint = o.out + ".ranks.checkpoint";
+  job.checkpoint_interval_seconds = o.checkpoint_interval;
+  job.resume = o.resume;
+  job.cancel = &g_cancel;
+  if (ranks.rank() == 0) {
+    for (int f = first; f <= last; ++f) check_output_file(frame_path(o.out, f, many), {o.scene}, "--out");
+    if (fs::exists(job.checkpoint) && !o.resume && !o.overwrite)
+      throw InputError(job.checkpoint.string(), "--out",
+                       "a checkpoint for this render exists: add --resume to continue it, or --overwrite to start again");
+    if (fs::exists(job.checkpoint) && o.overwrite) fs::remove(job.checkpoint);
+    if (fs::path(o.out).has_parent_path()) fs::create_directories(fs::path(o.out).parent_path());
+  }
+  PosedFrames renderers(o, scene, settings);
+  const auto done = [&](int f, const ref::Film& film) {
+    ReferenceFrame frame = reference_frame(scene, o.scene, o.view, o.setup.camera, f, settings);
+    frame.metadata.render_seconds = -1.0;
+    const fs::path out = frame_path(o.out, f, many);
+    if (out.has_parent_path()) fs::create_directories(out.parent_path());
+    const image::Image img = ref::reference_image(film, settings, frame.metadata);
+    image::write_exr(img, out, exr_options(img, o.half));
+    warn_if_black(img, out.string());
+    std::printf("reference %s: %dx%d, view %s, frame %d, %u spp, %d ranks, rel.err %.3g%%, %llu non-finite samples\n",
+                out.string().c_str(), settings.width, settings.height, frame.metadata.view.c_str(), f, o.spp, ranks.size(),
+                100.0 * film.relative_standard_error(), (unsigned long long)film.nonfinite_samples());
+    std::fflush(stdout);
+  };
+  const ref::DistributedOutcome r = ref::render_across_ranks(ranks, job, renderers, done);
+  if (!r.completed) {
+    if (ranks.rank() == 0)
+      std::fprintf(stderr, "giq: interrupted; progress saved in %s; continue with --resume\n", job.checkpoint.string().c_str());
+    return 130;
+  }
+  return 0;
+} catch (const InputError& e) {
+  const std::string who = ranks.rank() == 0 ? "" : " (rank " + std::to_string(ranks.rank()) + ")";
+  std::fprintf(stderr, "giq: error%s: %s\n", who.c_str(), e.what());
+  ranks.abort(2);
+} catch (const std::exception& e) {
+  std::fprintf(stderr, "giq: internal error (rank %d): %s\n", ranks.rank(), e.what());
+  ranks.abort(3);
+}
+
 int run(const Options& o) {
   const InterruptGuard interrupts;
   if (o.scene.empty()) throw InputError("", "--scene", "a scene is required (a .gltf/.glb path)");
@@ -179,6 +277,8 @@ int run(const Options& o) {
 
   if (o.resume && o.overwrite) throw InputError("", "--resume/--overwrite", "give one of them, not both");
   const std::optional<ref::Shard> shard = o.shard.empty() ? std::nullopt : std::optional(shard_of(o));
+  const ref::Ranks& ranks = ref::Ranks::world();
+  if (ranks.size() > 1) ranks_check(o, shard.has_value());
   if (!shard) {
     std::string ext = fs::path(o.out).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -188,6 +288,7 @@ int run(const Options& o) {
   const sc::Scene scene = o.setup.load(o.scene, double(o.settings.width) / double(o.settings.height));
   const auto [first, last] = frame_range(o, scene);
   if (shard) return run_shard(o, *shard, scene, settings, first, last);
+  if (ranks.size() > 1) return run_across_ranks(o, ranks, scene, settings, first, last);
   // Every output and checkpoint is checked before the first sample: a render of hours must not
   // fail at its end, overwrite its scene, or discard another render's saved progress.
   for (int f = first; f <= last; ++f) {
@@ -283,7 +384,19 @@ void add_reference_command(CLI::App& app, int& exit_code) {
   cmd->footer("Example: the Cornell box to a mean relative error of 1%, resumable:\n  giq reference --scene scenes/cornell.gltf --rel-error 0.01 --out out/cornell.exr --resume");
   CLI::App* merge = add_reference_merge_command(*cmd, exit_code);
   cmd->callback([merge, &exit_code] {
-    if (!merge->parsed()) exit_code = run(o);
+    if (merge->parsed()) return;
+    const ref::Ranks& ranks = ref::Ranks::world();
+    if (ranks.size() == 1) {
+      exit_code = run(o);
+      return;
+    }
+    try {
+      exit_code = run(o);
+    } catch (const InputError& e) {
+      // Every rank read the same options and scene and met the same error: one message.
+      if (ranks.rank() == 0) std::fprintf(stderr, "giq: error: %s\n", e.what());
+      exit_code = 2;
+    }
   });
 }
 

@@ -218,7 +218,8 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
     // are the same bytes whatever the checkout's location or the directory update runs in.
     const fs::path config_dir = fs::absolute(config.file).parent_path();
     const std::string scene = fs::absolute(c.scene).lexically_relative(config_dir).generic_string();
-    std::vector<std::string> a = {t.giq.string(), "reference",
+    std::vector<std::string> a = t.launcher;
+    a.insert(a.end(), {t.giq.string(), "reference",
                                   "--scene",      scene,
                                   c.camera.empty() ? "--view" : "--camera",
                                   c.camera.empty() ? c.view : c.camera,
@@ -226,7 +227,7 @@ GoldenRun update_golden(const Toolchain& t, const gate::Case& c, const gate::Con
                                   "--width",      std::to_string(c.width),
                                   "--height",     std::to_string(c.height),
                                   "--seed",       std::to_string(c.golden.seed),
-                                  "--sampler",    c.golden.sampler};
+                                  "--sampler",    c.golden.sampler});
     if (c.golden.spp)
       a.insert(a.end(), {"--spp", std::to_string(*c.golden.spp)});
     else

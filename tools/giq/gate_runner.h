@@ -30,6 +30,9 @@ struct Toolchain {
   std::filesystem::path giq;  // the binary whose subcommands render and score
   std::string device;         // passed to giq realtime --device when not empty
   bool rerender = false;      // ignore outputs of an earlier identical run
+  // Words put before `giq reference` (giq golden update --launcher): an MPI launcher such as
+  // "mpirun -n 16" renders each golden across ranks, with the same bits.
+  std::vector<std::string> launcher;
 };
 
 // The options `giq gate` and `giq golden update` share: which cases, how many at a time, and

@@ -65,7 +65,8 @@ ProcessResult run_process(const std::vector<std::string>& argv, const fs::path& 
   args.push_back(nullptr);
   const auto start = std::chrono::steady_clock::now();
   pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0].c_str(), &actions, nullptr, args.data(), environ);
+  // posix_spawnp: a program named without a slash (a --launcher such as mpirun) is looked up in PATH.
+  const int rc = posix_spawnp(&pid, argv[0].c_str(), &actions, nullptr, args.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   ::close(fd);
   if (rc != 0)

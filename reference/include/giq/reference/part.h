@@ -12,12 +12,17 @@
 // samples: two processes' partial sums would enter its Welford updates in another order and
 // change its last bits.
 //
+// The same format holds the checkpoint of a render across MPI ranks (distributed_render.h):
+// shard 1/1, tiles whose pixels may have fewer samples than spp, and the frames already
+// written.
+//
 // Format (native byte order, like checkpoints: every machine of one render runs the same
-// build): the magic "giq-reference-part 1\n", the render's identity and metadata, the
+// build): the magic "giq-reference-part 2\n", the render's identity and metadata, the
 // settings and every frame's camera field by field, then per frame the units' tiles
-// (accumulators and first-hit layers as stored in memory), and a 64-bit FNV-1a hash of
-// everything before it.
+// (accumulators and first-hit layers as stored in memory), the frames written, and a 64-bit
+// FNV-1a hash of everything before it.
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -41,6 +46,15 @@ Shard parse_shard(const std::string& text);
 // The units of a render of frames first..last at width x height.
 struct WorkUnits {
   int first_frame = 0, last_frame = 0, width = 0, height = 0;
+  struct Rect {
+    int x0, y0, x1, y1;
+    size_t pixels() const { return size_t(x1 - x0) * size_t(y1 - y0); }
+  };
+  Rect rect(uint32_t tile) const {
+    const int x0 = int(tile % uint32_t(tiles_x())) * kUnitSize, y0 = int(tile / uint32_t(tiles_x())) * kUnitSize;
+    return {x0, y0, std::min(x0 + kUnitSize, width), std::min(y0 + kUnitSize, height)};
+  }
+  uint64_t count() const { return uint64_t(last_frame - first_frame + 1) * uint64_t(tiles_per_frame()); }
   int tiles_x() const { return (width + kUnitSize - 1) / kUnitSize; }
   int tiles_y() const { return (height + kUnitSize - 1) / kUnitSize; }
   int tiles_per_frame() const { return tiles_x() * tiles_y(); }
@@ -67,15 +81,18 @@ struct Part {
   int first_frame = 0, last_frame = 0;
   Shard shard;
   std::vector<PartFrame> frames;  // the frames the shard has units in, ascending
+  std::vector<int> written;       // a checkpoint's frames already written, ascending
 };
 
 // The tiles of `film` the shard owns in `frame`, copied into a PartFrame.
 PartFrame part_frame(const Film& film, int frame, const scenes::Camera& camera, const WorkUnits& units, Shard shard);
 
 // Written atomically. read_part throws InputError for a file that is not a part, is corrupt
-// (checksum) or is inconsistent (tiles outside the image, sizes that do not match).
+// (checksum) or is inconsistent (tiles outside the image, sizes that do not match, pixels
+// with other than spp samples; up to spp in a checkpoint).
 void write_part(const std::filesystem::path& path, const Part& part);
-Part read_part(const std::filesystem::path& path);
+enum class PartUse { Shard, Checkpoint };
+Part read_part(const std::filesystem::path& path, PartUse use = PartUse::Shard);
 
 struct MergedFrame {
   int frame = 0;
