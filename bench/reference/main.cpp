@@ -157,7 +157,7 @@ int main(int argc, char** argv) try {
   std::vector<std::string> names = {"cornell", "leak", "sunroom", "movinglight"};
   std::string references, sampler = "sobol";
   uint32_t sobol_block = ref::RenderSettings().sobol_block;
-  bool scaling = true;
+  bool scaling = true, time_to_error_too = true;
   app.add_option("--scenes", scenes_dir, "Folder of the built-in scenes")->capture_default_str();
   app.add_option("--size", size, "Image width and height")->capture_default_str();
   app.add_option("--threads", threads, "Threads (0 = all cores)")->capture_default_str();
@@ -179,6 +179,7 @@ int main(int argc, char** argv) try {
                  "Folder of long renders <scene>.exr: used when present (same size), else rendered "
                  "and written there");
   app.add_flag("!--no-scaling", scaling, "Skip the triangle-count scaling test");
+  app.add_flag("!--no-time-to-error", time_to_error_too, "Throughput only: skip the long renders and the time to error");
   app.add_option("--sampler", sampler, "giq reference's sampler: sobol or independent")->capture_default_str();
   app.add_option("--sobol-block", sobol_block, "Samples per Sobol block")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
@@ -201,21 +202,37 @@ int main(int argc, char** argv) try {
     const std::filesystem::path path = std::filesystem::path(scenes_dir) / (name + ".gltf");
     const sc::Scene s = sc::load(path);
     const sc::Camera cam = s.views.at(0).camera;
-    ref::RenderSettings single = rs, generic = rs;
-    single.lanes = false;
-    generic.all_features = true, generic.lanes = false;
-    const ref::Renderer probe(s, cam, rs);
+    // The lanes' speed-up is measured on every scene (Lanes::Always against Never); what the
+    // renderer runs by default (Auto) is one of the two.
+    ref::RenderSettings single = rs, generic = rs, lanes = rs;
+    single.lanes = ref::RenderSettings::Lanes::Never;
+    lanes.lanes = ref::RenderSettings::Lanes::Always;
+    generic.all_features = true, generic.lanes = ref::RenderSettings::Lanes::Never;
+    const ref::Renderer probe(s, cam, rs), laned(s, cam, lanes);
     // Alternated, so that a change in the machine's load between them does not pass for a
     // difference between the integrators.
     std::vector<double> paths, rays, single_paths, gen_paths, speedup, saving;
     for (int rep = 0; rep < throughput_reps; ++rep) {
-      const Throughput a = measure(s, cam, rs, seconds);
-      const Throughput b = probe.lanes() ? measure(s, cam, single, seconds) : a;
+      const Throughput eight = laned.lanes() ? measure(s, cam, lanes, seconds) : Throughput{};
+      const Throughput b = measure(s, cam, single, seconds);
       const Throughput c = measure(s, cam, generic, seconds);
+      const Throughput a = probe.lanes() ? eight : b;  // as rendered
       paths.push_back(a.samples_per_s), rays.push_back(a.rays_per_s);
       single_paths.push_back(b.samples_per_s), gen_paths.push_back(c.samples_per_s);
-      speedup.push_back(a.samples_per_s / b.samples_per_s);
+      speedup.push_back(eight.samples_per_s / b.samples_per_s);
       saving.push_back(1.0 - c.samples_per_s / b.samples_per_s);
+    }
+    std::string feats;
+    for (const auto& f : s.features.names()) feats += (feats.empty() ? "" : ", ") + f;
+    char speedup_text[48] = "(one at a time)";
+    if (laned.lanes())
+      std::snprintf(speedup_text, sizeof speedup_text, "%.2fx%s", median(speedup), probe.lanes() ? "" : " (not used)");
+    if (!time_to_error_too) {
+      std::printf("| %s | %s (%u) | %.3f | %.3f | %.3f | %s | %.3f | %.1f %% | | | |\n", name.c_str(), feats.c_str(),
+                  probe.feature_mask(), median(paths) / 1e6, median(rays) / 1e6, median(single_paths) / 1e6, speedup_text,
+                  median(gen_paths) / 1e6, 100.0 * median(saving));
+      std::fflush(stdout);
+      continue;
     }
     ref::RenderSettings long_rs = rs;
     long_rs.seed = 777;
@@ -244,15 +261,11 @@ int main(int argc, char** argv) try {
     }
     uint32_t spp_reached = 0;
     const double tte = time_to_error(s, cam, rs, reference, target, max_spp, spp_reached);
-    std::string feats;
-    for (const auto& f : s.features.names()) feats += (feats.empty() ? "" : ", ") + f;
     char tte_text[32];
     if (tte >= 0.0)
       std::snprintf(tte_text, sizeof tte_text, "%.2f s", tte);
     else
       std::snprintf(tte_text, sizeof tte_text, "not within %u spp", max_spp);
-    char speedup_text[32] = "(one at a time)";
-    if (probe.lanes()) std::snprintf(speedup_text, sizeof speedup_text, "%.2fx", median(speedup));
     std::printf("| %s | %s (%u) | %.3f | %.3f | %.3f | %s | %.3f | %.1f %% | %s | %u | %.0f |\n", name.c_str(),
                 feats.c_str(), probe.feature_mask(), median(paths) / 1e6, median(rays) / 1e6,
                 median(single_paths) / 1e6, speedup_text, median(gen_paths) / 1e6, 100.0 * median(saving), tte_text,

@@ -181,24 +181,33 @@ class LocalLink final : public Link {
 };
 
 // Renders the units the link hands out, each to spp in passes of about a quarter of the
-// checkpoint interval, reporting progress once an interval.
+// checkpoint interval, reporting progress once an interval. The pass size carries over from
+// unit to unit, so that a short unit is rendered in one pass (a pass over a unit costs a
+// walk over the frame's tiles and a task arena).
 uint64_t work(Link& link, const DistributedJob& job, FrameRenderers& renderers) {
   const WorkUnits units{job.header.first_frame, job.header.last_frame, job.header.settings.width, job.header.settings.height};
   const uint32_t spp = job.header.spp;
   const double interval = job.checkpoint_interval_seconds;
   uint64_t rendered = 0;
-  int film_frame = -1;
   Film film;
+  double per_sample = 0.0;  // seconds a sample of a unit took last
   std::optional<TileState> finished;
   while (std::optional<TileState> unit = link.next(std::move(finished))) {
     finished.reset();
-    const int frame = frame_of(units, unit->unit);
-    const Renderer& renderer = renderers.renderer(frame);
-    if (frame != film_frame) film = renderer.make_film(), film_frame = frame;
+    const Renderer& renderer = renderers.renderer(frame_of(units, unit->unit));
+    // One film for every unit of every frame: each unit's pixels start afresh.
+    if (film.pixels.empty()) film = renderer.make_film();
     const WorkUnits::Rect r = units.rect(tile_of(units, unit->unit));
     // Renderer::render's `only` names its 16 x 16 tiles by their top-left corners.
     const auto only = [&r](int x, int y) { return x >= r.x0 && x < r.x1 && y >= r.y0 && y < r.y1; };
     if (unit->pixels.empty()) {
+      PixelAccumulator fresh;
+      fresh.block = job.header.settings.block();
+      for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x) {
+          const size_t p = size_t(y) * size_t(units.width) + size_t(x);
+          film.pixels[p] = fresh, film.aux[p] = PixelAux{};
+        }
       renderer.render_aux(film, only);
     } else {
       store(units, *unit, film);
@@ -206,7 +215,7 @@ uint64_t work(Link& link, const DistributedJob& job, FrameRenderers& renderers) 
     uint32_t have = spp;
     for (int y = r.y0; y < r.y1; ++y)
       for (int x = r.x0; x < r.x1; ++x) have = std::min(have, film.pixels[size_t(y) * size_t(units.width) + size_t(x)].samples);
-    uint32_t step = 1;
+    uint32_t step = per_sample > 0.0 ? uint32_t(std::clamp(0.25 * interval / per_sample, 1.0, double(spp))) : 1;
     Clock::time_point reported = Clock::now();
     bool cancelled = false;
     while (have < spp) {
@@ -217,8 +226,8 @@ uint64_t work(Link& link, const DistributedJob& job, FrameRenderers& renderers) 
         break;
       }
       const double took = std::max(1e-4, seconds_since(start));
-      const double next = double(target - have) * 0.25 * interval / took;
-      step = uint32_t(std::clamp(next, 1.0, 2.0 * double(step) + 1.0));
+      per_sample = took / double(target - have);
+      step = uint32_t(std::clamp(0.25 * interval / per_sample, 1.0, 2.0 * double(step) + 1.0));
       have = target;
       if (seconds_since(reported) >= interval && have < spp) {
         link.progress(load(units, unit->unit, film));
@@ -235,12 +244,91 @@ uint64_t work(Link& link, const DistributedJob& job, FrameRenderers& renderers) 
   return rendered;
 }
 
+// Rank 0's writer: hands each complete frame's film to `done` on a thread of its own, so that
+// writing an EXR never keeps the coordinator from answering the ranks.
+class FrameWriter {
+ public:
+  explicit FrameWriter(const std::function<void(int, const Film&)>& done) : done_(done), thread_([this] { run(); }) {}
+  ~FrameWriter() {
+    if (thread_.joinable()) {
+      {
+        const std::lock_guard lock(m_);
+        closed_ = true;
+      }
+      cv_.notify_one();
+      thread_.join();
+    }
+  }
+  void push(int frame, Film film) {
+    {
+      const std::lock_guard lock(m_);
+      queue_.emplace_back(frame, std::move(film));
+    }
+    cv_.notify_one();
+  }
+  // The frames written since the last call.
+  std::vector<int> take_written() {
+    const std::lock_guard lock(m_);
+    std::vector<int> w = std::move(written_);
+    written_.clear();
+    return w;
+  }
+  // Waits until every frame pushed is written; rethrows what writing one threw.
+  void finish() {
+    {
+      const std::lock_guard lock(m_);
+      closed_ = true;
+    }
+    cv_.notify_one();
+    thread_.join();
+    if (failure_) std::rethrow_exception(failure_);
+  }
+  bool failed() {
+    const std::lock_guard lock(m_);
+    return failure_ != nullptr;
+  }
+
+ private:
+  void run() {
+    for (;;) {
+      std::unique_lock lock(m_);
+      cv_.wait(lock, [&] { return closed_ || !queue_.empty(); });
+      if (queue_.empty()) return;
+      auto [frame, film] = std::move(queue_.front());
+      queue_.pop_front();
+      lock.unlock();
+      try {
+        if (!failure_) done_(frame, film);
+      } catch (...) {
+        lock.lock();
+        failure_ = std::current_exception();
+        continue;
+      }
+      lock.lock();
+      written_.push_back(frame);
+    }
+  }
+
+  const std::function<void(int, const Film&)>& done_;
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::deque<std::pair<int, Film>> queue_;
+  std::vector<int> written_;
+  bool closed_ = false;
+  std::exception_ptr failure_;
+  std::thread thread_;  // last: started once the rest is constructed
+};
+
 class Coordinator {
  public:
-  Coordinator(const DistributedJob& job, const std::function<void(int, const Film&)>& done)
-      : job_(job), done_(done),
+  // ranks: how many ask for units. Frames are opened a few at a time: enough for every rank to
+  // have about 4 units of an open frame, and one more, so that rank 0 holds few frames' films.
+  Coordinator(const DistributedJob& job, int ranks, FrameWriter& writer)
+      : job_(job), writer_(writer),
         units_{job.header.first_frame, job.header.last_frame, job.header.settings.width, job.header.settings.height},
-        handed_(units_.count(), 0) {}
+        handed_(units_.count(), 0),
+        complete_(size_t(units_.last_frame - units_.first_frame + 1), 0),
+        max_open_(size_t(4 * ranks + units_.tiles_per_frame() - 1) / size_t(units_.tiles_per_frame()) + 1) {}
 
   bool resume() {
     if (!job_.resume || job_.checkpoint.empty() || !std::filesystem::exists(job_.checkpoint)) return false;
@@ -250,6 +338,7 @@ class Coordinator {
                        "is the checkpoint of another render: '" + saved.identity + "', not '" + job_.header.identity + "'");
     for (int f : saved.written) {
       written_.push_back(f);
+      complete_[size_t(f - units_.first_frame)] = 1;
       for (int t = 0; t < units_.tiles_per_frame(); ++t) handed_[units_.unit(f, t)] = 1;
     }
     for (const PartFrame& pf : saved.frames) {
@@ -273,19 +362,46 @@ class Coordinator {
     return true;
   }
 
-  // The next unit: those started before a resume first, then the rest in order.
-  std::optional<TileState> next() {
+  // The next unit for `worker` (a rank): units started before a resume or a stop first; then
+  // the next of the frame the worker is on, so that a rank poses its scene and builds its BVH
+  // for few frames; a worker whose frame has none left starts the first frame no one has
+  // started, or, when every frame has started, helps the one with the most units left.
+  std::optional<TileState> next(int worker) {
     if (job_.cancel != nullptr && job_.cancel->load()) return std::nullopt;
     if (!restarted_.empty()) {
       TileState t = std::move(restarted_.front());
       restarted_.pop_front();
       return t;
     }
-    while (cursor_ < handed_.size() && handed_[cursor_]) ++cursor_;
-    if (cursor_ == handed_.size()) return std::nullopt;
-    handed_[cursor_] = 1;
+    if (pending_.empty()) {  // once, after resume() marked what needs no rendering
+      const int frames = units_.last_frame - units_.first_frame + 1;
+      pending_.resize(size_t(frames));
+      started_.assign(size_t(frames), 0);
+      for (uint64_t u = 0; u < handed_.size(); ++u) {
+        const size_t f = size_t(u / uint64_t(units_.tiles_per_frame()));
+        if (handed_[u]) started_[f] = 1;
+        else pending_[f].push_back(u);
+      }
+    }
+    size_t& f = frame_of_worker_.try_emplace(worker, pending_.size()).first->second;
+    if (f >= pending_.size() || pending_[f].empty()) {
+      const size_t none = pending_.size();
+      f = none;
+      size_t open = 0;  // started and not yet complete: rank 0 holds their films
+      for (size_t k = 0; k < pending_.size(); ++k) open += started_[k] && !complete_[k];
+      if (open < max_open_)
+        for (size_t k = 0; k < pending_.size() && f == none; ++k)
+          if (!started_[k] && !pending_[k].empty()) f = k;
+      for (size_t k = 0; k < pending_.size() && open >= max_open_; ++k)
+        if (started_[k] && !pending_[k].empty() && (f == none || pending_[k].size() > pending_[f].size())) f = k;
+      for (size_t k = 0; k < pending_.size() && f == none; ++k)
+        if (!pending_[k].empty()) f = k;
+      if (f == none) return std::nullopt;
+      started_[f] = 1;
+    }
     TileState t;
-    t.unit = cursor_++;
+    t.unit = pending_[f].front();
+    pending_[f].pop_front();
     return t;
   }
 
@@ -308,8 +424,8 @@ class Coordinator {
     store(units_, t, it->second.film);
     it->second.tiles.push_back(tile_of(units_, t.unit));
     if (--it->second.missing > 0) return;
-    done_(f, it->second.film);
-    written_.insert(std::upper_bound(written_.begin(), written_.end(), f), f);
+    complete_[size_t(f - units_.first_frame)] = 1;
+    writer_.push(f, std::move(it->second.film));
     frames_.erase(it);
   }
 
@@ -320,6 +436,7 @@ class Coordinator {
 
   void write_checkpoint() {
     if (job_.checkpoint.empty()) return;
+    for (int f : writer_.take_written()) written_.insert(std::upper_bound(written_.begin(), written_.end(), f), f);
     Part p = job_.header;
     p.shard = {1, 1};
     p.written = written_;
@@ -341,8 +458,8 @@ class Coordinator {
     saved_ = Clock::now();
   }
 
-  // Every frame written: what a completed render must have done.
-  bool all_written() const { return frames_.empty() && written_.size() == size_t(units_.last_frame - units_.first_frame + 1); }
+  // Every frame complete: what a completed render must have done.
+  bool all_complete() const { return frames_.empty() && std::all_of(complete_.begin(), complete_.end(), [](uint8_t c) { return c != 0; }); }
 
  private:
   struct FrameFilm {
@@ -351,10 +468,14 @@ class Coordinator {
     std::vector<uint32_t> tiles;  // those in
   };
   const DistributedJob& job_;
-  const std::function<void(int, const Film&)>& done_;
+  FrameWriter& writer_;
   WorkUnits units_;
-  std::vector<uint8_t> handed_;  // per unit: handed out, restored or written
-  uint64_t cursor_ = 0;
+  std::vector<uint8_t> handed_;  // per unit: restored or written by resume()
+  std::vector<std::deque<uint64_t>> pending_;  // per frame: the units not handed out yet
+  std::vector<uint8_t> started_;               // per frame: a unit was handed out or restored
+  std::vector<uint8_t> complete_;              // per frame: every tile in
+  size_t max_open_;                            // frames started at once, at most while others wait
+  std::map<int, size_t> frame_of_worker_;      // the frame each worker is on
   std::deque<TileState> restarted_;
   std::map<uint64_t, TileState> partial_;  // the latest progress of units being rendered
   std::map<int, FrameFilm> frames_;
@@ -375,7 +496,8 @@ DistributedOutcome render_across_ranks(const Ranks& ranks, const DistributedJob&
     return outcome;
   }
 
-  Coordinator coordinator(job, done);
+  FrameWriter writer(done);
+  Coordinator coordinator(job, ranks.size(), writer);
   outcome.resumed = coordinator.resume();
   LocalLink local;
   std::exception_ptr failure;
@@ -389,9 +511,9 @@ DistributedOutcome render_across_ranks(const Ranks& ranks, const DistributedJob&
   // Every worker signs off by asking for a unit when none is left.
   int active = ranks.size();
   bool local_active = true;
-  const auto answer = [&](std::optional<TileState> finished) {
+  const auto answer = [&](std::optional<TileState> finished, int source) {
     if (finished) coordinator.finished(std::move(*finished));
-    std::optional<TileState> next = coordinator.next();
+    std::optional<TileState> next = coordinator.next(source);
     if (!next) --active;
     return next;
   };
@@ -407,7 +529,7 @@ DistributedOutcome render_across_ranks(const Ranks& ranks, const DistributedJob&
           coordinator.stopped(std::move(*t));
           --active;
         } else if (m->tag == kRequest) {
-          ranks.send(m->source, kAssign, encode(answer(std::move(t))));
+          ranks.send(m->source, kAssign, encode(answer(std::move(t), m->source)));
         }
       }
       if (local_active) {
@@ -420,12 +542,13 @@ DistributedOutcome render_across_ranks(const Ranks& ranks, const DistributedJob&
         }
         if (in.request) {
           idle = false;
-          std::optional<TileState> next = answer(std::move(in.finished));
+          std::optional<TileState> next = answer(std::move(in.finished), 0);
           local_active = next.has_value();
           local.reply(std::move(next));
         }
       }
       if (failure) break;
+      if (writer.failed()) writer.finish();  // rethrows
       coordinator.checkpoint_if_due();
       if (idle) std::this_thread::sleep_for(std::chrono::microseconds(500));
     }
@@ -438,9 +561,10 @@ DistributedOutcome render_across_ranks(const Ranks& ranks, const DistributedJob&
     std::rethrow_exception(failure);
   }
   render.join();
+  writer.finish();
   outcome.completed = job.cancel == nullptr || !job.cancel->load();
-  if (outcome.completed && !coordinator.all_written())
-    throw std::logic_error("render_across_ranks: every rank signed off before every frame was written");
+  if (outcome.completed && !coordinator.all_complete())
+    throw std::logic_error("render_across_ranks: every rank signed off before every frame was complete");
   if (!outcome.completed) {
     coordinator.write_checkpoint();
   } else if (!job.checkpoint.empty()) {

@@ -13,13 +13,20 @@
 //
 // Same estimator, same random numbers, same operations in the same order: a path gives the
 // same bits in a lane as in PathIntegrator::trace, and tests/reference/lanes_test.cpp fails
-// when the two drift apart (a change to make_surface, LightSampler::sample, the Lambertian
-// BSDF or the warps must be made in both). The lanes take Lambertian scenes without textures
-// with the Sobol sampler, where every lane runs the same instructions; everything else stays
-// with PathIntegrator.
+// when the two drift apart (a change to the Lambertian BSDF, the emissive triangles' sampling
+// or the warps must be made in both). The lanes take every scene rendered with the Sobol
+// sampler. On Lambertian, untextured scenes every step's arithmetic runs on the eight lanes;
+// where materials have a GGX lobe or read textures (or the environment is a map), each lane
+// builds its surface with make_surface, evaluates and samples the BSDF with bsdf.h, looks up
+// the environment and samples emissive triangles with LightSampler::sample, one lane at a
+// time: the same functions as PathIntegrator, so the same bits by construction. The rays are
+// still traced eight at a time, and the rest of the step (frames, offsets, MIS weights,
+// throughput, roulette) still runs on the eight lanes. Tracing the GGX lobe's arithmetic in
+// lanes as well would need lane versions of libm's sin and cos with libm's bits.
 
 #include <embree3/rtcore.h>
 
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <limits>
@@ -30,9 +37,14 @@
 
 namespace giq::reference {
 
-// Whether the lanes handle feature mask F (with these settings).
-constexpr bool lanes_support(unsigned F) { return !has(F, kSpecular) && !has(F, kTextures); }
-inline bool lanes_support(unsigned F, const RenderSettings& s) { return s.lanes && lanes_support(F) && s.block() != 0; }
+// Whether the lanes render feature mask F with these settings: with the Sobol sampler, whose
+// numbers the lanes draw for eight paths at once, and, unless told always, only where every
+// step runs on the eight lanes (RenderSettings::Lanes).
+inline bool lanes_support(unsigned F, const RenderSettings& s) {
+  using L = RenderSettings::Lanes;
+  const bool per_lane = has(F, kSpecular) || has(F, kTextures);
+  return s.block() != 0 && (s.lanes == L::Always || (s.lanes == L::Auto && !per_lane));
+}
 
 namespace lanes {
 
@@ -110,12 +122,13 @@ struct Lambert {
 
 template <unsigned F>
 class LaneIntegrator {
-  static_assert(lanes_support(F));
   using LF = lanes::F;
   using LI = lanes::I;
   using LU = lanes::U;
   using V3 = lanes::V3;
   static constexpr int kWidth = lanes::kWidth;
+  // Surfaces, BSDF and emitters one lane at a time, with PathIntegrator's own functions.
+  static constexpr bool kPerLane = has(F, kSpecular) || has(F, kTextures);
 
  public:
   explicit LaneIntegrator(const RenderContext& ctx) : c_(ctx) {}
@@ -164,8 +177,18 @@ class LaneIntegrator {
       LI done = miss;
       if constexpr (has(F, kEnvironment)) {
         if (any(miss)) {
-          const LF w = select(s.depth == 0, LF(1.0f), bsdf_hit_weight(s.prev_pdf, env_weight_pdf));
-          add(s, miss, emission_direct, (s.beta * w) * splat(c_.scene.environment));
+          LF pdf = env_weight_pdf;
+          V3 radiance = splat(c_.scene.environment);
+          if constexpr (has(F, kTextures)) {  // perhaps a map: its radiance and pdf per direction
+            for (int l = 0; l < kWidth; ++l) {
+              if (miss[l] == 0) continue;
+              const glm::vec3 d = get(s.dir, l);
+              pdf[l] = c_.lights.environment_pdf(d);
+              set(radiance, l, c_.scene.environment_radiance(d));
+            }
+          }
+          const LF w = select(s.depth == 0, LF(1.0f), bsdf_hit_weight(s.prev_pdf, pdf));
+          add(s, miss, emission_direct, (s.beta * w) * radiance);
         }
       }
 
@@ -199,7 +222,7 @@ class LaneIntegrator {
           const LightSamples ls = sample_lights(cont, sf.p, u);
           const LI use = ls.delta | (rs.estimator != Estimator::BsdfOnly ? -1 : 0);
           LI lit = cont & use & (ls.pdf > 0.0f) & (dot(ls.wi, sf.ng) > 0.0f) & nonzero(ls.radiance);
-          const Lambert e = lambert(sf.base, sf.metallic, wo_l.z, frame.to_local(ls.wi).z);
+          const Lambert e = evaluate(lit, sf, wo_l, frame.to_local(ls.wi));
           lit &= nonzero(e.f);
           if (any(lit)) {
             const LI unweighted = ls.delta | (rs.estimator == Estimator::LightOnly ? -1 : 0);
@@ -219,13 +242,25 @@ class LaneIntegrator {
         }
 
         // BSDF sampling continues the path.
-        const Group u = group<2>(s, 2 + 2 * s.depth);  // no lobe to choose
-        const V3 wi_l = cosine_hemisphere(u.u[0], u.u[1]);
+        const Group u = group<has(F, kSpecular) ? 4 : 2>(s, 2 + 2 * s.depth);  // Lambert: no lobe to choose
+        V3 wi_l;
+        LI next;
+        if constexpr (has(F, kSpecular)) {
+          next = cont;
+          for (int l = 0; l < kWidth; ++l) {
+            if (cont[l] == 0) continue;
+            glm::vec3 w(0.0f);
+            if (!bsdf_sample<true>(sf.bsdf[l], get(wo_l, l), u.u[2][l], {u.u[0][l], u.u[1][l]}, w)) next[l] = 0;
+            set(wi_l, l, w);
+          }
+        } else {
+          wi_l = cosine_hemisphere(u.u[0], u.u[1]);
+          next = cont & ~(wo_l.z <= 0.0f) & (wi_l.z > 0.0f);
+        }
         const V3 wi = frame.to_world(wi_l);
-        LI next = cont & ~(wo_l.z <= 0.0f) & (wi_l.z > 0.0f);
         // Reflection only: a direction below the geometric surface would leak through it.
         next &= ~(dot(wi, sf.ng) <= 0.0f);
-        const Lambert e = lambert(sf.base, sf.metallic, wo_l.z, wi_l.z);
+        const Lambert e = evaluate(next, sf, wo_l, wi_l);
         next &= e.pdf > 0.0f;
         V3 beta = s.beta * (e.f * (wi_l.z / e.pdf));
         // Unbiased Russian roulette: survive with q, divide by q.
@@ -308,6 +343,7 @@ class LaneIntegrator {
     V3 p, ng, ns, base, emission;
     LF metallic{}, t{}, area{}, cos_ray{}, light_pmf{}, offset{};
     LI black{};
+    std::array<BsdfParams, kPerLane ? kWidth : 0> bsdf;  // make_surface's, for bsdf.h one lane at a time
   };
 
   struct LightSamples {
@@ -361,6 +397,23 @@ class LaneIntegrator {
   Surfaces surfaces(LI hit, const RTCRayHit8& rh, const Paths& s) const {
     using namespace lanes;
     Surfaces sf;
+    if constexpr (kPerLane) {
+      for (int l = 0; l < kWidth; ++l) {
+        if (hit[l] == 0) continue;
+        Hit h;
+        h.t = rh.ray.tfar[l], h.mesh = rh.hit.geomID[l], h.triangle = rh.hit.primID[l];
+        h.b1 = rh.hit.u[l], h.b2 = rh.hit.v[l];
+        const Surface one = make_surface<F>(c_, h, get(s.dir, l));
+        set(sf.p, l, one.p), set(sf.ng, l, one.ng), set(sf.ns, l, one.ns), set(sf.base, l, one.bsdf.base);
+        set(sf.emission, l, one.emission);
+        sf.metallic[l] = one.bsdf.metallic, sf.offset[l] = one.offset, sf.black[l] = one.black ? -1 : 0;
+        sf.t[l] = h.t, sf.area[l] = one.area, sf.cos_ray[l] = one.cos_ray;
+        if constexpr (has(F, kEmissive))
+          if (one.emission != glm::vec3(0.0f) && s.depth[l] > 0) sf.light_pmf[l] = c_.lights.triangle_pmf(h.mesh, h.triangle);
+        sf.bsdf[l] = one.bsdf;
+      }
+      return sf;
+    }
     V3 p0, p1, p2, ng, n0, n1, n2;
     LI normals{}, double_sided{};
     for (int l = 0; l < kWidth; ++l) {
@@ -408,6 +461,24 @@ class LaneIntegrator {
     return sf;
   }
 
+  // The BSDF's value and pdf for the lanes in `m` (the others: zero): the Lambertian lobe on
+  // the eight lanes, or bsdf_evaluate one lane at a time.
+  [[gnu::always_inline]] lanes::Lambert evaluate(LI m, const Surfaces& sf, const V3& wo_l, const V3& wi_l) const {
+    using namespace lanes;
+    if constexpr (has(F, kSpecular)) {
+      Lambert e{V3{}, LF{}};
+      for (int l = 0; l < kWidth; ++l) {
+        if (m[l] == 0) continue;
+        const BsdfEval one = bsdf_evaluate<true>(sf.bsdf[l], get(wo_l, l), get(wi_l, l));
+        set(e.f, l, one.f);
+        e.pdf[l] = one.pdf;
+      }
+      return e;
+    } else {
+      return lambert(sf.base, sf.metallic, wo_l.z, wi_l.z);
+    }
+  }
+
   // LightSampler::sample for each lane in `m`, at the points p. Lights are picked lane by
   // lane; points on emissive triangles are then placed for all lanes at once.
   LightSamples sample_lights(LI m, const V3& p, const Group& u) const {
@@ -416,7 +487,7 @@ class LaneIntegrator {
     [[maybe_unused]] Emitters em;
     for (int l = 0; l < kWidth; ++l) {
       if (m[l] == 0) continue;
-      if constexpr (has(F, kEmissive)) {
+      if constexpr (has(F, kEmissive) && !has(F, kTextures)) {
         const LightSampler::Pick pick = c_.lights.pick(u.u[2][l], u.u[3][l]);
         if (pick.emitter != nullptr) {
           const LightSampler::Emitter& e = *pick.emitter;
@@ -437,7 +508,7 @@ class LaneIntegrator {
       ls.distance[l] = one.distance, ls.pdf[l] = one.pdf, ls.offset[l] = one.offset;
       ls.delta[l] = one.delta ? -1 : 0, ls.area[l] = one.area ? -1 : 0;
     }
-    if constexpr (has(F, kEmissive)) {
+    if constexpr (has(F, kEmissive) && !has(F, kTextures)) {
       if (any(em.on)) {
         // LightSampler::sample's emissive triangle: a uniform point, its direction and
         // distance, and the pdf converted from area to solid angle.

@@ -31,9 +31,7 @@ struct Kernels {
 template <unsigned F>
 RenderStats render_tile(const RenderContext& ctx, Film& film, int x0, int y0, uint32_t target_spp) {
   const int x1 = std::min(x0 + kTile, film.width), y1 = std::min(y0 + kTile, film.height);
-  if constexpr (lanes_support(F)) {
-    if (lanes_support(F, ctx.settings)) return LaneIntegrator<F>(ctx).render_tile(film, x0, y0, x1, y1, target_spp);
-  }
+  if (lanes_support(F, ctx.settings)) return LaneIntegrator<F>(ctx).render_tile(film, x0, y0, x1, y1, target_spp);
   const PathIntegrator<F> integrator(ctx);
   RenderStats stats;
   for (int y = y0; y < y1; ++y) {

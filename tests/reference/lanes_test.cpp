@@ -1,7 +1,7 @@
 // The integrator that traces eight paths at a time (reference/src/lane_integrator.h) against
 // the one that traces one path at a time: the same estimator, the same random numbers and the
 // same floating-point operations, so every pixel's accumulator must have the same bits, on
-// every kind of scene the lanes take.
+// every kind of scene: Lambertian, glossy, textured, alpha-masked, under an environment map.
 
 #include <gtest/gtest.h>
 
@@ -9,6 +9,7 @@
 #include <string>
 
 #include "giq/reference/renderer.h"
+#include "giq/scenes/scene.h"
 #include "scene_builder.h"
 
 namespace giq::reference {
@@ -21,7 +22,7 @@ struct Rendered {
 };
 
 Rendered render(const scenes::Scene& s, RenderSettings rs, bool lanes, uint32_t spp) {
-  rs.lanes = lanes;
+  rs.lanes = lanes ? RenderSettings::Lanes::Always : RenderSettings::Lanes::Never;
   const Renderer r(s, s.views[0].camera, rs);
   Rendered out{r.make_film(), {}, r.lanes()};
   r.render(out.film, spp, nullptr, &out.stats);
@@ -120,13 +121,71 @@ TEST(Lanes, SameBitsFarFromTheOriginAndAtExtremeScales) {
   expect_same_bits(test::cornell(1.0f, glm::vec3(0.0f), 1e8f), rs, "light x 1e8");
 }
 
-TEST(Lanes, OnlyWhereTheSceneAllows) {
+TEST(Lanes, SameBitsWithGgxLobes) {
+  // A metal and a KHR_materials_specular plastic under an area light and an environment: the
+  // GGX lobe's sampling, evaluation and lobe choice, with MIS and with each strategy alone.
+  scenes::Scene s = test::glossy_scene();
+  s.views.push_back({"glossy", test::glossy_scene_camera(), -1});
+  ASSERT_TRUE(s.features.specular);
+  RenderSettings rs;
+  rs.width = 30, rs.height = 22, rs.seed = 3;
+  expect_same_bits(s, rs, "glossy, mis");
+  rs.estimator = Estimator::LightOnly;
+  expect_same_bits(s, rs, "glossy, light sampling only");
+  rs.estimator = Estimator::BsdfOnly;
+  expect_same_bits(s, rs, "glossy, BSDF sampling only");
+  // And with every light kind of everything() added.
+  scenes::Scene both = everything();
+  both.materials[0].metallic = 1.0f, both.materials[0].roughness = 0.3f;  // the white walls turn to metal
+  both.materials[1].specular = 1.0f, both.materials[1].roughness = 0.05f;   // a near-mirror red wall
+  both.derive();
+  ASSERT_TRUE(both.features.specular);
+  rs.estimator = Estimator::Mis;
+  expect_same_bits(both, rs, "everything, glossy");
+}
+
+TEST(Lanes, SameBitsWithTexturesNormalMapsVertexColoursAndAlphaMasks) {
+  // Glossy and textured glTF rooms: base colour, metallic-roughness, normal and emissive
+  // textures, vertex colours, a second UV set and alpha-masked cut-outs.
+  for (const char* name : {"textured_room.gltf", "materials.gltf", "two_uv_sets.gltf"}) {
+    scenes::Scene s = scenes::load(std::string(GIQ_TEST_DATA) + "/scenes/" + name);
+    ASSERT_TRUE(s.features.textures) << name;
+    if (s.views.empty()) {  // a view of the whole scene, from the front and above
+      const glm::vec3 c = s.bounds.centre(), e = s.bounds.extent();
+      const float r = glm::length(e);
+      s.views.push_back({"all", scenes::Camera::look_at(c + glm::vec3(0.3f, 0.5f, 1.0f) * r, c, {0, 1, 0}, 0.8f), -1});
+    }
+    RenderSettings rs;
+    rs.width = 28, rs.height = 20, rs.seed = 4;
+    expect_same_bits(s, rs, name);
+  }
+}
+
+TEST(Lanes, SameBitsUnderAnEnvironmentMap) {
+  // An environment map is a texture lookup per escaped ray and per light sample.
+  scenes::Scene s = test::cornell();
+  std::vector<glm::vec3> map(32 * 16);
+  for (size_t i = 0; i < map.size(); ++i) map[i] = glm::vec3(0.1f + 0.02f * float(i % 32), 0.3f, 0.05f * float(i / 32));
+  map[3 * 32 + 11] = glm::vec3(500.0f);  // a sun-like texel
+  s.set_environment_map(32, 16, map, "test map");
+  s.meshes.erase(s.meshes.begin() + 2);  // the back wall opens to the sky
+  s.derive();
+  ASSERT_TRUE(s.features.environment_map);
+  RenderSettings rs;
+  rs.width = 26, rs.height = 18, rs.seed = 8;
+  expect_same_bits(s, rs, "environment map");
+  rs.estimator = Estimator::BsdfOnly;
+  expect_same_bits(s, rs, "environment map, BSDF sampling only");
+}
+
+TEST(Lanes, ByDefaultWhereEveryStepRunsOnTheLanesAndOnlyWithSobol) {
   RenderSettings rs;
   rs.width = 8, rs.height = 8;
-  const scenes::Scene glossy = test::glossy_scene();
-  EXPECT_FALSE(Renderer(glossy, test::glossy_scene_camera(), rs).lanes()) << "GGX stays with one path at a time";
-  const scenes::Scene box = test::cornell();
+  const scenes::Scene glossy = test::glossy_scene(), box = test::cornell();
+  EXPECT_FALSE(Renderer(glossy, test::glossy_scene_camera(), rs).lanes()) << "GGX: measured no faster in lanes";
   EXPECT_TRUE(Renderer(box, box.views[0].camera, rs).lanes());
+  rs.lanes = RenderSettings::Lanes::Always;
+  EXPECT_TRUE(Renderer(glossy, test::glossy_scene_camera(), rs).lanes());
   rs.sampler = Sampler::Independent;
   EXPECT_FALSE(Renderer(box, box.views[0].camera, rs).lanes()) << "the independent sampler stays with one path at a time";
 }

@@ -126,7 +126,7 @@ TEST(Materials, BlendEmitterIsLitAlikeByLightAndBsdfSampling) {
       RenderSettings rs;
       rs.width = rs.height = kSize;
       rs.estimator = e;
-      rs.lanes = lanes;
+      rs.lanes = lanes ? RenderSettings::Lanes::Auto : RenderSettings::Lanes::Never;
       Renderer r(s, kCam, rs);
       EXPECT_EQ(r.lanes(), lanes);
       Film f = r.make_film();
@@ -162,7 +162,7 @@ TEST(Materials, CameraRaysPassTheBackOfSingleSidedSurfaces) {
   for (const bool lanes : {true, false}) {
     RenderSettings rs;
     rs.width = rs.height = kSize;
-    rs.lanes = lanes;
+    rs.lanes = lanes ? RenderSettings::Lanes::Auto : RenderSettings::Lanes::Never;
     auto image = [&](int card) {
       const scenes::Scene s = scene(card);
       Renderer r(s, top, rs);

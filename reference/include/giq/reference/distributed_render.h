@@ -2,11 +2,13 @@
 // One render across MPI ranks (ranks.h): `mpirun -n R giq reference ... --spp N` writes the
 // files a single process would have written, bit for bit (docs/reference.md, "MPI").
 //
-// The work units are part.h's: frame-major 64 x 64 tiles. Rank 0 hands them out one at a time,
-// in order, to whichever rank asks next, so faster ranks take more, and every rank, rank 0
-// included (on a second thread), renders the units it gets to spp and sends each back whole.
-// Rank 0 puts the tiles into their frame's film and hands the film on as soon as its last tile
-// is in. One process accumulates every sample of a pixel, in index order (a unit never splits
+// The work units are part.h's: frame-major 64 x 64 tiles. Rank 0 hands them out one at a time
+// to whichever rank asks next, so faster ranks take more, and every rank, rank 0 included (on
+// a second thread), renders the units it gets to spp and sends each back whole. A rank stays
+// on its frame while the frame has units left, so that it poses the scene and builds a BVH
+// for few frames; a few frames are open at a time, so that rank 0 holds few films. Rank 0 puts
+// the tiles into their frame's film and hands the film to a writer thread as soon as its last
+// tile is in. One process accumulates every sample of a pixel, in index order (a unit never splits
 // a pixel: part.h), so each film has the bits of a single-process render whoever rendered it.
 //
 // Checkpoints: every rank reports its unit's progress each checkpoint interval, and rank 0
@@ -50,8 +52,9 @@ struct DistributedOutcome {
 };
 
 // Runs on every rank of `ranks`. On rank 0 `done` gets each frame's film, in the order frames
-// complete (on the calling thread). Throws InputError on rank 0 for a checkpoint of another
-// render; the caller ends every rank (Ranks::abort) on any exception.
+// complete, on a writer thread of its own (one call at a time). Throws InputError on rank 0
+// for a checkpoint of another render; the caller ends every rank (Ranks::abort) on any
+// exception.
 DistributedOutcome render_across_ranks(const Ranks& ranks, const DistributedJob& job, FrameRenderers& renderers,
                                        const std::function<void(int frame, const Film& film)>& done);
 

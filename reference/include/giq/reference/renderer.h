@@ -50,10 +50,13 @@ struct RenderSettings {
   // Run the integrator variant with every feature compiled in instead of the scene's own
   // (for benchmarks: the cost of not specialising). Never changes the image.
   bool all_features = false;
-  // Trace eight paths at a time where the scene allows it (Lambertian materials, no textures,
-  // the Sobol sampler: reference/src/lane_integrator.h), else one at a time. For tests and
-  // benchmarks; never changes the image.
-  bool lanes = true;
+  // Eight paths at a time (reference/src/lane_integrator.h) or one at a time, always with the
+  // same image. The lanes need the Sobol sampler. Auto takes them where they are faster:
+  // Lambertian, untextured scenes (1.1x to 1.3x). On scenes with GGX lobes or textures, where
+  // each lane runs the one-path integrator's material code, they measured 0.83x to 1.0x
+  // (docs/reference.md, "Light transport").
+  enum class Lanes { Auto, Always, Never };
+  Lanes lanes = Lanes::Auto;
   Sampler sampler = Sampler::Sobol;
   // Every camera ray through its pixel's centre instead of a uniformly distributed point of
   // the pixel (the box filter): the point a G-buffer shades, for comparing a technique's own
