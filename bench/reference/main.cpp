@@ -22,6 +22,7 @@
 #include "giq/base/error.h"
 #include "giq/image/io.h"
 #include "giq/reference/reference_exr.h"
+#include "embree_scene.h"
 #include "giq/reference/renderer.h"
 #include "giq/scenes/scene.h"
 #include "long_render.h"
@@ -51,6 +52,46 @@ Throughput measure(const sc::Scene& s, const sc::Camera& cam, ref::RenderSetting
   while (seconds_since(t0) < seconds) r.render(f, ++spp, nullptr, &stats);
   const double t = seconds_since(t0);
   return {double(stats.samples) / t, double(stats.rays) / t};
+}
+
+// The raw Embree rate: the rays of a render on one thread, traced again alone with Embree's
+// one-ray queries (rtcIntersect1, rtcOccluded1), against the render's own rays per second.
+struct RawRate {
+  double render = 0.0, raw = 0.0;  // rays per second
+  uint64_t rays = 0;
+};
+RawRate raw_rate(const sc::Scene& s, const sc::Camera& cam, ref::RenderSettings rs, uint32_t spp) {
+  rs.threads = 1;
+  RawRate out;
+  {
+    const ref::Renderer r(s, cam, rs);
+    ref::Film f = r.make_film();
+    ref::RenderStats stats;
+    const Clock::time_point t0 = Clock::now();
+    r.render(f, spp, nullptr, &stats);
+    out.render = double(stats.rays) / seconds_since(t0);
+  }
+  std::vector<ref::TracedRay> log;
+  ref::EmbreeScene::record(&log);
+  {
+    const ref::Renderer r(s, cam, rs);
+    ref::Film f = r.make_film();
+    r.render(f, spp);
+  }
+  ref::EmbreeScene::record(nullptr);
+  const ref::EmbreeScene bvh(s, s.bounds.centre(), s.features.alpha_mask);
+  uint64_t hits = 0;  // used, so that no query is optimised away
+  const Clock::time_point t0 = Clock::now();
+  for (const ref::TracedRay& ray : log) {
+    switch (ray.kind) {
+      case ref::TracedRay::Camera: hits += bvh.intersect_camera(ray.origin, ray.dir).valid(); break;
+      case ref::TracedRay::Bounce: hits += bvh.intersect(ray.origin, ray.dir, ray.tfar).valid(); break;
+      case ref::TracedRay::Shadow: hits += bvh.occluded(ray.origin, ray.dir, ray.tfar); break;
+    }
+  }
+  out.raw = double(log.size()) / seconds_since(t0);
+  out.rays = log.size() + (hits == ~uint64_t(0));
+  return out;
 }
 
 double median(std::vector<double> v) {
@@ -157,7 +198,7 @@ int main(int argc, char** argv) try {
   std::vector<std::string> names = {"cornell", "leak", "sunroom", "movinglight"};
   std::string references, sampler = "sobol";
   uint32_t sobol_block = ref::RenderSettings().sobol_block;
-  bool scaling = true, time_to_error_too = true;
+  bool scaling = true, time_to_error_too = true, raw = false;
   app.add_option("--scenes", scenes_dir, "Folder of the built-in scenes")->capture_default_str();
   app.add_option("--size", size, "Image width and height")->capture_default_str();
   app.add_option("--threads", threads, "Threads (0 = all cores)")->capture_default_str();
@@ -180,6 +221,7 @@ int main(int argc, char** argv) try {
                  "and written there");
   app.add_flag("!--no-scaling", scaling, "Skip the triangle-count scaling test");
   app.add_flag("!--no-time-to-error", time_to_error_too, "Throughput only: skip the long renders and the time to error");
+  app.add_flag("--raw-rays", raw, "Also: one thread's rays per second against Embree's alone on the same rays (16 spp)");
   app.add_option("--sampler", sampler, "giq reference's sampler: sobol or independent")->capture_default_str();
   app.add_option("--sobol-block", sobol_block, "Samples per Sobol block")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
@@ -227,6 +269,20 @@ int main(int argc, char** argv) try {
     char speedup_text[48] = "(one at a time)";
     if (laned.lanes())
       std::snprintf(speedup_text, sizeof speedup_text, "%.2fx%s", median(speedup), probe.lanes() ? "" : " (not used)");
+    if (raw) {
+      // As rendered (Auto) and one path at a time, each against its own rays traced alone.
+      for (const ref::RenderSettings& variant : {rs, single}) {
+        std::vector<double> ratio, render_rate, raw_rate_v;
+        uint64_t rays = 0;
+        for (int rep = 0; rep < throughput_reps; ++rep) {
+          const RawRate r = raw_rate(s, cam, variant, 16);
+          ratio.push_back(r.render / r.raw), render_rate.push_back(r.render), raw_rate_v.push_back(r.raw), rays = r.rays;
+        }
+        std::fprintf(stderr, "raw rays: %s %s: render %.3f Mrays/s, Embree alone %.3f Mrays/s on the same %llu rays: %.0f %%\n",
+                     name.c_str(), ref::Renderer(s, cam, variant).lanes() ? "lanes" : "one path", median(render_rate) / 1e6,
+                     median(raw_rate_v) / 1e6, (unsigned long long)rays, 100.0 * median(ratio));
+      }
+    }
     if (!time_to_error_too) {
       std::printf("| %s | %s (%u) | %.3f | %.3f | %.3f | %s | %.3f | %.1f %% | | | |\n", name.c_str(), feats.c_str(),
                   probe.feature_mask(), median(paths) / 1e6, median(rays) / 1e6, median(single_paths) / 1e6, speedup_text,

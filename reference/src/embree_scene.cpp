@@ -142,7 +142,14 @@ Hit to_hit(const RTCRayHit& rh) {
 
 }  // namespace
 
+namespace {
+std::vector<TracedRay>* g_log = nullptr;
+}  // namespace
+
+void EmbreeScene::record(std::vector<TracedRay>* log) { g_log = log; }
+
 Hit EmbreeScene::intersect(glm::vec3 o, glm::vec3 d, float tfar) const {
+  if (g_log != nullptr) g_log->push_back({o, d, tfar, TracedRay::Bounce});
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRayHit rh = make_ray(o, d, tfar, 0);
@@ -159,6 +166,7 @@ bool EmbreeScene::culled(uint32_t mesh, uint32_t triangle, glm::vec3 d) const {
 // would check every hit of every ray for a context filter, a few per cent of the reference's
 // time, to cull only the camera's.
 Hit EmbreeScene::intersect_camera(glm::vec3 o, glm::vec3 d) const {
+  if (g_log != nullptr) g_log->push_back({o, d, std::numeric_limits<float>::infinity(), TracedRay::Camera});
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRayHit rh = make_ray(o, d, std::numeric_limits<float>::infinity(), kCameraRay);
@@ -172,6 +180,7 @@ Hit EmbreeScene::intersect_camera(glm::vec3 o, glm::vec3 d) const {
 }
 
 bool EmbreeScene::occluded(glm::vec3 o, glm::vec3 d, float tfar) const {
+  if (g_log != nullptr) g_log->push_back({o, d, tfar, TracedRay::Shadow});
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRay r;
@@ -188,6 +197,13 @@ bool EmbreeScene::occluded(glm::vec3 o, glm::vec3 d, float tfar) const {
 }
 
 void EmbreeScene::intersect(const int* valid, RTCRayHit8& rays, bool camera) const {
+  if (g_log != nullptr)
+    for (int l = 0; l < 8; ++l)
+      if (valid[l] != 0)
+        g_log->push_back({{rays.ray.org_x[l], rays.ray.org_y[l], rays.ray.org_z[l]},
+                          {rays.ray.dir_x[l], rays.ray.dir_y[l], rays.ray.dir_z[l]},
+                          rays.ray.tfar[l],
+                          (rays.ray.id[l] & kCameraRay) != 0 ? TracedRay::Camera : TracedRay::Bounce});
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   rtcIntersect8(valid, scene_, &ctx, &rays);
@@ -217,6 +233,11 @@ void EmbreeScene::intersect(const int* valid, RTCRayHit8& rays, bool camera) con
 }
 
 void EmbreeScene::occluded(const int* valid, RTCRay8& rays) const {
+  if (g_log != nullptr)
+    for (int l = 0; l < 8; ++l)
+      if (valid[l] != 0)
+        g_log->push_back({{rays.org_x[l], rays.org_y[l], rays.org_z[l]}, {rays.dir_x[l], rays.dir_y[l], rays.dir_z[l]},
+                          rays.tfar[l], TracedRay::Shadow});
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   rtcOccluded8(valid, scene_, &ctx, &rays);

@@ -34,8 +34,21 @@ struct TriangleShape {
   float area = 0.0f;
 };
 
+// A ray as the integrators traced it, for giq-bench-reference's raw Embree rate
+// (EmbreeScene::record).
+struct TracedRay {
+  glm::vec3 origin{0.0f}, dir{0.0f};
+  float tfar = 0.0f;
+  enum Kind : uint8_t { Camera, Bounce, Shadow } kind = Bounce;
+};
+
 class EmbreeScene {
  public:
+  // While `log` is set, every ray any EmbreeScene traces is appended to it: for a render with
+  // one thread only (the log is not synchronised), so that a benchmark can trace the same
+  // rays again with nothing else around them. Null stops it.
+  static void record(std::vector<TracedRay>* log);
+
   // alpha_mask: whether to install the cut-out filters (the scene's FeatureSet says).
   EmbreeScene(const scenes::Scene& scene, glm::vec3 centre, bool alpha_mask);
   ~EmbreeScene();
