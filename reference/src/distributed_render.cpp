@@ -73,27 +73,14 @@ std::optional<TileState> decode(const std::string& bytes, const WorkUnits& units
 int frame_of(const WorkUnits& u, uint64_t unit) { return u.first_frame + int(unit / uint64_t(u.tiles_per_frame())); }
 uint32_t tile_of(const WorkUnits& u, uint64_t unit) { return uint32_t(unit % uint64_t(u.tiles_per_frame())); }
 
-// Copies between a tile's pixels and a film.
+// Copies between a unit's pixels and a film (part.h's tile layout).
 void store(const WorkUnits& u, const TileState& t, Film& film) {
-  const WorkUnits::Rect r = u.rect(tile_of(u, t.unit));
-  size_t at = 0;
-  for (int y = r.y0; y < r.y1; ++y)
-    for (int x = r.x0; x < r.x1; ++x, ++at) {
-      const size_t p = size_t(y) * size_t(u.width) + size_t(x);
-      film.pixels[p] = t.pixels[at];
-      film.aux[p] = t.aux[at];
-    }
+  copy_tile_in(film, u, tile_of(u, t.unit), t.pixels.data(), t.aux.data());
 }
 TileState load(const WorkUnits& u, uint64_t unit, const Film& film) {
   TileState t;
   t.unit = unit;
-  const WorkUnits::Rect r = u.rect(tile_of(u, unit));
-  for (int y = r.y0; y < r.y1; ++y)
-    for (int x = r.x0; x < r.x1; ++x) {
-      const size_t p = size_t(y) * size_t(u.width) + size_t(x);
-      t.pixels.push_back(film.pixels[p]);
-      t.aux.push_back(film.aux[p]);
-    }
+  copy_tile_out(film, u, tile_of(u, unit), t.pixels, t.aux);
   return t;
 }
 bool complete(const TileState& t, uint32_t spp) {

@@ -46,6 +46,28 @@ Shard parse_shard(const std::string& text) {
   return {uint32_t(k), uint32_t(n)};
 }
 
+void copy_tile_out(const Film& film, const WorkUnits& units, uint32_t tile, std::vector<PixelAccumulator>& pixels,
+                   std::vector<PixelAux>& aux) {
+  const WorkUnits::Rect r = units.rect(tile);
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x) {
+      const size_t i = size_t(y) * size_t(film.width) + size_t(x);
+      pixels.push_back(film.pixels[i]);
+      aux.push_back(film.aux[i]);
+    }
+}
+
+void copy_tile_in(Film& film, const WorkUnits& units, uint32_t tile, const PixelAccumulator* pixels, const PixelAux* aux) {
+  const WorkUnits::Rect r = units.rect(tile);
+  size_t at = 0;
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x, ++at) {
+      const size_t i = size_t(y) * size_t(film.width) + size_t(x);
+      film.pixels[i] = pixels[at];
+      film.aux[i] = aux[at];
+    }
+}
+
 PartFrame part_frame(const Film& film, int frame, const scenes::Camera& camera, const WorkUnits& units, Shard shard) {
   PartFrame pf;
   pf.frame = frame;
@@ -53,13 +75,7 @@ PartFrame part_frame(const Film& film, int frame, const scenes::Camera& camera, 
   for (int t = 0; t < units.tiles_per_frame(); ++t) {
     if (!WorkUnits::owned(units.unit(frame, t), shard)) continue;
     pf.tiles.push_back(uint32_t(t));
-    const WorkUnits::Rect r = units.rect(uint32_t(t));
-    for (int y = r.y0; y < r.y1; ++y)
-      for (int x = r.x0; x < r.x1; ++x) {
-        const size_t i = size_t(y) * size_t(film.width) + size_t(x);
-        pf.pixels.push_back(film.pixels[i]);
-        pf.aux.push_back(film.aux[i]);
-      }
+    copy_tile_out(film, units, uint32_t(t), pf.pixels, pf.aux);
   }
   return pf;
 }
@@ -215,13 +231,8 @@ std::vector<MergedFrame> merge_parts(const std::vector<Part>& parts, const std::
         size_t at = 0;
         for (uint32_t t : f.tiles) {
           covered[t] = 1;
-          const WorkUnits::Rect r = units.rect(t);
-          for (int y = r.y0; y < r.y1; ++y)
-            for (int x = r.x0; x < r.x1; ++x, ++at) {
-              const size_t p = size_t(y) * size_t(units.width) + size_t(x);
-              m.film.pixels[p] = f.pixels[at];
-              m.film.aux[p] = f.aux[at];
-            }
+          copy_tile_in(m.film, units, t, f.pixels.data() + at, f.aux.data() + at);
+          at += units.rect(t).pixels();
         }
       }
     }

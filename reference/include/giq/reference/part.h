@@ -84,6 +84,13 @@ struct Part {
   std::vector<int> written;       // a checkpoint's frames already written, ascending
 };
 
+// A tile's pixels in the layout of parts, checkpoints and MPI messages (rows top to bottom,
+// each left to right): appended to pixels/aux, or copied back into the film from `pixels` and
+// `aux` (rect(tile).pixels() of each).
+void copy_tile_out(const Film& film, const WorkUnits& units, uint32_t tile, std::vector<PixelAccumulator>& pixels,
+                   std::vector<PixelAux>& aux);
+void copy_tile_in(Film& film, const WorkUnits& units, uint32_t tile, const PixelAccumulator* pixels, const PixelAux* aux);
+
 // The tiles of `film` the shard owns in `frame`, copied into a PartFrame.
 PartFrame part_frame(const Film& film, int frame, const scenes::Camera& camera, const WorkUnits& units, Shard shard);
 
