@@ -124,6 +124,14 @@ ref::Shard shard_of(const Options& o) {
   return shard;
 }
 
+// What the parts of one render, or a checkpoint across ranks, must share: everything in the
+// header that changes the image.
+std::string render_identity(const ref::Part& p) {
+  return "scene " + p.scene_hash + " view " + p.view + " camera '" + p.camera_given + "' frames " +
+         std::to_string(p.first_frame) + ":" + std::to_string(p.last_frame) + " spp " + std::to_string(p.spp) +
+         " settings " + ref::settings_json(p.settings);
+}
+
 // What a render across ranks needs, checked on every rank before the scene is loaded (each
 // rank reaches the same verdict, so all of them stop with the same message).
 void ranks_check(const Options& o, bool shard) {
@@ -165,9 +173,7 @@ int run_shard(const Options& o, ref::Shard shard, const sc::Scene& scene, const 
     part.frames.push_back(ref::part_frame(film, f, job.metadata.camera, units, shard));
     owned += part.frames.back().tiles.size();
   }
-  part.identity = "scene " + scene.content_hash + " view " + part.view + " camera '" + part.camera_given + "' frames " +
-                  std::to_string(first) + ":" + std::to_string(last) + " spp " + std::to_string(o.spp) + " settings " +
-                  ref::settings_json(settings);
+  part.identity = render_identity(part);
   if (fs::path(o.out).has_parent_path()) fs::create_directories(fs::path(o.out).parent_path());
   ref::write_part(o.out, part);
   std::printf("reference shard %u/%u: %llu of %llu units of %dx%d pixels (frames %d to %d, %u spp) -> %s\n", shard.index,
@@ -215,9 +221,7 @@ int run_across_ranks(const Options& o, const ref::Ranks& ranks, const sc::Scene&
   h.first_frame = first, h.last_frame = last;
   const ReferenceFrame first_job = reference_frame(scene, o.scene, o.view, o.setup.camera, first, settings);
   h.view = first_job.metadata.view, h.camera_given = first_job.metadata.camera_given;
-  h.identity = "scene " + scene.content_hash + " view " + h.view + " camera '" + h.camera_given + "' frames " +
-               std::to_string(first) + ":" + std::to_string(last) + " spp " + std::to_string(o.spp) + " settings " +
-               ref::settings_json(settings);
+  h.identity = render_identity(h);
   job.checkpoint = o.out + ".ranks.checkpoint";
   job.checkpoint_interval_seconds = o.checkpoint_interval;
   job.resume = o.resume;
