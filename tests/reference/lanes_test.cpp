@@ -7,6 +7,7 @@
 
 #include <cstring>
 #include <string>
+#include <utility>
 
 #include "giq/reference/renderer.h"
 #include "giq/scenes/scene.h"
@@ -41,6 +42,15 @@ void expect_same_bits(const scenes::Scene& s, const RenderSettings& rs, const st
   EXPECT_EQ(differing, 0u) << what << ": pixels whose accumulators differ";
   // The scene is lit: the comparison is not between two black images.
   EXPECT_GT(eight.film.relative_standard_error(), 0.0) << what;
+}
+
+// expect_same_bits for MIS, light sampling alone and BSDF sampling alone.
+void expect_same_bits_for_each_estimator(const scenes::Scene& s, RenderSettings rs, const std::string& what) {
+  for (const auto& [e, name] : {std::pair{Estimator::Mis, "mis"}, std::pair{Estimator::LightOnly, "light sampling only"},
+                                std::pair{Estimator::BsdfOnly, "BSDF sampling only"}}) {
+    rs.estimator = e;
+    expect_same_bits(s, rs, what + ", " + name);
+  }
 }
 
 // The Cornell box plus every light and surface kind the lanes handle: point, spot and
@@ -88,11 +98,7 @@ TEST(Lanes, SameBitsWithEveryLightKindAndSurfaceKind) {
               s.features.emissive_meshes);
   RenderSettings rs;
   rs.width = 33, rs.height = 21, rs.seed = 11;
-  expect_same_bits(s, rs, "everything, mis");
-  rs.estimator = Estimator::LightOnly;
-  expect_same_bits(s, rs, "everything, light sampling only");
-  rs.estimator = Estimator::BsdfOnly;
-  expect_same_bits(s, rs, "everything, BSDF sampling only");
+  expect_same_bits_for_each_estimator(s, rs, "everything");
 }
 
 TEST(Lanes, SameBitsForOtherSettings) {
@@ -129,18 +135,13 @@ TEST(Lanes, SameBitsWithGgxLobes) {
   ASSERT_TRUE(s.features.specular);
   RenderSettings rs;
   rs.width = 30, rs.height = 22, rs.seed = 3;
-  expect_same_bits(s, rs, "glossy, mis");
-  rs.estimator = Estimator::LightOnly;
-  expect_same_bits(s, rs, "glossy, light sampling only");
-  rs.estimator = Estimator::BsdfOnly;
-  expect_same_bits(s, rs, "glossy, BSDF sampling only");
+  expect_same_bits_for_each_estimator(s, rs, "glossy");
   // And with every light kind of everything() added.
   scenes::Scene both = everything();
   both.materials[0].metallic = 1.0f, both.materials[0].roughness = 0.3f;  // the white walls turn to metal
   both.materials[1].specular = 1.0f, both.materials[1].roughness = 0.05f;   // a near-mirror red wall
   both.derive();
   ASSERT_TRUE(both.features.specular);
-  rs.estimator = Estimator::Mis;
   expect_same_bits(both, rs, "everything, glossy");
 }
 

@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -17,6 +16,7 @@
 #include <vector>
 
 #include "giq/reference/part.h"
+#include "support/scratch.h"
 #include "support/subprocess.h"
 
 namespace fs = std::filesystem;
@@ -27,19 +27,8 @@ using giq::test::slurp;
 
 namespace {
 
-struct Scratch {
-  fs::path path = fs::temp_directory_path() / ("giq_ranks_" + std::to_string(::getpid()));
-  Scratch() {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
 const fs::path& scratch() {
-  static const Scratch s;
+  static const giq::test::ScratchDir s("ranks");
   return s.path;
 }
 std::string path(const std::string& name) { return shell_quote((scratch() / name).string()); }

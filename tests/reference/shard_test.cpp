@@ -4,7 +4,6 @@
 // --shard values exit 2 with one line naming what is wrong.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -12,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "support/scratch.h"
 #include "support/subprocess.h"
 
 namespace fs = std::filesystem;
@@ -22,19 +22,8 @@ using giq::test::slurp;
 
 namespace {
 
-struct Scratch {
-  fs::path path = fs::temp_directory_path() / ("giq_shard_" + std::to_string(::getpid()));
-  Scratch() {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
 const fs::path& scratch() {
-  static const Scratch s;
+  static const giq::test::ScratchDir s("shard");
   return s.path;
 }
 

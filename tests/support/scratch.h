@@ -20,4 +20,17 @@ inline std::filesystem::path fresh_dir(const std::string& name) {
   return d;
 }
 
+// fresh_dir(name) for the life of the object, removed afterwards: a suite's folder, held in a
+// function-local static.
+struct ScratchDir {
+  explicit ScratchDir(const std::string& name) : path(fresh_dir(name)) {}
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  std::filesystem::path path;
+};
+
 }  // namespace giq::test
