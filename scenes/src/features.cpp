@@ -20,6 +20,8 @@ std::vector<std::string> FeatureSet::names() const {
       {double_sided, "double_sided"},
       {one_sided, "one_sided"},
       {animation, "animation"},
+      {skinning, "skinning"},
+      {morph_targets, "morph_targets"},
   };
   std::vector<std::string> out;
   for (const auto& [present, name] : all)

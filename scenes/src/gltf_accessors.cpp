@@ -45,7 +45,8 @@ int component_count(int type) {
     case TINYGLTF_TYPE_VEC2: return 2;
     case TINYGLTF_TYPE_VEC3: return 3;
     case TINYGLTF_TYPE_VEC4: return 4;
-    default: return 0;  // matrices are only used by skins, which giq refuses
+    case TINYGLTF_TYPE_MAT4: return 16;  // inverse bind matrices (FLOAT only: no column padding)
+    default: return 0;
   }
 }
 

@@ -12,6 +12,7 @@
 #include "giq/base/error.h"
 #include "giq/scenes/scene.h"
 #include "gltf_accessors.h"
+#include "gltf_deformation.h"
 #include "gltf_document.h"
 #include "gltf_draco.h"
 #include "gltf_extras.h"
@@ -71,7 +72,6 @@ void load_nodes(const Context& ctx, SceneSource& src) {
     const std::string w = index_path("nodes", i);
     NodeSource& n = src.nodes[i];
     n.name = g.name;
-    if (g.skin >= 0) ctx.fail(w + ".skin", "skinned meshes are not supported");
     if (g.mesh >= 0 && size_t(g.mesh) >= m.meshes.size()) ctx.fail(w + ".mesh", "is " + std::to_string(g.mesh) + "; the file has " + std::to_string(m.meshes.size()) + " meshes");
     if (g.camera >= 0 && size_t(g.camera) >= m.cameras.size()) ctx.fail(w + ".camera", "is " + std::to_string(g.camera) + "; the file has " + std::to_string(m.cameras.size()) + " cameras");
     n.mesh = g.mesh, n.camera = g.camera;
@@ -211,9 +211,6 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
     }
     out.material = default_material;
   }
-  if (!p.targets.empty()) ctx.fail(w + ".targets", "morph targets are not supported");
-  for (const auto& [name, index] : p.attributes)
-    if (name.rfind("JOINTS_", 0) == 0 || name.rfind("WEIGHTS_", 0) == 0) ctx.fail(w + ".attributes." + name, "skinning is not supported");
   // KHR_mesh_quantization widens the component types of these attributes to 8- and 16-bit
   // integers, normalized or not (its table "Extending Mesh Attributes").
   const bool quantized = uses_extension(ctx, "KHR_mesh_quantization");
@@ -266,6 +263,7 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
         out.colors.emplace_back(c[0], c[1], c[2], d.components == 4 ? c[3] : 1.0);
       }
   }
+  load_deformation(ctx, p, w, quantized, out);
   std::vector<uint32_t> idx;
   if (p.indices >= 0) {
     const AccessorData d = read_accessor(ctx, p.indices, w + ".indices", {{TINYGLTF_TYPE_SCALAR}, false, false, false, true});
@@ -282,13 +280,17 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
   // A triangle with two equal corners (the same index, or bit-identical positions) has no
   // area under any transform, since equal inputs transform to equal outputs: dropped here
   // once, not per instance and per frame (a few sparse bytes can declare a million of them).
+  // Equal positions may part under morph targets or joints, so there only equal indices count.
+  const bool deforms = !out.targets.empty() || !out.joints.empty();
   std::erase_if(out.triangles, [&](const glm::uvec3& t) {
     const glm::vec3 &a = out.positions[t.x], &b = out.positions[t.y], &c = out.positions[t.z];
-    const bool collapsed = t.x == t.y || t.y == t.z || t.x == t.z || a == b || b == c || a == c;
+    const bool collapsed = t.x == t.y || t.y == t.z || t.x == t.z || (!deforms && (a == b || b == c || a == c));
     out.collapsed_triangles += collapsed;
     return collapsed;
   });
-  if (out.triangles.empty()) out.positions.clear(), out.normals.clear(), out.tangents.clear(), out.uvs.clear(), out.uvs2.clear(), out.colors.clear();
+  if (out.triangles.empty())
+    out.positions.clear(), out.normals.clear(), out.tangents.clear(), out.uvs.clear(), out.uvs2.clear(), out.colors.clear(), out.targets.clear(),
+        out.joints.clear(), out.weights.clear();
   ctx.decoded_accessors.clear();
   return out;
 }
@@ -367,13 +369,21 @@ void load_animations(const Context& ctx, SceneSource& src) {
         ctx.fail(w + ".target.node", "node " + std::to_string(ch.target_node) + " has a matrix; animated nodes must use translation/rotation/scale (glTF 2.0 spec, 3.5.3)");
       ChannelSource out;
       out.node = ch.target_node;
-      int comps = 3;
       AccessorRule rule{{TINYGLTF_TYPE_VEC3}};
-      if (ch.target_path == "translation") out.path = AnimatedPath::Translation;
-      else if (ch.target_path == "scale") out.path = AnimatedPath::Scale;
-      else if (ch.target_path == "rotation") out.path = AnimatedPath::Rotation, comps = 4, rule = {{TINYGLTF_TYPE_VEC4}, true, true, true};
-      else if (ch.target_path == "weights") ctx.fail(w + ".target.path", "morph target weights are not supported");
-      else ctx.fail(w + ".target.path", "is \"" + ch.target_path + "\"; expected translation, rotation or scale");
+      if (ch.target_path == "translation") {
+        out.path = AnimatedPath::Translation;
+      } else if (ch.target_path == "scale") {
+        out.path = AnimatedPath::Scale;
+      } else if (ch.target_path == "rotation") {
+        out.path = AnimatedPath::Rotation, out.width = 4, rule = {{TINYGLTF_TYPE_VEC4}, true, true, true};
+      } else if (ch.target_path == "weights") {
+        // One scalar per morph target of the node's mesh and per key (glTF 2.0 spec, 3.11).
+        out.path = AnimatedPath::Weights, out.width = int(src.nodes[size_t(ch.target_node)].weights.size());
+        rule = {{TINYGLTF_TYPE_SCALAR}, true, true, true};
+        if (out.width == 0) ctx.fail(w + ".target.node", "node " + std::to_string(ch.target_node) + " has no mesh with morph targets; a weights channel needs one");
+      } else {
+        ctx.fail(w + ".target.path", "is \"" + ch.target_path + "\"; expected translation, rotation, scale or weights");
+      }
       if (ch.sampler < 0 || size_t(ch.sampler) >= g.samplers.size())
         ctx.fail(w + ".sampler", "is " + std::to_string(ch.sampler) + "; the animation has " + std::to_string(g.samplers.size()) + " samplers");
       const auto& s = g.samplers[size_t(ch.sampler)];
@@ -390,16 +400,17 @@ void load_animations(const Context& ctx, SceneSource& src) {
       }
       const AccessorData o = read_accessor(ctx, s.output, sw + ".output", rule);
       const size_t per_key = out.interpolation == Interpolation::CubicSpline ? 3 : 1;
-      if (o.count != in.count * per_key)
-        ctx.fail(sw + ".output", "has " + std::to_string(o.count) + " elements; " + std::to_string(in.count) + " keys need " + std::to_string(in.count * per_key));
-      for (size_t k = 0; k < o.count; ++k) {
-        glm::dvec4 v(0.0);
-        for (int j = 0; j < comps; ++j) v[j] = o.values[k * size_t(comps) + size_t(j)];
-        out.values.push_back(v);
-      }
+      // A weights output holds `width` scalars per key; the others one element of `width`.
+      const size_t elements = in.count * per_key * (out.path == AnimatedPath::Weights ? size_t(out.width) : 1);
+      if (o.count != elements)
+        ctx.fail(sw + ".output", "has " + std::to_string(o.count) + " elements; " + std::to_string(in.count) + " keys need " + std::to_string(elements));
+      out.values = o.values;
       if (out.path == AnimatedPath::Rotation)
-        for (size_t k = per_key == 3 ? 1 : 0; k < out.values.size(); k += per_key)
-          if (!(glm::length(out.values[k]) > 0.0)) ctx.fail(sw + ".output", "key " + std::to_string(k / per_key) + " is a zero quaternion; expected unit quaternions");
+        for (size_t k = per_key == 3 ? 1 : 0; k < o.count; k += per_key) {
+          const double* q = &out.values[4 * k];
+          if (!(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] > 0.0))
+            ctx.fail(sw + ".output", "key " + std::to_string(k / per_key) + " is a zero quaternion; expected unit quaternions");
+        }
       anim.end = std::max(anim.end, out.times.back());
       anim.channels.push_back(std::move(out));
     }
@@ -434,6 +445,7 @@ Scene load(const std::filesystem::path& path) {
                                            s.materials, uv_mappings, default_material));
     src->meshes.push_back(std::move(prims));
   }
+  gltf::load_skins(ctx, *src);
   gltf::load_cameras(ctx, *src);
   gltf::load_lights(ctx, *src);
   gltf::load_animations(ctx, *src);
@@ -449,9 +461,9 @@ Scene load(const std::filesystem::path& path) {
 
   check_instanced_size(*src);
   // The local frame: centre of the t = 0 bounds, in double (see Scene::origin).
-  const std::vector<glm::dmat4> world = world_transforms(*src, s.sequence.animation, 0.0);
+  const NodePose nodes = pose_nodes(*src, s.sequence.animation, 0.0);
   glm::dvec3 lo, hi;
-  world_bounds(*src, world, lo, hi);
+  world_bounds(*src, nodes, lo, hi);
   s.origin = lo.x <= hi.x ? 0.5 * (lo + hi) : glm::dvec3(0.0);
   if (lo.x <= hi.x && !std::isfinite(glm::length(hi - lo) + glm::length(s.origin)))
     throw InputError(doc.file, "nodes", "the scene's world bounds overflow double precision; expected transforms of finite scale");
@@ -466,7 +478,7 @@ Scene load(const std::filesystem::path& path) {
     }
     src->extra_views.push_back(std::move(view));
   }
-  pose(*src, world, s);
+  pose(*src, nodes, s);
   for (size_t i = 0; i < s.views.size(); ++i)
     for (size_t j = 0; j < i; ++j)
       if (s.views[i].name == s.views[j].name) {

@@ -6,6 +6,7 @@
 #include <glm/matrix.hpp>
 
 #include "giq/base/error.h"
+#include "placement.h"
 #include "scene_source.h"
 
 namespace giq::scenes {
@@ -37,47 +38,50 @@ std::string node_label(const SceneSource& src, int i) {
   return n.empty() ? "node" + std::to_string(i) : n;
 }
 
-void emit_mesh(const PrimitiveSource& p, const glm::dmat4& M, glm::dvec3 origin, Mesh& m, size_t& dropped) {
+void emit_mesh(const PrimitiveSource& p, const PlacedVertices& placed, glm::dvec3 origin, Mesh& m, size_t& dropped) {
   m.positions.clear(), m.normals.clear(), m.tangents.clear(), m.uvs.clear(), m.uvs2.clear(), m.colors.clear(), m.triangles.clear();
   dropped += p.collapsed_triangles;
   if (p.triangles.empty()) return;
-  const glm::dmat3 L(M);
-  const double det = glm::determinant(L);
-  // Normals transform by the inverse transpose; the cofactor matrix equals det * L^-T and
-  // stays defined for singular L. Its sign is fixed below so normals keep facing outwards.
-  const glm::dmat3 cof(glm::cross(L[1], L[2]), glm::cross(L[2], L[0]), glm::cross(L[0], L[1]));
-  const double sign = det < 0.0 ? -1.0 : 1.0;
-  // A mirroring transform reverses the winding; swapping two corners restores the
+  // A mirroring placement reverses the winding; swapping two corners restores the
   // counter-clockwise front face of glTF 2.0 spec, 3.7.2.1 ("front-facing ... counter-clockwise").
-  const bool flip = det < 0.0;
+  const bool flip = placed.mirrored;
 
-  std::vector<glm::vec3> pos(p.positions.size());
-  for (size_t i = 0; i < pos.size(); ++i) pos[i] = glm::vec3(glm::dvec3(M * glm::dvec4(glm::dvec3(p.positions[i]), 1.0)) - origin);
+  // A deforming primitive keeps every vertex at its index in every frame, whatever triangles
+  // collapse in this one, so that a vertex's previous position (motion vectors) is found at
+  // the same index.
+  const bool stable = !p.targets.empty() || !p.joints.empty();
+
+  std::vector<glm::vec3> pos(placed.positions.size());
+  for (size_t i = 0; i < pos.size(); ++i) {
+    pos[i] = glm::vec3(placed.positions[i] - origin);
+    if (stable && !finite(pos[i])) pos[i] = glm::vec3(0.0f);  // kept for its index only: no triangle uses it
+  }
 
   std::vector<glm::uvec3> tris;
   std::vector<glm::vec3> face;
+  std::vector<bool> kept;
   tris.reserve(p.triangles.size());
   for (glm::uvec3 t : p.triangles) {
     if (flip) std::swap(t.y, t.z);
     const glm::vec3 a = pos[t.x], b = pos[t.y], c = pos[t.z];
     const glm::vec3 n = glm::cross(b - a, c - a);
     const float len = glm::length(n);
-    if (!(len > 0.0f) || !std::isfinite(len) || !finite(a) || !finite(b) || !finite(c)) {
-      ++dropped;  // zero-area, collapsed or overflowed: no surface to render
-      continue;
-    }
+    const bool ok = len > 0.0f && std::isfinite(len) && finite(a) && finite(b) && finite(c);
+    if (!ok) ++dropped;  // zero-area, collapsed or overflowed: no surface to render
+    if (!ok && !stable) continue;
+    kept.push_back(ok);
     tris.push_back(t);
-    face.push_back(n / len);
+    face.push_back(ok ? n / len : glm::vec3(0.0f, 0.0f, 1.0f));
   }
 
   auto tangent = [&](size_t i, glm::vec3 normal) {
-    const glm::vec4 t = p.tangents[i];
-    glm::vec3 xyz = glm::vec3(L * glm::dvec3(t));
+    const glm::dvec4 t = placed.tangents[i];
+    glm::vec3 xyz = glm::vec3(glm::dvec3(t));
     xyz -= normal * glm::dot(normal, xyz);  // keep it in the tangent plane after non-uniform scale
     const float len = glm::length(xyz);
     xyz = len > 0.0f && std::isfinite(len) ? xyz / len : any_orthogonal(normal);
-    // The bitangent is cross(N, T) * w; a mirror flips that cross product's handedness.
-    return glm::vec4(xyz, t.w < 0.0f ? -float(sign) : float(sign));
+    // The bitangent is cross(N, T) * w, w already in the placement's handedness.
+    return glm::vec4(xyz, float(t.w));
   };
 
   if (p.normals.empty()) {
@@ -94,29 +98,33 @@ void emit_mesh(const PrimitiveSource& p, const glm::dmat4& M, glm::dvec3 origin,
         if (!p.colors.empty()) m.colors.push_back(p.colors[v]);
         if (!p.tangents.empty()) m.tangents.push_back(tangent(v, face[k]));
       }
-      m.triangles.emplace_back(base, base + 1, base + 2);
+      if (kept[k]) m.triangles.emplace_back(base, base + 1, base + 2);
     }
     return;
   }
-  // Indexed: keep only the vertices the remaining triangles use, in their original order.
-  std::vector<uint32_t> remap(pos.size(), UINT32_MAX);
-  for (const auto& t : tris)
-    for (int c = 0; c < 3; ++c) remap[t[c]] = 0;
+  // Indexed: keep only the vertices the remaining triangles use (every vertex when stable),
+  // in their original order.
+  std::vector<uint32_t> remap(pos.size(), stable ? 0u : UINT32_MAX);
+  for (size_t k = 0; k < tris.size(); ++k)
+    for (int c = 0; c < 3; ++c) remap[tris[k][c]] = 0;
   std::vector<glm::vec3> normal(pos.size());
   std::vector<bool> bad(pos.size(), false);
   for (size_t i = 0; i < pos.size(); ++i) {
     if (remap[i] == UINT32_MAX) continue;
     remap[i] = uint32_t(m.positions.size());
     m.positions.push_back(pos[i]);
-    const glm::dvec3 n = sign * (cof * glm::dvec3(p.normals[i]));
+    const glm::dvec3 n = placed.normals[i];
     const double len = glm::length(n);
     bad[i] = !(len > 0.0) || !std::isfinite(len);
     normal[i] = bad[i] ? glm::vec3(0.0f) : glm::vec3(n / len);
   }
-  // A zero normal in the file (or one collapsed by the transform) takes the face normal.
+  // A zero normal in the file (or one collapsed by the transform) takes the face normal; one
+  // that no triangle gives a face (kept only for its index) any unit normal.
+  for (size_t i = 0; i < pos.size(); ++i)
+    if (bad[i]) normal[i] = glm::vec3(0.0f, 0.0f, 1.0f);
   for (size_t k = 0; k < tris.size(); ++k)
     for (int c = 0; c < 3; ++c)
-      if (bad[tris[k][c]]) normal[tris[k][c]] = face[k];
+      if (bad[tris[k][c]] && kept[k]) normal[tris[k][c]] = face[k];
   for (size_t i = 0; i < pos.size(); ++i) {
     if (remap[i] == UINT32_MAX) continue;
     m.normals.push_back(normal[i]);
@@ -125,7 +133,8 @@ void emit_mesh(const PrimitiveSource& p, const glm::dmat4& M, glm::dvec3 origin,
     if (!p.colors.empty()) m.colors.push_back(p.colors[i]);
     if (!p.tangents.empty()) m.tangents.push_back(tangent(i, normal[i]));
   }
-  for (const auto& t : tris) m.triangles.emplace_back(remap[t.x], remap[t.y], remap[t.z]);
+  for (size_t k = 0; k < tris.size(); ++k)
+    if (kept[k]) m.triangles.emplace_back(remap[tris[k].x], remap[tris[k].y], remap[tris[k].z]);
 }
 
 }  // namespace
@@ -145,23 +154,29 @@ void check_instanced_size(const SceneSource& src) {
   }
 }
 
-void world_bounds(const SceneSource& src, const std::vector<glm::dmat4>& world, glm::dvec3& lo, glm::dvec3& hi) {
+void world_bounds(const SceneSource& src, const NodePose& nodes, glm::dvec3& lo, glm::dvec3& hi) {
   lo = glm::dvec3(INFINITY), hi = glm::dvec3(-INFINITY);
   for (int i : preorder(src)) {
     const NodeSource& n = src.nodes[size_t(i)];
     if (n.mesh < 0) continue;
     for (size_t k = 0; k < n.instance_count(); ++k) {
-      const glm::dmat4 M = n.instances.empty() ? world[size_t(i)] : world[size_t(i)] * n.instances[k];
-      for (const auto& p : src.meshes[size_t(n.mesh)])
-        for (const auto& v : p.positions) {
+      const glm::dmat4 M = n.instances.empty() ? nodes.world[size_t(i)] : nodes.world[size_t(i)] * n.instances[k];
+      for (const auto& p : src.meshes[size_t(n.mesh)]) {
+        if (!p.targets.empty() || (n.skin >= 0 && !p.joints.empty())) {
+          for (const glm::dvec3& w : place(src, p, nodes, i, M).positions) lo = glm::min(lo, w), hi = glm::max(hi, w);
+          continue;
+        }
+        for (const auto& v : p.positions) {  // rigid: the transform alone, without normals
           const glm::dvec3 w = glm::dvec3(M * glm::dvec4(glm::dvec3(v), 1.0));
           lo = glm::min(lo, w), hi = glm::max(hi, w);
         }
+      }
     }
   }
 }
 
-void pose(const SceneSource& src, const std::vector<glm::dmat4>& world, Scene& out) {
+void pose(const SceneSource& src, const NodePose& nodes, Scene& out) {
+  const std::vector<glm::dmat4>& world = nodes.world;
   out.meshes.clear();
   out.lights.clear();
   out.views.clear();
@@ -187,7 +202,8 @@ void pose(const SceneSource& src, const std::vector<glm::dmat4>& world, Scene& o
           m.primitive = int(k);
           m.object_id = uint32_t(i) + 1;
           m.material = prims[k].material;
-          emit_mesh(prims[k], n.instances.empty() ? M : M * n.instances[instance], out.origin, m, out.stats.degenerate_triangles_dropped);
+          const PlacedVertices placed = place(src, prims[k], nodes, i, n.instances.empty() ? M : M * n.instances[instance]);
+          emit_mesh(prims[k], placed, out.origin, m, out.stats.degenerate_triangles_dropped);
           out.meshes.push_back(std::move(m));
         }
     }

@@ -144,6 +144,10 @@ void Scene::derive() {
     features.alpha_mask |= mat.alpha_mode != AlphaMode::Opaque;
     features.double_sided |= mat.double_sided;
     features.one_sided |= !mat.double_sided;
+    if (source_ && m.node >= 0) {
+      features.skinning |= source_->nodes[size_t(m.node)].skin >= 0;
+      features.morph_targets |= !source_->meshes[size_t(m.mesh)][size_t(m.primitive)].targets.empty();
+    }
     if (!mat.is_emissive()) continue;
     // k^2 <= 2^24 / triangles samples per triangle, so averaging stays bounded (about 2^24
     // lookups per mesh) however many large triangles a mesh has.
@@ -177,7 +181,7 @@ void Scene::derive() {
   // there is more than one frame to see it.
   if (source_ && sequence.frames > 1 && sequence.animation >= 0 && size_t(sequence.animation) < source_->animations.size()) {
     for (const auto& c : source_->animations[size_t(sequence.animation)].channels)
-      features.animation |= std::any_of(c.values.begin(), c.values.end(), [&](const glm::dvec4& v) { return v != c.values.front(); });
+      features.animation |= c.varies();
   }
 }
 
@@ -190,7 +194,7 @@ Scene Scene::at(double t) const {
   Scene s = *this;
   s.time = t;
   if (!source_ || sequence.animation < 0) return s;
-  pose(*source_, world_transforms(*source_, sequence.animation, t), s);
+  pose(*source_, pose_nodes(*source_, sequence.animation, t), s);
   s.lights.insert(s.lights.end(), added_lights_.begin(), added_lights_.end());
   s.views.insert(s.views.end(), added_views_.begin(), added_views_.end());
   s.derive();

@@ -12,6 +12,12 @@
 
 namespace giq::scenes {
 
+// One morph target's displacements (glTF 2.0 spec, 3.7.2.2 "Morph Targets"): each list empty or
+// one per vertex; TANGENT displaces xyz only.
+struct MorphTargetSource {
+  std::vector<glm::vec3> positions, normals, tangents;
+};
+
 // One glTF primitive expanded to triangles, in its mesh's frame.
 struct PrimitiveSource {
   std::vector<glm::vec3> positions;
@@ -23,6 +29,18 @@ struct PrimitiveSource {
   size_t collapsed_triangles = 0;     // dropped when loaded: two equal corners, no area in any pose
   int material = 0;                   // index into Scene::materials
   bool dropped = false;               // points or lines: no Mesh is made from it
+  std::vector<MorphTargetSource> targets;
+  // JOINTS_k and WEIGHTS_k (glTF 2.0 spec, 3.7.3 "Skins"), one entry per set k, one element
+  // per vertex: four indices into the skin's joints and their weights.
+  std::vector<std::vector<glm::uvec4>> joints;
+  std::vector<std::vector<glm::vec4>> weights;
+};
+
+// glTF 2.0 spec, 3.7.3 "Skins": joint nodes and their inverse bind matrices (identity when the
+// file gives none).
+struct SkinSource {
+  std::vector<int> joints;
+  std::vector<glm::dmat4> inverse_bind;
 };
 
 struct NodeSource {
@@ -35,6 +53,10 @@ struct NodeSource {
   glm::dquat rotation{1.0, 0.0, 0.0, 0.0};
   glm::dvec3 scale{1.0};
   int mesh = -1;
+  int skin = -1;
+  // Morph target weights of the node's mesh at rest: node.weights, else mesh.weights, else
+  // zeros (glTF 2.0 spec, 3.7.2.2); one per target.
+  std::vector<double> weights;
   int camera = -1;
   int light = -1;
   // EXT_mesh_gpu_instancing: the mesh is drawn once per matrix, in the node's frame; empty =
@@ -44,16 +66,21 @@ struct NodeSource {
 };
 
 enum class Interpolation { Step, Linear, CubicSpline };
-enum class AnimatedPath { Translation, Rotation, Scale };
+enum class AnimatedPath { Translation, Rotation, Scale, Weights };
 
 // One animation channel with its sampler's keys (glTF 2.0 spec, 3.11 "Animations").
 struct ChannelSource {
   int node = -1;
   AnimatedPath path = AnimatedPath::Translation;
   Interpolation interpolation = Interpolation::Linear;
-  std::vector<double> times;       // strictly increasing
-  std::vector<glm::dvec4> values;  // per key; CUBICSPLINE: in-tangent, value, out-tangent per key
-  // Rotation quaternions are stored (x, y, z, w) as in the file.
+  std::vector<double> times;  // strictly increasing
+  // `width` numbers per key (CUBICSPLINE: in-tangent, value, out-tangent per key): 3 for a
+  // translation or scale, 4 for a rotation quaternion stored (x, y, z, w) as in the file, one
+  // per morph target for weights.
+  int width = 3;
+  std::vector<double> values;
+  // Whether the channel's values are not all equal (it moves something).
+  bool varies() const;
 };
 
 struct AnimationSource {
@@ -75,26 +102,34 @@ struct SceneSource {
   std::vector<NodeSource> nodes;
   std::vector<int> roots;  // nodes of the displayed glTF scene, in file order
   std::vector<std::vector<PrimitiveSource>> meshes;
+  std::vector<SkinSource> skins;
   std::vector<CameraSource> cameras;
   std::vector<Light> lights;  // as declared (unposed); name, type, colour, intensity, range, cones
   std::vector<AnimationSource> animations;
   std::vector<View> extra_views;  // views from extras, already in the local frame
 };
 
-// Value of one channel at time t (seconds), clamped to its first and last keys.
-glm::dvec4 evaluate(const ChannelSource& channel, double t);
+// Value of one channel at time t (seconds), clamped to its first and last keys: `width`
+// numbers.
+std::vector<double> evaluate(const ChannelSource& channel, double t);
 
-// World transform of every node at time t with animation `animation` playing (-1: rest pose).
-std::vector<glm::dmat4> world_transforms(const SceneSource& src, int animation, double t);
+// The animated state of every node at time t with animation `animation` playing (-1: rest
+// pose): world transforms, and the morph target weights of nodes with meshes.
+struct NodePose {
+  std::vector<glm::dmat4> world;
+  std::vector<std::vector<double>> weights;
+};
+NodePose pose_nodes(const SceneSource& src, int animation, double t);
 
 // Throws InputError when the scene instances more triangles than giq can hold.
 void check_instanced_size(const SceneSource& src);
 
-// World-space bounds (double) of every instantiated mesh vertex; lo > hi when there is none.
-void world_bounds(const SceneSource& src, const std::vector<glm::dmat4>& world, glm::dvec3& lo, glm::dvec3& hi);
+// World-space bounds (double) of every instantiated mesh vertex, skinned and morphed; lo > hi
+// when there is none.
+void world_bounds(const SceneSource& src, const NodePose& nodes, glm::dvec3& lo, glm::dvec3& hi);
 
 // Fills out.meshes, out.lights and out.views (camera nodes, then extra_views) and
 // out.stats.degenerate_triangles_dropped from the posed nodes, relative to out.origin.
-void pose(const SceneSource& src, const std::vector<glm::dmat4>& world, Scene& out);
+void pose(const SceneSource& src, const NodePose& nodes, Scene& out);
 
 }  // namespace giq::scenes

@@ -37,7 +37,7 @@ class Gltf:
         return self.add("bufferViews", {"buffer": 0, "byteOffset": offset, "byteLength": len(data)})
 
     def accessor(self, values, type_, ctype=FLOAT, minmax=False, **extra):
-        n = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[type_]
+        n = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}[type_]
         fmt = {FLOAT: "f", USHORT: "H", UINT: "I", UBYTE: "B", BYTE: "b", SHORT: "h"}[ctype]
         flat = [x for v in values for x in (v if isinstance(v, (list, tuple)) else [v])]
         a = {"bufferView": self.view(struct.pack("<%d%s" % (len(flat), fmt), *flat)),
@@ -328,6 +328,108 @@ def animated():
     d = g.finish()
     d["extras"] = {"giq": {"sequence": {"frames": 61, "fps": 30, "animation": "move"}}}
     return d
+
+
+def skinned():
+    """A strip 0.5 wide and 2 high in the z = 0 plane, skinned to two joints: "hip" at the rig's
+    origin and "knee" 1 above it. Rows at y <= 0.5 follow the hip, rows at y >= 1.5 the knee, the
+    row at y = 1 both halves, split over JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1. The "bend"
+    animation turns the knee 90 degrees about +x over 1 s. The rig sits at z = -2 (the strip hangs
+    2 in front of its joints) and the inverse bind matrices undo that, so the strip is where its
+    positions say at rest; the mesh node's own translation (5, 0, 0) must be ignored (glTF 2.0
+    spec, 3.7.3.3)."""
+    g = Gltf()
+    rows = [0.0, 0.5, 1.0, 1.5, 2.0]
+    positions = [(x, y, 0.0) for y in rows for x in (-0.25, 0.25)]
+    normals = [(0.0, 0.0, 1.0)] * len(positions)
+    indices = []
+    for r in range(len(rows) - 1):
+        a, b, c, d = 2 * r, 2 * r + 1, 2 * r + 3, 2 * r + 2
+        indices += [a, b, c, a, c, d]
+    joints0, weights0, joints1, weights1 = [], [], [], []
+    for y in rows:
+        for _ in (0, 1):
+            if y < 1.0:
+                joints0.append((0, 0, 0, 0)), weights0.append((1.0, 0.0, 0.0, 0.0))
+                joints1.append((0, 0, 0, 0)), weights1.append((0.0, 0.0, 0.0, 0.0))
+            elif y > 1.0:
+                joints0.append((1, 0, 0, 0)), weights0.append((1.0, 0.0, 0.0, 0.0))
+                joints1.append((0, 0, 0, 0)), weights1.append((0.0, 0.0, 0.0, 0.0))
+            else:
+                joints0.append((0, 1, 0, 0)), weights0.append((0.25, 0.25, 0.0, 0.0))
+                joints1.append((1, 0, 0, 0)), weights1.append((0.25, 0.25, 0.0, 0.0))
+    attrs = {"POSITION": g.accessor(positions, "VEC3", minmax=True), "NORMAL": g.accessor(normals, "VEC3"),
+             "JOINTS_0": g.accessor(joints0, "VEC4", UBYTE), "WEIGHTS_0": g.accessor(weights0, "VEC4"),
+             "JOINTS_1": g.accessor(joints1, "VEC4", USHORT), "WEIGHTS_1": g.accessor(weights1, "VEC4")}
+    mesh = g.add("meshes", {"name": "strip", "primitives": [{"attributes": attrs, "indices": g.accessor(indices, "SCALAR", USHORT)}]})
+    # Column-major inverse bind matrices: the inverses of translate(0, 0, -2) and translate(0, 1, -2).
+    def translation(x, y, z):
+        return (1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, x, y, z, 1)
+    ibm = g.accessor([translation(0, 0, 2), translation(0, -1, 2)], "MAT4")
+    g.node(name="body", mesh=mesh, skin=0, translation=[5.0, 0.0, 0.0])
+    g.node(name="rig", translation=[0.0, 0.0, -2.0], children=[2])
+    g.node(name="hip", children=[3])
+    g.node(name="knee", translation=[0.0, 1.0, 0.0])
+    g.add("skins", {"joints": [2, 3], "inverseBindMatrices": ibm, "skeleton": 1})
+    t = g.accessor([0.0, 1.0], "SCALAR", minmax=True)
+    q = g.accessor([(0, 0, 0, 1), (S45, 0, 0, S45)], "VEC4")
+    g.add("animations", {"name": "bend", "samplers": [{"input": t, "output": q, "interpolation": "LINEAR"}],
+                         "channels": [{"sampler": 0, "target": {"node": 3, "path": "rotation"}}]})
+    d = g.finish(roots=[0, 1])
+    d["extras"] = {"giq": {"sequence": {"frames": 31, "fps": 30, "animation": "bend"},
+                           "views": [{"name": "front", "eye": [0, 1, 4], "target": [0, 1, 0], "yfov_deg": 60}]}}
+    return d
+
+
+def morphed():
+    """A unit quad in the z = 0 plane with two morph targets: target 0 lifts the top edge by 0.5
+    along +z (and tilts the normals), target 1 moves the right edge 0.5 along +x. Node "a"
+    (translated by (1, 2, 3)) takes the mesh's weights (0.25, 0); node "b" its own (0, 1). The
+    "breathe" animation moves a's weights LINEAR from (0, 0) to (1, 0.5) over 1 s, and b's
+    CUBICSPLINE from (0, 1) to (1, 0) with flat tangents."""
+    g = Gltf()
+    positions = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (1.0, 1.0, 0.0), (0.0, 1.0, 0.0)]
+    target0 = {"POSITION": g.accessor([(0, 0, 0), (0, 0, 0), (0, 0, 0.5), (0, 0, 0.5)], "VEC3"),
+               "NORMAL": g.accessor([(0, -0.4, 0)] * 4, "VEC3")}
+    target1 = {"POSITION": g.accessor([(0, 0, 0), (0.5, 0, 0), (0.5, 0, 0), (0, 0, 0)], "VEC3")}
+    prim = {"attributes": {"POSITION": g.accessor(positions, "VEC3", minmax=True), "NORMAL": g.accessor([(0.0, 0.0, 1.0)] * 4, "VEC3")},
+            "indices": g.accessor([0, 1, 2, 0, 2, 3], "SCALAR", USHORT), "targets": [target0, target1]}
+    mesh = g.add("meshes", {"name": "quad", "primitives": [prim], "weights": [0.25, 0.0]})
+    g.node(name="a", mesh=mesh, translation=[1.0, 2.0, 3.0])
+    g.node(name="b", mesh=mesh, weights=[0.0, 1.0])
+    t = g.accessor([0.0, 1.0], "SCALAR", minmax=True)
+    linear = g.accessor([0.0, 0.0, 1.0, 0.5], "SCALAR")
+    # CUBICSPLINE: per key in-tangents, values, out-tangents, each one number per target.
+    cubic = g.accessor([0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0], "SCALAR")
+    g.add("animations", {"name": "breathe", "samplers": [{"input": t, "output": linear, "interpolation": "LINEAR"},
+                                                          {"input": t, "output": cubic, "interpolation": "CUBICSPLINE"}],
+                         "channels": [{"sampler": 0, "target": {"node": 0, "path": "weights"}},
+                                      {"sampler": 1, "target": {"node": 1, "path": "weights"}}]})
+    d = g.finish()
+    d["extras"] = {"giq": {"sequence": {"frames": 31, "fps": 30, "animation": "breathe"},
+                           "views": [{"name": "front", "eye": [1, 2, 6], "target": [1, 2, 0], "yfov_deg": 60}]}}
+    return d
+
+
+def collapsing():
+    """A unit quad whose one morph target moves corner 3 onto corner 0, so that at weight 1
+    (t = 1 s of "collapse") the triangle (0, 2, 3) has no area: the same quad with normals
+    (node "indexed") and without (node "flat", flat normals)."""
+    g = Gltf()
+    positions = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (1.0, 1.0, 0.0), (0.0, 1.0, 0.0)]
+    target = {"POSITION": g.accessor([(0, 0, 0), (0, 0, 0), (0, 0, 0), (0, -1, 0)], "VEC3")}
+    indices = g.accessor([0, 1, 2, 0, 2, 3], "SCALAR", USHORT)
+    pos = g.accessor(positions, "VEC3", minmax=True)
+    with_normals = {"attributes": {"POSITION": pos, "NORMAL": g.accessor([(0.0, 0.0, 1.0)] * 4, "VEC3")}, "indices": indices, "targets": [target]}
+    flat = {"attributes": {"POSITION": pos}, "indices": indices, "targets": [target]}
+    g.node(name="indexed", mesh=g.add("meshes", {"primitives": [with_normals]}))
+    g.node(name="flat", mesh=g.add("meshes", {"primitives": [flat]}))
+    t = g.accessor([0.0, 1.0], "SCALAR", minmax=True)
+    w = g.accessor([0.0, 1.0], "SCALAR")
+    g.add("animations", {"name": "collapse", "samplers": [{"input": t, "output": w}],
+                         "channels": [{"sampler": 0, "target": {"node": 0, "path": "weights"}},
+                                      {"sampler": 0, "target": {"node": 1, "path": "weights"}}]})
+    return g.finish()
 
 
 def lights_cameras():
@@ -645,8 +747,15 @@ def hostile():
     case("orthographic_depth.gltf", "cameras[0].orthographic.zfar", minimal(a=camera("orthographic")))
     case("alpha_mode.gltf", "materials[0].alphaMode",
          minimal(a=setp(("materials",), [{"alphaMode": "ADD"}]), b=setp(tri_mesh_prim + ("material",), 0)))
-    case("skin.gltf", "nodes[0].skin", minimal(a=setp(("skins",), [{"joints": [0]}]), b=setp(("nodes", 0, "skin"), 0)))
-    case("morph.gltf", "meshes[0].primitives[0].targets", minimal(a=setp(tri_mesh_prim + ("targets",), [{"POSITION": 0}])))
+    # A skinned node whose mesh has no JOINTS_0.
+    case("skin.gltf", "meshes[0].primitives[0].attributes.JOINTS_0", minimal(a=setp(("skins",), [{"joints": [0]}]), b=setp(("nodes", 0, "skin"), 0)))
+    case("skin_bad_joint.gltf", "skins[0].joints", minimal(a=setp(("skins",), [{"joints": [7]}]), b=setp(("nodes", 0, "skin"), 0)))
+    case("skin_missing.gltf", "nodes[0].skin", minimal(a=setp(("nodes", 0, "skin"), 0)))
+    # One target, two weights.
+    case("morph.gltf", "nodes[0].weights",
+         minimal(a=setp(tri_mesh_prim + ("targets",), [{"POSITION": 0}]), b=setp(("nodes", 0, "weights"), [0.5, 0.5])))
+    # The target names the SCALAR index accessor.
+    case("morph_target_type.gltf", "accessors[1].type", minimal(a=setp(tri_mesh_prim + ("targets",), [{"POSITION": 1}])))
     case("unknown_mode.gltf", "meshes[0].primitives[0].mode", minimal(a=setp(tri_mesh_prim + ("mode",), 7)))
 
     def anim(path, times=(0.0, 1.0)):
@@ -659,7 +768,8 @@ def hostile():
             d["buffers"] = [{"byteLength": len(g2.bin), "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(g2.bin)).decode()}]
             d["animations"] = [{"samplers": [{"input": t, "output": o}], "channels": [{"sampler": 0, "target": {"node": 0, "path": path}}]}]
         return f
-    case("weights_animation.gltf", "animations[0].channels[0].target.path", minimal(a=anim("weights")))
+    # Weights animated on a node whose mesh has no morph targets.
+    case("weights_animation.gltf", "animations[0].channels[0].target.node", minimal(a=anim("weights")))
     case("decreasing_keys.gltf", "accessors[2]", minimal(a=anim("translation", (1.0, 0.5))))
 
     def extras(giq):
@@ -685,6 +795,9 @@ def main():
     write(os.path.join(HERE, "strip_fan.gltf"), strip_fan())
     write(os.path.join(HERE, "textured.gltf"), textured())
     write(os.path.join(HERE, "animated.gltf"), animated())
+    write(os.path.join(HERE, "skinned.gltf"), skinned())
+    write(os.path.join(HERE, "morphed.gltf"), morphed())
+    write(os.path.join(HERE, "collapsing.gltf"), collapsing())
     write(os.path.join(HERE, "lights_cameras.gltf"), lights_cameras())
     write(os.path.join(HERE, "materials.gltf"), materials())
     write(os.path.join(HERE, "textured_room.gltf"), textured_room())

@@ -22,6 +22,8 @@ struct FeatureSet {
   bool double_sided = false;  // some material is double-sided
   bool one_sided = false;     // some material is not (its back faces are black)
   bool animation = false;     // the sequence moves something
+  bool skinning = false;      // some mesh is skinned (glTF skins): its vertices move with joints
+  bool morph_targets = false;  // some mesh blends morph targets
 
   // Stable lower-case names of the features present, e.g. {"point_lights", "specular"}; used
   // for `giq scene info`, shader #defines (upper-cased, "GIQ_" prefixed) and reports.
