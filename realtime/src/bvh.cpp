@@ -145,6 +145,36 @@ Bvh build_bvh(const std::vector<glm::vec3>& positions, const std::vector<glm::uv
   return std::move(b.out);
 }
 
+void refit_bvh(Bvh& bvh, const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles) {
+  // Depth-first order puts children after their parent (left at i + 1, right at `index`), so
+  // one backward sweep sees both children before the parent.
+  for (size_t i = bvh.nodes.size(); i-- > 0;) {
+    BvhNode& n = bvh.nodes[i];
+    Box b;
+    if (n.count > 0) {
+      for (uint32_t k = n.index; k < n.index + n.count; ++k) {
+        const glm::uvec3 t = triangles[bvh.prims[k]];
+        b.extend(positions[t.x]), b.extend(positions[t.y]), b.extend(positions[t.z]);
+      }
+    } else {
+      for (const BvhNode* c : {&bvh.nodes[i + 1], &bvh.nodes[n.index]}) b.extend(Box{c->lo, c->hi});
+    }
+    n.lo = b.lo, n.hi = b.hi;
+  }
+}
+
+double sah_cost(const Bvh& bvh, const BvhOptions& options) {
+  if (bvh.nodes.empty()) return 0.0;
+  const double root = Box{bvh.nodes[0].lo, bvh.nodes[0].hi}.area();
+  if (!(root > 0.0)) return 0.0;
+  double cost = 0.0;
+  for (const BvhNode& n : bvh.nodes) {
+    const double a = Box{n.lo, n.hi}.area() / root;
+    cost += a * (n.count > 0 ? double(n.count) * options.intersection_cost : options.traversal_cost);
+  }
+  return cost;
+}
+
 bool intersect_triangle(glm::vec3 org, glm::vec3 dir, glm::vec3 a, glm::vec3 b, glm::vec3 c, float tmax, BvhHit& hit) {
   // Woop, Benthin, Wald 2013, section 3: shear the ray to +z, test edge functions in 2D.
   int kz = 0;

@@ -35,6 +35,15 @@ struct BvhOptions {
 Bvh build_bvh(const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles,
               const BvhOptions& options = {});
 
+// The same tree over moved vertices (the same triangles, deformed): every node's bounds
+// recomputed bottom-up, the topology kept. A refit costs one pass over the triangles and the
+// nodes; the tree was chosen for the old positions, so its SAH cost grows with the motion.
+void refit_bvh(Bvh& bvh, const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles);
+
+// The tree's expected cost of a random ray by the surface area heuristic: the traversal and
+// intersection costs of every node weighted by its area relative to the root's.
+double sah_cost(const Bvh& bvh, const BvhOptions& options = {});
+
 // The watertight ray/triangle test of shaders/bvh.glsl on the CPU (Woop, Benthin, Wald 2013,
 // "Watertight Ray/Triangle Intersection", JCGT 2(1)), for tests that explain GPU answers.
 // Returns false when the ray misses the triangle in (0, tmax).

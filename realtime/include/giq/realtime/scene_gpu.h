@@ -69,6 +69,13 @@ class SceneGpu {
   uint32_t light_count() const { return light_count_; }
   uint32_t emissive_count() const { return emissive_count_; }
   const Bvh& bvh() const { return bvh_; }
+  // How the last geometry change reached the BVH: built anew, or refitted (the same triangles
+  // moved: skinning, morph targets, rigid animation) while the refitted tree's SAH cost stays
+  // within kMaxRefitCost of the cost it had when built.
+  enum class BvhUpdate { Built, Refitted };
+  BvhUpdate last_bvh_update() const { return last_bvh_update_; }
+  double bvh_cost_growth() const { return built_cost_ > 0.0 ? sah_cost(bvh_) / built_cost_ : 1.0; }
+  static constexpr double kMaxRefitCost = 1.3;
   // GpuVertex array of the frame before the last update() (the current one before any), for
   // motion vectors.
   const Buffer& previous_vertices() const { return previous_vertices_; }
@@ -84,7 +91,8 @@ class SceneGpu {
  private:
   void upload_materials(const scenes::Scene& scene, std::vector<uint32_t>& mip_levels);
   void make_mips(ShaderCompiler& compiler, const scenes::Scene& scene, const std::vector<uint32_t>& mip_levels);
-  void upload_geometry(const scenes::Scene& scene, FlatGeometry flat);
+  // `may_refit`: the triangles are those of the BVH already built, only moved.
+  void upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bool may_refit = false);
   bool upload_lights(const scenes::Scene& scene);  // false when nothing changed
 
   Context* ctx_;
@@ -92,6 +100,8 @@ class SceneGpu {
   scenes::Bounds bounds_;
   scenes::FeatureSet features_;
   Bvh bvh_;
+  double built_cost_ = 0.0;  // sah_cost(bvh_) when last built
+  BvhUpdate last_bvh_update_ = BvhUpdate::Built;
   // What the vertex and light buffers hold (gpu::GpuVertex, gpu::GpuLight as vec4 rows).
   std::vector<glm::vec4> vertices_host_, lights_host_;
   Buffer vertices_, triangles_, materials_, nodes_, prims_, lights_, emissive_, indices_, previous_vertices_;
