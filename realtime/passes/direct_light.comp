@@ -4,9 +4,10 @@
 // light. Every technique's `direct` layer comes from here.
 // Punctual lights are evaluated exactly (glTF units and falloff). Emissive meshes are area
 // lights: the diffuse part integrates each emissive triangle exactly
-// (shaders/polygon_irradiance.glsl), the specular part uses the representative point on the
-// triangle closest to the reflection ray with energy normalisation (Karis 2013, "Real Shading
-// in Unreal Engine 4"; Turánszki 2017, "Area Lights").
+// (shaders/polygon_irradiance.glsl), the specular part uses a representative point with
+// energy normalisation (Karis 2013, "Real Shading in Unreal Engine 4"; Turánszki 2017, "Area
+// Lights"): of the declared shape (sphere, disc, rectangle, tube) when the mesh declares one,
+// else of each triangle, the point closest to the reflection ray.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/scene.glsl"
@@ -34,8 +35,56 @@ layout(push_constant) uniform Push { DirectPush pc; };
 
 #include "passes/shadow.glsl"
 
+#ifdef GIQ_SPECULAR
+// The point of the declared shape (GpuAreaLight::shape*, relative to the shading point) closest
+// to the reflection ray r from the shading point (Turánszki 2017, "Area Lights": sphere, disc,
+// rectangle, tube), and its source radius for the energy normalisation. Disc and rectangle
+// take the ray's intersection with their plane (the point on the ray nearest the centre when
+// the ray leaves the plane) and clamp it into the shape; the tube takes the segment point
+// nearest the ray (Karis 2013, "Tube Lights"), then the sphere around it.
+vec3 shape_point(GpuAreaLight l, vec3 c, vec3 r, int shape, out float source_radius) {
+  float radius = l.shape_u.w;
+  source_radius = radius;
+  if (shape == GIQ_AREA_TUBE) {
+    vec3 a = c - l.shape_u.xyz, ab = 2.0 * l.shape_u.xyz;
+    float rab = dot(r, ab), denom = dot(ab, ab) - rab * rab;
+    float t = denom > 0.0 ? clamp((dot(r, a) * rab - dot(a, ab)) / denom, 0.0, 1.0) : 0.5;
+    c = a + t * ab;
+  }
+  if (shape == GIQ_AREA_SPHERE || shape == GIQ_AREA_TUBE) {
+    vec3 to_ray = dot(c, r) * r - c;
+    float d = length(to_ray);
+    return d > 0.0 ? c + to_ray * min(1.0, radius / d) : c;
+  }
+  // Disc and rectangle: the plane's normal (a disc keeps it in v, a rectangle's is u x v).
+  vec3 n = shape == GIQ_AREA_DISC ? l.shape_v.xyz : normalize(cross(l.shape_u.xyz, l.shape_v.xyz));
+  float rn = dot(r, n);
+  float t = abs(rn) > 1e-6 ? dot(c, n) / rn : -1.0;
+  vec3 x = t > 0.0 ? r * t : max(dot(c, r), 0.0) * r;
+  vec3 d = x - c;
+  d -= n * dot(d, n);
+  if (shape == GIQ_AREA_DISC) {
+    float len = length(d);
+    return c + (len > radius ? d * (radius / len) : d);
+  }
+  vec3 u = l.shape_u.xyz, v = l.shape_v.xyz;
+  source_radius = l.shape_v.w;
+  return c + u * clamp(dot(d, u) / dot(u, u), -1.0, 1.0) + v * clamp(dot(d, v) / dot(v, v), -1.0, 1.0);
+}
+#endif
+
+// Karis 2013's energy normalisation: a light of angular radius source_radius / d widens the
+// lobe from alpha to alpha' = alpha + source_radius / (2 d); scaling the peak by
+// (alpha / alpha')^2 keeps a wide light's energy from concentrating at the representative point.
+float widening(float alpha, float source_radius, float d) {
+  float a2 = clamp(alpha + source_radius / (2.0 * d), 0.0, 1.0);
+  return a2 > 0.0 ? (alpha * alpha) / (a2 * a2) : 1.0;
+}
+
 vec3 area_light(GpuAreaLight l, Surface s, vec3 p, vec3 wo) {
   vec3 sum = vec3(0.0);
+  vec3 incident = vec3(0.0);  // sum of radiance x irradiance over the triangles (declared shapes)
+  int shape = int(l.shape.w);
   for (uint k = 0u; k < l.range.y; ++k) {
     GpuAreaTriangle t = area_triangles[l.range.x + k];
     vec3 a = t.a.xyz - p, b = t.b.xyz - p, c = t.c.xyz - p;
@@ -49,27 +98,46 @@ vec3 area_light(GpuAreaLight l, Surface s, vec3 p, vec3 wo) {
     brdf_parts(s, wo, normalize(tri_mid), diffuse, specular);
     vec3 f = diffuse;
 #ifdef GIQ_SPECULAR
-    vec3 r = reflect(-wo, s.n);
-    float rn = dot(r, ng);
-    vec3 q = tri_mid;
-    if (abs(rn) > 0.0) {
-      float tt = dot(a, ng) / rn;
-      if (tt > 0.0) q = r * tt;
-    }
-    q = closest_on_triangle(q, a, b, c);
-    float d = length(q);
-    if (d > 0.0) {
-      vec3 dd, spec;
-      brdf_parts(s, wo, q / d, dd, spec);
-      // Widening the lobe by the light's angular size keeps the energy of a wide light from
-      // concentrating at the representative point: (alpha / alpha')^2.
-      float source_radius = sqrt(0.5 * length(ng) / PI);
-      float a2 = clamp(s.alpha + source_radius / (2.0 * d), 0.0, 1.0);
-      f += spec * (s.alpha * s.alpha) / (a2 * a2);
+    if (shape != GIQ_AREA_MESH) {
+      incident += t.radiance.rgb * e;
+    } else {
+      // No declared shape: each triangle is its own light, its representative point the
+      // point of the triangle closest to the reflection ray.
+      vec3 r = reflect(-wo, s.n);
+      float rn = dot(r, ng);
+      vec3 q = tri_mid;
+      if (abs(rn) > 0.0) {
+        float tt = dot(a, ng) / rn;
+        if (tt > 0.0) q = r * tt;
+      }
+      q = closest_on_triangle(q, a, b, c);
+      float d = length(q);
+      if (d > 0.0) {
+        vec3 dd, spec;
+        brdf_parts(s, wo, q / d, dd, spec);
+        f += spec * widening(s.alpha, sqrt(0.5 * length(ng) / PI), d);
+      }
     }
 #endif
     sum += f * t.radiance.rgb * e;
   }
+#ifdef GIQ_SPECULAR
+  // A declared shape: one representative point for the whole light, lit by what all its
+  // triangles send.
+  if (shape != GIQ_AREA_MESH && any(greaterThan(incident, vec3(0.0)))) {
+    float source_radius;
+    vec3 q = shape_point(l, l.shape.xyz - p, reflect(-wo, s.n), shape, source_radius);
+    float d = length(q);
+    if (d > 0.0) {
+      vec3 dd, spec;
+      brdf_parts(s, wo, q / d, dd, spec);
+      float norm = widening(s.alpha, source_radius, d);
+      // A tube widens the lobe along its length too, in one dimension: alpha / alpha'.
+      if (shape == GIQ_AREA_TUBE) norm *= sqrt(widening(s.alpha, length(l.shape_u.xyz), d));
+      sum += spec * norm * incident;
+    }
+  }
+#endif
   return sum;
 }
 

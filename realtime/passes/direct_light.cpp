@@ -1,6 +1,8 @@
 #include "passes/direct_light.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <glm/geometric.hpp>
 
 #include "giq/realtime/context.h"
@@ -127,6 +129,10 @@ void DirectLightPass::build_area_lights(const scenes::Scene& scene) {
     }
     l.position = glm::vec4(a.representative, 0.0f);
     l.extent = glm::vec4(a.extent, 0.0f, 0.0f, 0.0f);
+    static_assert(GIQ_AREA_MESH == int(scenes::AreaShape::Mesh) && GIQ_AREA_TUBE == int(scenes::AreaShape::Tube));
+    l.shape = glm::vec4(a.shape_centre, float(int(a.shape)));
+    l.shape_u = glm::vec4(a.shape_u, a.shape_radius);
+    l.shape_v = glm::vec4(a.shape_v, std::sqrt(a.area / std::numbers::pi_v<float>));
     area_lights_.push_back(l);
   }
 }

@@ -27,7 +27,20 @@ struct GpuAreaLight {
   vec4 position;  // xyz representative point; w: first shadow layer
   uvec4 range;    // x: first GpuAreaTriangle, y: count
   vec4 extent;    // x: how far from `position` shadow rays towards it stop (AreaLight::extent)
+  // The declared shape for glossy reflections (scenes::AreaLight::shape_*): xyz centre, w the
+  // shape (GIQ_AREA_*); u and v: xyz half vectors (rectangle: sides; tube: half segment; disc:
+  // v its unit normal), u.w the radius; v.w: sqrt(area / pi), the radius of the disc of the
+  // emitter's area.
+  vec4 shape;
+  vec4 shape_u;
+  vec4 shape_v;
 };
+
+#define GIQ_AREA_MESH 0
+#define GIQ_AREA_SPHERE 1
+#define GIQ_AREA_DISC 2
+#define GIQ_AREA_RECTANGLE 3
+#define GIQ_AREA_TUBE 4
 
 struct GpuAreaTriangle {
   vec4 a;         // xyz vertex; w: 1 when the emitter is double-sided

@@ -155,6 +155,22 @@ Extras parse_extras(const Document& doc, const SceneSource& src) {
       out.environment = glm::vec3(rad);
     }
   }
+  // Area light shapes on meshes: meshes[i].extras.giq.area_light.
+  out.area_shapes.assign(src.meshes.size(), AreaShape::Mesh);
+  if (auto meshes = doc.json.find("meshes"); meshes != doc.json.end() && meshes->is_array())
+    for (size_t i = 0; i < meshes->size() && i < src.meshes.size(); ++i) {
+      const json& m = (*meshes)[i];
+      if (!m.is_object() || !m.contains("extras") || !m["extras"].is_object() || !m["extras"].contains("giq")) continue;
+      const std::string base = "meshes[" + std::to_string(i) + "].extras.giq";
+      r.only_keys(m["extras"]["giq"], base, {"area_light"});
+      if (!m["extras"]["giq"].contains("area_light")) continue;
+      const json& v = m["extras"]["giq"]["area_light"];
+      const std::pair<const char*, AreaShape> shapes[] = {
+          {"sphere", AreaShape::Sphere}, {"disc", AreaShape::Disc}, {"rectangle", AreaShape::Rectangle}, {"tube", AreaShape::Tube}};
+      const auto it = std::find_if(std::begin(shapes), std::end(shapes), [&](const auto& s) { return v.is_string() && v.get<std::string>() == s.first; });
+      if (it == std::end(shapes)) r.fail(base + ".area_light", "is " + v.dump().substr(0, 80) + "; expected \"sphere\", \"disc\", \"rectangle\" or \"tube\"");
+      out.area_shapes[i] = it->second;
+    }
   // Without an explicit frame count the whole clip plays, both ends included.
   if (!frames_given && out.sequence.animation >= 0)
     out.sequence.frames = 1 + int(std::lround(std::min(src.animations[size_t(out.sequence.animation)].end * out.sequence.fps, 1e6)));

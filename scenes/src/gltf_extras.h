@@ -27,6 +27,7 @@ struct Extras {
   std::vector<std::string> leak_regions;
   std::vector<uint32_t> leak_object_ids;
   glm::vec3 environment{0.0f};
+  std::vector<AreaShape> area_shapes;  // per glTF mesh: meshes[i].extras.giq.area_light
 };
 
 Extras parse_extras(const Document& doc, const SceneSource& src);

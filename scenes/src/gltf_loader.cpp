@@ -458,6 +458,7 @@ Scene load(const std::filesystem::path& path) {
   s.environment = extras.environment;
   s.leak_regions = extras.leak_regions;
   s.leak_object_ids = extras.leak_object_ids;
+  src->area_shapes = extras.area_shapes;
 
   check_instanced_size(*src);
   // The local frame: centre of the t = 0 bounds, in double (see Scene::origin).

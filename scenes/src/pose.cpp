@@ -202,6 +202,7 @@ void pose(const SceneSource& src, const NodePose& nodes, Scene& out) {
           m.primitive = int(k);
           m.object_id = uint32_t(i) + 1;
           m.material = prims[k].material;
+          if (size_t(n.mesh) < src.area_shapes.size()) m.area_shape = src.area_shapes[size_t(n.mesh)];
           const PlacedVertices placed = place(src, prims[k], nodes, i, n.instances.empty() ? M : M * n.instances[instance]);
           emit_mesh(prims[k], placed, out.origin, m, out.stats.degenerate_triangles_dropped);
           out.meshes.push_back(std::move(m));

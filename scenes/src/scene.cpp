@@ -97,6 +97,7 @@ void Scene::derive_area_lights() {
     if (!l.two_sided && l.flat) l.representative += l.normal * offset;
     if (!l.flat)
       for (const glm::vec3& v : mesh.positions) l.extent = std::max(l.extent, glm::length(v - l.representative));
+    fit_area_shape(mesh, emissive_triangles, l);
     area_lights.push_back(std::move(l));
   }
 }

@@ -103,6 +103,7 @@ struct SceneSource {
   std::vector<int> roots;  // nodes of the displayed glTF scene, in file order
   std::vector<std::vector<PrimitiveSource>> meshes;
   std::vector<SkinSource> skins;
+  std::vector<AreaShape> area_shapes;  // per mesh, declared in its extras
   std::vector<CameraSource> cameras;
   std::vector<Light> lights;  // as declared (unposed); name, type, colour, intensity, range, cones
   std::vector<AnimationSource> animations;

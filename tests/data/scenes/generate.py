@@ -432,6 +432,19 @@ def collapsing():
     return g.finish()
 
 
+def area_shapes():
+    """An emissive quad declaring itself a rectangle light (meshes[0].extras.giq.area_light),
+    and a plain floor under it."""
+    g = Gltf()
+    lamp = g.add("materials", {"name": "lamp", "emissiveFactor": [1.0, 1.0, 1.0]})
+    g.mesh("lamp", [(-0.5, 1.0, -0.2), (-0.5, 1.0, 0.2), (0.5, 1.0, 0.2), (0.5, 1.0, -0.2)], [0, 1, 2, 0, 2, 3], material=lamp)
+    g.doc["meshes"][0]["extras"] = {"giq": {"area_light": "rectangle"}}
+    g.mesh("floor", QUAD_P, QUAD_I, QUAD_N)
+    g.node(name="lamp", mesh=0)
+    g.node(name="floor", mesh=1)
+    return g.finish()
+
+
 def lights_cameras():
     g = Gltf()
     quad = g.mesh("floor", QUAD_P, QUAD_I, QUAD_N)
@@ -756,6 +769,9 @@ def hostile():
          minimal(a=setp(tri_mesh_prim + ("targets",), [{"POSITION": 0}]), b=setp(("nodes", 0, "weights"), [0.5, 0.5])))
     # The target names the SCALAR index accessor.
     case("morph_target_type.gltf", "accessors[1].type", minimal(a=setp(tri_mesh_prim + ("targets",), [{"POSITION": 1}])))
+    case("area_light_shape.gltf", "meshes[0].extras.giq.area_light",
+         minimal(a=setp(("meshes", 0, "extras"), {"giq": {"area_light": "cylinder"}})))
+    case("area_light_key.gltf", "meshes[0].extras.giq.area", minimal(a=setp(("meshes", 0, "extras"), {"giq": {"area": "disc"}})))
     case("unknown_mode.gltf", "meshes[0].primitives[0].mode", minimal(a=setp(tri_mesh_prim + ("mode",), 7)))
 
     def anim(path, times=(0.0, 1.0)):
@@ -798,6 +814,7 @@ def main():
     write(os.path.join(HERE, "skinned.gltf"), skinned())
     write(os.path.join(HERE, "morphed.gltf"), morphed())
     write(os.path.join(HERE, "collapsing.gltf"), collapsing())
+    write(os.path.join(HERE, "area_shapes.gltf"), area_shapes())
     write(os.path.join(HERE, "lights_cameras.gltf"), lights_cameras())
     write(os.path.join(HERE, "materials.gltf"), materials())
     write(os.path.join(HERE, "textured_room.gltf"), textured_room())

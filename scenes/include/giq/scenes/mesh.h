@@ -9,6 +9,11 @@
 
 namespace giq::scenes {
 
+// The shape an emissive mesh declares for its light (extras.giq.area_light on the glTF mesh):
+// real-time techniques then use that shape's representative point for glossy reflections
+// (Scene::AreaLight, docs/scene-format.md). `Mesh`: none declared; the triangles themselves.
+enum class AreaShape { Mesh, Sphere, Disc, Rectangle, Tube };
+
 struct Mesh {
   std::string name;  // the node's name (or "node<i>"), which leak regions refer to
   int node = -1;     // glTF node index
@@ -17,6 +22,7 @@ struct Mesh {
   // Value of the `objectId` layer for this mesh's pixels: glTF node index + 1 (0 = no hit).
   uint32_t object_id = 0;
   int material = 0;  // index into Scene::materials (always valid; a default one is added)
+  AreaShape area_shape = AreaShape::Mesh;  // as declared on the glTF mesh
 
   std::vector<glm::vec3> positions;   // local frame
   std::vector<glm::vec3> normals;     // unit; flat normals generated when the file has none

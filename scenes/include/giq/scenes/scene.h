@@ -76,7 +76,18 @@ struct AreaLight {
   // around `representative` that holds the mesh, where rays towards that point must stop so
   // that the emitter does not shadow itself; 0 for a flat one.
   float extent = 0.0f;
+  // The declared shape (Mesh::area_shape) fitted to the posed triangles (area_shape.cpp):
+  // centre; sphere, disc and tube radius; a rectangle's two half-side vectors u and v; a disc's
+  // unit normal v; a tube's half segment u (a capsule: the segment centre +- u, swept by the
+  // radius). A disc or a rectangle that is not flat falls back to `Mesh`.
+  AreaShape shape = AreaShape::Mesh;
+  glm::vec3 shape_centre{0.0f};
+  glm::vec3 shape_u{0.0f}, shape_v{0.0f};
+  float shape_radius = 0.0f;
 };
+
+// Fits light `l`'s declared shape to its mesh's emissive triangles (the fields above).
+void fit_area_shape(const Mesh& mesh, const std::vector<EmissiveTriangle>& emissive, AreaLight& l);
 
 struct SceneStats {
   size_t triangles = 0;
