@@ -39,6 +39,7 @@ void print_table(const json& j) {
     if (l.contains("intensity")) d += "  intensity " + std::to_string(l["intensity"].get<double>());
     if (l.contains("power")) d += "  power " + std::to_string(l["power"].get<double>());
     if (l.contains("position")) d += "  at " + v3(l["position"]);
+    if (l.contains("shape")) d += "  declared " + l["shape"]["kind"].get<std::string>() + " at " + v3(l["shape"]["centre"]);
     row("  " + l["name"].get<std::string>(), d);
   }
   std::printf("  views\n");

@@ -59,8 +59,15 @@ json describe_scene(const sc::Scene& s) {
   for (size_t m = 0; m < s.meshes.size(); ++m) {
     if (power[m] <= 0.0 && area[m] <= 0.0) continue;
     const auto& mat = s.materials[s.meshes[m].material];
-    lights.push_back({{"name", s.meshes[m].name}, {"type", "emissive_mesh"},
-                      {"radiance", vec(mat.emissive)}, {"area", area[m]}, {"power", power[m]}});
+    json e = {{"name", s.meshes[m].name}, {"type", "emissive_mesh"}, {"radiance", vec(mat.emissive)}, {"area", area[m]}, {"power", power[m]}};
+    // A declared shape (extras.giq.area_light) as fitted at this instant.
+    for (const scenes::AreaLight& a : s.area_lights) {
+      if (a.mesh != m || a.shape == scenes::AreaShape::Mesh) continue;
+      static const char* names[] = {"mesh", "sphere", "disc", "rectangle", "tube"};
+      e["shape"] = {{"kind", names[int(a.shape)]}, {"centre", vec(glm::dvec3(a.shape_centre) + s.origin)}, {"radius", a.shape_radius},
+                    {"u", vec(a.shape_u)}, {"v", vec(a.shape_v)}};
+    }
+    lights.push_back(e);
   }
   j["lights"] = lights;
   if (s.features.environment) j["environment_radiance"] = vec(s.environment);
