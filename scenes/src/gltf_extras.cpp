@@ -165,11 +165,15 @@ Extras parse_extras(const Document& doc, const SceneSource& src) {
       r.only_keys(m["extras"]["giq"], base, {"area_light"});
       if (!m["extras"]["giq"].contains("area_light")) continue;
       const json& v = m["extras"]["giq"]["area_light"];
-      const std::pair<const char*, AreaShape> shapes[] = {
-          {"sphere", AreaShape::Sphere}, {"disc", AreaShape::Disc}, {"rectangle", AreaShape::Rectangle}, {"tube", AreaShape::Tube}};
-      const auto it = std::find_if(std::begin(shapes), std::end(shapes), [&](const auto& s) { return v.is_string() && v.get<std::string>() == s.first; });
-      if (it == std::end(shapes)) r.fail(base + ".area_light", "is " + v.dump().substr(0, 80) + "; expected \"sphere\", \"disc\", \"rectangle\" or \"tube\"");
-      out.area_shapes[i] = it->second;
+      // A declared shape is one of the names after "mesh" (which is what declaring none means).
+      const auto first = std::begin(kAreaShapeNames) + 1, last = std::end(kAreaShapeNames);
+      const auto it = std::find_if(first, last, [&](const char* n) { return v.is_string() && v.get<std::string>() == n; });
+      if (it == last) {
+        std::string expected;
+        for (auto n = first; n != last; ++n) expected += std::string(expected.empty() ? "" : ", ") + "\"" + *n + "\"";
+        r.fail(base + ".area_light", "is " + v.dump().substr(0, 80) + "; expected one of " + expected);
+      }
+      out.area_shapes[i] = AreaShape(it - std::begin(kAreaShapeNames));
     }
   // Without an explicit frame count the whole clip plays, both ends included.
   if (!frames_given && out.sequence.animation >= 0)

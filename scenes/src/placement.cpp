@@ -15,7 +15,8 @@ glm::dmat3 cofactor(const glm::dmat3& L) { return glm::dmat3(glm::cross(L[1], L[
 
 }  // namespace
 
-PlacedVertices place(const SceneSource& src, const PrimitiveSource& p, const NodePose& nodes, int node, const glm::dmat4& M) {
+PlacedVertices place(const SceneSource& src, const PrimitiveSource& p, const NodePose& nodes, int node, const glm::dmat4& M,
+                     bool positions_only) {
   const size_t n = p.positions.size();
   // Morph targets: the weighted sum of the targets' displacements, in the mesh's frame (only
   // for a primitive that has them: a rigid one is read as it is).
@@ -42,8 +43,8 @@ PlacedVertices place(const SceneSource& src, const PrimitiveSource& p, const Nod
 
   PlacedVertices out;
   out.positions.resize(n);
-  out.normals.resize(p.normals.size());
-  out.tangents.resize(p.tangents.size());
+  out.normals.resize(positions_only ? 0 : p.normals.size());
+  out.tangents.resize(positions_only ? 0 : p.tangents.size());
   const int skin = src.nodes[size_t(node)].skin;
   if (skin < 0 || p.joints.empty()) {
     const glm::dmat3 L(M), cof = cofactor(L);

@@ -22,7 +22,8 @@ struct PlacedVertices {
 // Primitive `p` of node `node` (which holds its mesh) at the instant of `nodes`. `M` is the
 // node's world transform times its instance's (EXT_mesh_gpu_instancing); a skinned node ignores
 // it, as glTF 2.0 spec, 3.7.3.3 requires ("the transform of the skinned mesh node MUST be
-// ignored").
-PlacedVertices place(const SceneSource& src, const PrimitiveSource& p, const NodePose& nodes, int node, const glm::dmat4& M);
+// ignored"). `positions_only`: normals and tangents are left empty (bounds need no more).
+PlacedVertices place(const SceneSource& src, const PrimitiveSource& p, const NodePose& nodes, int node, const glm::dmat4& M,
+                     bool positions_only = false);
 
 }  // namespace giq::scenes

@@ -161,16 +161,8 @@ void world_bounds(const SceneSource& src, const NodePose& nodes, glm::dvec3& lo,
     if (n.mesh < 0) continue;
     for (size_t k = 0; k < n.instance_count(); ++k) {
       const glm::dmat4 M = n.instances.empty() ? nodes.world[size_t(i)] : nodes.world[size_t(i)] * n.instances[k];
-      for (const auto& p : src.meshes[size_t(n.mesh)]) {
-        if (!p.targets.empty() || (n.skin >= 0 && !p.joints.empty())) {
-          for (const glm::dvec3& w : place(src, p, nodes, i, M).positions) lo = glm::min(lo, w), hi = glm::max(hi, w);
-          continue;
-        }
-        for (const auto& v : p.positions) {  // rigid: the transform alone, without normals
-          const glm::dvec3 w = glm::dvec3(M * glm::dvec4(glm::dvec3(v), 1.0));
-          lo = glm::min(lo, w), hi = glm::max(hi, w);
-        }
-      }
+      for (const auto& p : src.meshes[size_t(n.mesh)])
+        for (const glm::dvec3& w : place(src, p, nodes, i, M, true).positions) lo = glm::min(lo, w), hi = glm::max(hi, w);
     }
   }
 }

@@ -227,7 +227,9 @@ TEST_F(DirectTest, DeclaredAreaLightShapesOnAGlossyPlane) {
                   declared ? "declared" : "triangles", err / sum_p, energy[declared]);
     }
     EXPECT_NEAR(energy[1], 1.0, 0.25) << names[k];
-    if (shapes[k] == scenes::AreaShape::Tube) EXPECT_LT(std::abs(energy[1] - 1.0), std::abs(energy[0] - 1.0));
+    if (shapes[k] == scenes::AreaShape::Tube) {
+      EXPECT_LT(std::abs(energy[1] - 1.0), std::abs(energy[0] - 1.0));
+    }
   }
 }
 

@@ -63,8 +63,7 @@ json describe_scene(const sc::Scene& s) {
     // A declared shape (extras.giq.area_light) as fitted at this instant.
     for (const scenes::AreaLight& a : s.area_lights) {
       if (a.mesh != m || a.shape == scenes::AreaShape::Mesh) continue;
-      static const char* names[] = {"mesh", "sphere", "disc", "rectangle", "tube"};
-      e["shape"] = {{"kind", names[int(a.shape)]}, {"centre", vec(glm::dvec3(a.shape_centre) + s.origin)}, {"radius", a.shape_radius},
+      e["shape"] = {{"kind", scenes::name(a.shape)}, {"centre", vec(glm::dvec3(a.shape_centre) + s.origin)}, {"radius", a.shape_radius},
                     {"u", vec(a.shape_u)}, {"v", vec(a.shape_v)}};
     }
     lights.push_back(e);

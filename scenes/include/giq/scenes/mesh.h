@@ -13,6 +13,9 @@ namespace giq::scenes {
 // real-time techniques then use that shape's representative point for glossy reflections
 // (Scene::AreaLight, docs/scene-format.md). `Mesh`: none declared; the triangles themselves.
 enum class AreaShape { Mesh, Sphere, Disc, Rectangle, Tube };
+// The names the extras use: "mesh", "sphere", "disc", "rectangle", "tube".
+inline constexpr const char* kAreaShapeNames[] = {"mesh", "sphere", "disc", "rectangle", "tube"};
+inline const char* name(AreaShape s) { return kAreaShapeNames[int(s)]; }
 
 struct Mesh {
   std::string name;  // the node's name (or "node<i>"), which leak regions refer to
