@@ -1,5 +1,6 @@
 #include "giq/realtime/pipeline.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <utility>
 
@@ -207,6 +208,13 @@ void Pipeline::push_constants(VkCommandBuffer cmd, const void* data, uint32_t by
 
 void Pipeline::dispatch_2d(VkCommandBuffer cmd, uint32_t width, uint32_t height, uint32_t local) const {
   vkCmdDispatch(cmd, (width + local - 1) / local, (height + local - 1) / local, 1);
+}
+
+void Pipeline::dispatch_1d(VkCommandBuffer cmd, uint64_t count, uint32_t local) const {
+  const uint64_t groups = (count + local - 1) / local;
+  if (groups == 0) return;
+  const uint32_t x = uint32_t(std::min<uint64_t>(groups, 65535));
+  vkCmdDispatch(cmd, x, uint32_t((groups + x - 1) / x), 1);
 }
 
 }  // namespace giq::realtime

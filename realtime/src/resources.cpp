@@ -1,5 +1,6 @@
 #include "giq/realtime/resources.h"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <utility>
@@ -76,6 +77,24 @@ void Buffer::upload(const void* data, uint64_t bytes, uint64_t offset) {
     VkBufferCopy c{0, offset, bytes};
     vkCmdCopyBuffer(cmd, staging.handle(), buffer_, 1, &c);
   });
+}
+
+void Buffer::upload_ranges(const void* image, const std::vector<VkBufferCopy>& given) {
+  std::vector<VkBufferCopy> ranges;  // without empty ones, which a copy command may not hold
+  uint64_t end = 0;
+  for (const VkBufferCopy& r : given) {
+    if (r.srcOffset != r.dstOffset || r.dstOffset + r.size > size_) throw std::logic_error("Buffer::upload_ranges: a range past the end or moved");
+    if (r.size > 0) ranges.push_back(r), end = std::max(end, r.dstOffset + r.size);
+  }
+  if (ranges.empty()) return;
+  const char* bytes = static_cast<const char*>(image);
+  if (alloc_.mapped) {
+    for (const VkBufferCopy& r : ranges) std::memcpy(static_cast<char*>(alloc_.mapped) + r.dstOffset, bytes + r.srcOffset, r.size);
+    return;
+  }
+  Buffer staging(*ctx_, end, 0, MemoryUsage::Upload);
+  for (const VkBufferCopy& r : ranges) std::memcpy(static_cast<char*>(staging.mapped()) + r.srcOffset, bytes + r.srcOffset, r.size);
+  ctx_->submit_and_wait([&](VkCommandBuffer cmd) { vkCmdCopyBuffer(cmd, staging.handle(), buffer_, uint32_t(ranges.size()), ranges.data()); });
 }
 
 std::vector<uint8_t> Buffer::download() const {

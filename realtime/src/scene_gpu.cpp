@@ -8,6 +8,7 @@
 #include "giq/base/error.h"
 #include "giq/realtime/context.h"
 #include "giq/realtime/shader.h"
+#include "giq/realtime/timer.h"
 #include "shaders/scene_shared.h"
 
 namespace giq::realtime {
@@ -77,30 +78,79 @@ uint64_t mip_chain_texels(uint32_t width, uint32_t height, uint32_t levels) {
 }
 
 SceneGpu::SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& scene)
-    : ctx_(&ctx), features_(scene.features) {
+    : ctx_(&ctx), compiler_(&compiler), features_(scene.features) {
   std::vector<uint32_t> levels;
   upload_materials(scene, levels);
   upload_geometry(scene, flatten(scene));
   previous_vertices_ = Buffer::storage(ctx, vertices_host_);
+  make_deformer(scene);
+  if (deformer_) ctx.submit_and_wait([&](VkCommandBuffer cmd) { record_deformation(cmd, false, true); });
   upload_lights(scene);
   make_mips(compiler, scene, levels);
 }
 
 SceneChange SceneGpu::update(const scenes::Scene& posed) {
-  // The previous frame's vertices, for motion vectors: what is current now, before it moves.
-  previous_vertices_.upload(vertices_host_.data(), vertices_host_.size() * sizeof(glm::vec4));
   SceneChange change = SceneChange::None;
   FlatGeometry g = flatten(posed);
-  if (g.positions != geometry_.positions || g.normals != geometry_.normals) {
+  // The deforming meshes keep their places in the vertex array (they keep every vertex), unless
+  // a rigid mesh before them changed its vertex count; then the pass is made anew.
+  const bool keep_deformed = deformer_ && g.mesh_first_vertex == geometry_.mesh_first_vertex &&
+                             g.positions.size() == geometry_.positions.size();
+  // The previous frame's vertices, for motion vectors: what is current now, before it moves.
+  // The deformation pass saves its own vertices' before overwriting them.
+  if (keep_deformed)
+    previous_vertices_.upload_ranges(vertices_host_.data(), rigid_ranges_);
+  else
+    previous_vertices_.upload(vertices_host_.data(), vertices_host_.size() * sizeof(glm::vec4));
+  const bool moved = g.positions != geometry_.positions || g.normals != geometry_.normals;
+  if (moved) {
     const bool same_triangles = g.triangles == geometry_.triangles && g.positions.size() == geometry_.positions.size();
-    upload_geometry(posed, std::move(g), same_triangles);
+    upload_geometry(posed, std::move(g), same_triangles, keep_deformed);
     change = SceneChange::Geometry;
+  }
+  if (deformer_) {
+    if (!keep_deformed) make_deformer(posed);
+    deformer_->set_pose(posed);
+    // Every frame, moved or not, so that the previous vertices become the current ones.
+    ctx_->submit_and_wait([&](VkCommandBuffer cmd) { record_deformation(cmd, keep_deformed, moved); });
   }
   if (upload_lights(posed) && change == SceneChange::None) change = SceneChange::Lights;
   return change;
 }
 
-void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bool may_refit) {
+void SceneGpu::make_deformer(const scenes::Scene& scene) {
+  deformer_.reset();
+  rigid_ranges_.clear();
+  if (std::none_of(scene.meshes.begin(), scene.meshes.end(), [](const scenes::Mesh& m) { return m.deformation.has_value(); })) return;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (scene.meshes[m].deformation) continue;
+    const uint64_t first = geometry_.mesh_first_vertex[m] * sizeof(gpu::GpuVertex);
+    const uint64_t bytes = scene.meshes[m].positions.size() * sizeof(gpu::GpuVertex);
+    if (!rigid_ranges_.empty() && rigid_ranges_.back().dstOffset + rigid_ranges_.back().size == first)
+      rigid_ranges_.back().size += bytes;
+    else
+      rigid_ranges_.push_back({first, first, bytes});
+  }
+  deformer_ = std::make_unique<Deformer>(*ctx_, *compiler_, scene, geometry_, needs_textures(scene.features));
+  if (!refitter_) {
+    refitter_ = std::make_unique<BvhRefitter>(*ctx_, *compiler_);
+    refitter_->set_tree(bvh_);
+  }
+}
+
+void SceneGpu::record_deformation(VkCommandBuffer cmd, bool save_previous, bool refit, GpuTimer* timer) const {
+  if (!deformer_) return;
+  if (timer) timer->begin(cmd, "deform");
+  deformer_->record(cmd, vertices_, previous_vertices_, vertex_extra_, save_previous);
+  if (timer) timer->end(cmd);
+  full_barrier(cmd);
+  if (!refit) return;
+  if (timer) timer->begin(cmd, "bvh refit");
+  refitter_->record(cmd, vertices_, triangles_, nodes_, prims_);
+  if (timer) timer->end(cmd);
+}
+
+void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bool may_refit, bool keep_deformed) {
   using namespace gpu;
   Context& ctx = *ctx_;
   geometry_ = std::move(flat);
@@ -117,6 +167,7 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
   if (last_bvh_update_ == BvhUpdate::Built) {
     bvh_ = build_bvh(geometry_.positions, geometry_.triangles);
     built_cost_ = sah_cost(bvh_);
+    if (refitter_) refitter_->set_tree(bvh_);
   }
 
   static_assert(sizeof(GpuVertex) == 2 * sizeof(glm::vec4));
@@ -181,7 +232,10 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
   static_assert(sizeof(GpuBvhNode) == sizeof(BvhNode));
   std::memcpy(nodes.data(), bvh_.nodes.data(), nodes.size() * sizeof(GpuBvhNode));
 
-  vertices_ = Buffer::storage(ctx, vertices_host_);
+  if (keep_deformed)
+    vertices_.upload_ranges(vertices_host_.data(), rigid_ranges_);
+  else
+    vertices_ = Buffer::storage(ctx, vertices_host_);
   triangles_ = Buffer::storage(ctx, triangles);
   nodes_ = Buffer::storage(ctx, nodes);
   prims_ = Buffer::storage(ctx, bvh_.prims);

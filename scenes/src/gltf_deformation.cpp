@@ -6,8 +6,7 @@
 
 namespace giq::scenes::gltf {
 
-void load_deformation(const Context& ctx, const tinygltf::Primitive& p, const std::string& w, bool quantized, PrimitiveSource& out) {
-  const size_t n = out.positions.size();
+void load_deformation(const Context& ctx, const tinygltf::Primitive& p, const std::string& w, bool quantized, size_t n, DeformationRest& out) {
   auto count_of = [&](const AccessorData& d, const std::string& field) {
     if (d.count != n) ctx.fail(field, "has " + std::to_string(d.count) + " elements; POSITION has " + std::to_string(n));
   };
@@ -15,7 +14,7 @@ void load_deformation(const Context& ctx, const tinygltf::Primitive& p, const st
   // integers ("Extending Morph Target Attributes").
   const AccessorRule delta_rule{{TINYGLTF_TYPE_VEC3}, true, false, quantized, false, quantized};
   for (size_t k = 0; k < p.targets.size(); ++k) {
-    MorphTargetSource t;
+    MorphTarget t;
     const std::string tw = w + ".targets[" + std::to_string(k) + "]";
     for (const auto& [name, index] : p.targets[k]) {
       std::vector<glm::vec3>* into = name == "POSITION" ? &t.positions : name == "NORMAL" ? &t.normals : name == "TANGENT" ? &t.tangents : nullptr;
@@ -148,13 +147,14 @@ void load_skins(const Context& ctx, SceneSource& src) {
     for (size_t p = 0; p < prims.size(); ++p) {
       const std::string pw = index_path("meshes", size_t(n.mesh)) + ".primitives[" + std::to_string(p) + "]";
       if (prims[p].dropped || prims[p].triangles.empty()) continue;
-      if (prims[p].joints.empty()) ctx.fail(pw + ".attributes.JOINTS_0", "missing; node " + std::to_string(i) + " skins this mesh, which needs JOINTS_0 and WEIGHTS_0");
-      for (size_t set = 0; set < prims[p].joints.size(); ++set)
-        for (size_t v = 0; v < prims[p].joints[set].size(); ++v)
+      const DeformationRest* d = prims[p].deformation.get();
+      if (d == nullptr || !d->has_joints()) ctx.fail(pw + ".attributes.JOINTS_0", "missing; node " + std::to_string(i) + " skins this mesh, which needs JOINTS_0 and WEIGHTS_0");
+      for (size_t set = 0; set < d->joints.size(); ++set)
+        for (size_t v = 0; v < d->joints[set].size(); ++v)
           for (int c = 0; c < 4; ++c)
-            if (prims[p].joints[set][v][c] >= joints && prims[p].weights[set][v][c] > 0.0f)
+            if (d->joints[set][v][c] >= joints && d->weights[set][v][c] > 0.0f)
               ctx.fail(pw + ".attributes.JOINTS_" + std::to_string(set),
-                       "element " + std::to_string(v) + " names joint " + std::to_string(prims[p].joints[set][v][c]) + "; skins[" + std::to_string(g.skin) + "] has " + std::to_string(joints));
+                       "element " + std::to_string(v) + " names joint " + std::to_string(d->joints[set][v][c]) + "; skins[" + std::to_string(g.skin) + "] has " + std::to_string(joints));
     }
   }
 }

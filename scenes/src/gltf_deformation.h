@@ -11,11 +11,11 @@
 
 namespace giq::scenes::gltf {
 
-// A primitive's morph targets and JOINTS_k/WEIGHTS_k sets into `out` (whose positions are
-// read). Each vertex's weights are divided by their sum, which the spec requires to be 1 and
+// The morph targets and JOINTS_k/WEIGHTS_k sets of a primitive of `n` vertices into `out`.
+// Each vertex's weights are divided by their sum, which the spec requires to be 1 and
 // quantised or hand-edited files miss; a vertex whose weights are all zero is given to its
 // first joint. Both are reported as warnings when they change anything beyond quantisation.
-void load_deformation(const Context& ctx, const tinygltf::Primitive& p, const std::string& w, bool quantized, PrimitiveSource& out);
+void load_deformation(const Context& ctx, const tinygltf::Primitive& p, const std::string& w, bool quantized, size_t n, DeformationRest& out);
 
 // src.skins from the document's skins, and every node's skin and morph weights checked
 // against its mesh: a skinned node's primitives carry joints within its skin, and no

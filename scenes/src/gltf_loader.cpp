@@ -263,7 +263,8 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
         out.colors.emplace_back(c[0], c[1], c[2], d.components == 4 ? c[3] : 1.0);
       }
   }
-  load_deformation(ctx, p, w, quantized, out);
+  DeformationRest deformation;
+  load_deformation(ctx, p, w, quantized, out.positions.size(), deformation);
   std::vector<uint32_t> idx;
   if (p.indices >= 0) {
     const AccessorData d = read_accessor(ctx, p.indices, w + ".indices", {{TINYGLTF_TYPE_SCALAR}, false, false, false, true});
@@ -281,16 +282,20 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
   // area under any transform, since equal inputs transform to equal outputs: dropped here
   // once, not per instance and per frame (a few sparse bytes can declare a million of them).
   // Equal positions may part under morph targets or joints, so there only equal indices count.
-  const bool deforms = !out.targets.empty() || !out.joints.empty();
+  const bool deforms = !deformation.targets.empty() || deformation.has_joints();
   std::erase_if(out.triangles, [&](const glm::uvec3& t) {
     const glm::vec3 &a = out.positions[t.x], &b = out.positions[t.y], &c = out.positions[t.z];
     const bool collapsed = t.x == t.y || t.y == t.z || t.x == t.z || (!deforms && (a == b || b == c || a == c));
     out.collapsed_triangles += collapsed;
     return collapsed;
   });
-  if (out.triangles.empty())
-    out.positions.clear(), out.normals.clear(), out.tangents.clear(), out.uvs.clear(), out.uvs2.clear(), out.colors.clear(), out.targets.clear(),
-        out.joints.clear(), out.weights.clear();
+  if (out.triangles.empty()) {
+    out.positions.clear(), out.normals.clear(), out.tangents.clear(), out.uvs.clear(), out.uvs2.clear(), out.colors.clear();
+  } else if (deforms) {
+    deformation.positions = out.positions, deformation.normals = out.normals, deformation.tangents = out.tangents;
+    deformation.triangles = out.triangles;
+    out.deformation = std::make_shared<const DeformationRest>(std::move(deformation));
+  }
   ctx.decoded_accessors.clear();
   return out;
 }

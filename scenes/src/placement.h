@@ -17,6 +17,10 @@ struct PlacedVertices {
   // The placement mirrors the primitive (negative determinant), so that its winding is
   // reversed: for a skin, where most of the vertices are mirrored.
   bool mirrored = false;
+  // A deforming primitive's matrices (Deformation::joints before taking them relative to the
+  // origin): its skin's joint matrices, or its one transform; empty for a rigid primitive.
+  std::vector<glm::dmat4> matrices;
+  bool skinned = false;  // by its node's skin
 };
 
 // Primitive `p` of node `node` (which holds its mesh) at the instant of `nodes`. `M` is the

@@ -49,7 +49,7 @@ void emit_mesh(const PrimitiveSource& p, const PlacedVertices& placed, glm::dvec
   // A deforming primitive keeps every vertex at its index in every frame, whatever triangles
   // collapse in this one, so that a vertex's previous position (motion vectors) is found at
   // the same index.
-  const bool stable = !p.targets.empty() || !p.joints.empty();
+  const bool stable = p.deformation != nullptr;
 
   std::vector<glm::vec3> pos(placed.positions.size());
   for (size_t i = 0; i < pos.size(); ++i) {
@@ -137,6 +137,20 @@ void emit_mesh(const PrimitiveSource& p, const PlacedVertices& placed, glm::dvec
     if (kept[k]) m.triangles.emplace_back(remap[tris[k].x], remap[tris[k].y], remap[tris[k].z]);
 }
 
+// What a renderer deforming on its own needs at this instant (Mesh::deformation).
+Deformation deformation(const PrimitiveSource& p, const PlacedVertices& placed, const std::vector<double>& weights, glm::dvec3 origin) {
+  Deformation d;
+  d.rest = p.deformation;
+  d.mirrored = placed.mirrored;
+  d.skinned = placed.skinned;
+  glm::dmat4 local(1.0);
+  local[3] = glm::dvec4(-origin, 1.0);
+  for (const glm::dmat4& J : placed.matrices) d.joints.push_back(glm::mat4(local * J));
+  d.weights.assign(p.deformation->targets.size(), 0.0f);
+  for (size_t k = 0; k < d.weights.size() && k < weights.size(); ++k) d.weights[k] = float(weights[k]);
+  return d;
+}
+
 }  // namespace
 
 void check_instanced_size(const SceneSource& src) {
@@ -197,6 +211,7 @@ void pose(const SceneSource& src, const NodePose& nodes, Scene& out) {
           if (size_t(n.mesh) < src.area_shapes.size()) m.area_shape = src.area_shapes[size_t(n.mesh)];
           const PlacedVertices placed = place(src, prims[k], nodes, i, n.instances.empty() ? M : M * n.instances[instance]);
           emit_mesh(prims[k], placed, out.origin, m, out.stats.degenerate_triangles_dropped);
+          if (prims[k].deformation) m.deformation = deformation(prims[k], placed, nodes.weights[size_t(i)], out.origin);
           out.meshes.push_back(std::move(m));
         }
     }

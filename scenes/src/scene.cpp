@@ -145,9 +145,9 @@ void Scene::derive() {
     features.alpha_mask |= mat.alpha_mode != AlphaMode::Opaque;
     features.double_sided |= mat.double_sided;
     features.one_sided |= !mat.double_sided;
-    if (source_ && m.node >= 0) {
-      features.skinning |= source_->nodes[size_t(m.node)].skin >= 0;
-      features.morph_targets |= !source_->meshes[size_t(m.mesh)][size_t(m.primitive)].targets.empty();
+    if (m.deformation) {
+      features.skinning |= m.deformation->skinned;
+      features.morph_targets |= !m.deformation->rest->targets.empty();
     }
     if (!mat.is_emissive()) continue;
     // k^2 <= 2^24 / triangles samples per triangle, so averaging stays bounded (about 2^24

@@ -5,18 +5,13 @@
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "giq/scenes/scene.h"
 
 namespace giq::scenes {
-
-// One morph target's displacements (glTF 2.0 spec, 3.7.2.2 "Morph Targets"): each list empty or
-// one per vertex; TANGENT displaces xyz only.
-struct MorphTargetSource {
-  std::vector<glm::vec3> positions, normals, tangents;
-};
 
 // One glTF primitive expanded to triangles, in its mesh's frame.
 struct PrimitiveSource {
@@ -29,11 +24,10 @@ struct PrimitiveSource {
   size_t collapsed_triangles = 0;     // dropped when loaded: two equal corners, no area in any pose
   int material = 0;                   // index into Scene::materials
   bool dropped = false;               // points or lines: no Mesh is made from it
-  std::vector<MorphTargetSource> targets;
-  // JOINTS_k and WEIGHTS_k (glTF 2.0 spec, 3.7.3 "Skins"), one entry per set k, one element
-  // per vertex: four indices into the skin's joints and their weights.
-  std::vector<std::vector<glm::uvec4>> joints;
-  std::vector<std::vector<glm::vec4>> weights;
+  // Morph targets and skin joints (glTF 2.0 spec, 3.7.2.2 and 3.7.3), with a copy of the rest
+  // vertices that renderers deforming on their own read (Mesh::deformation); null for a rigid
+  // primitive. Joint indices are into the node's skin's joints.
+  std::shared_ptr<const DeformationRest> deformation;
 };
 
 // glTF 2.0 spec, 3.7.3 "Skins": joint nodes and their inverse bind matrices (identity when the

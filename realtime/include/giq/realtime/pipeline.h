@@ -59,6 +59,10 @@ class Pipeline {
   }
   // Dispatches enough 8x8 (or `local` sized) groups to cover width x height.
   void dispatch_2d(VkCommandBuffer cmd, uint32_t width, uint32_t height, uint32_t local = 8) const;
+  // Dispatches enough groups of `local` invocations to cover `count` items, folded into rows
+  // of at most 65535 groups (the guaranteed maxComputeWorkGroupCount): the shader's item is
+  // (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * local + gl_LocalInvocationID.x.
+  void dispatch_1d(VkCommandBuffer cmd, uint64_t count, uint32_t local = 64) const;
 
  private:
   void release();

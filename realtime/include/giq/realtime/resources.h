@@ -42,6 +42,9 @@ class Buffer {
 
   // Copies host data in: directly when mapped, else through a staging buffer (blocking).
   void upload(const void* data, uint64_t bytes, uint64_t offset = 0);
+  // Copies the given byte ranges of `image` (the whole buffer's contents as the host holds
+  // them) to the same offsets, leaving the rest as it is; one staging copy when not mapped.
+  void upload_ranges(const void* image, const std::vector<VkBufferCopy>& ranges);
   // Copies the buffer out (blocking; through a read-back buffer when not mapped).
   std::vector<uint8_t> download() const;
 

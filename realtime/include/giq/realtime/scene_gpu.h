@@ -3,17 +3,22 @@
 // lights, the emissive triangles with their power CDF and, for textured scenes, texture
 // coordinates, tangents and texels, bound as bindings 0..9 of any pipeline that reads the
 // scene (shaders/scene_shared.h, shaders/scene.glsl). An animated scene is uploaded once and
-// then updated per frame with the posed scene: what moved is re-uploaded (and the BVH rebuilt
-// when geometry moved), so pipelines must take descriptors() when they record, never keep
-// them across frames.
+// then updated per frame with the posed scene: what moved is re-uploaded (and the BVH refitted
+// or rebuilt when geometry moved), so pipelines must take descriptors() when they record,
+// never keep them across frames. Skinned and morphing meshes are deformed on the GPU
+// (Deformer) from their rest pose each frame, and the BVH's bounds refitted there after it
+// (BvhRefitter).
 //
 // All meshes are concatenated in Scene::meshes order; a triangle's global index (reported by
 // ray queries) is its mesh's offset plus its index in the mesh.
 
 #include <glm/glm.hpp>
+#include <memory>
 #include <vector>
 
 #include "giq/realtime/bvh.h"
+#include "giq/realtime/bvh_refitter.h"
+#include "giq/realtime/deformer.h"
 #include "giq/realtime/pipeline.h"
 #include "giq/realtime/resources.h"
 #include "giq/realtime/technique.h"
@@ -49,6 +54,7 @@ TexelPacking pack_texels(const std::vector<uint64_t>& words, uint64_t chunk_word
 uint32_t mip_levels(uint32_t width, uint32_t height);
 uint64_t mip_chain_texels(uint32_t width, uint32_t height, uint32_t levels);
 
+class GpuTimer;
 class ShaderCompiler;
 
 class SceneGpu {
@@ -68,6 +74,8 @@ class SceneGpu {
   uint32_t triangle_count() const { return triangle_count_; }
   uint32_t light_count() const { return light_count_; }
   uint32_t emissive_count() const { return emissive_count_; }
+  // The tree as built or refitted on the CPU; with deforming meshes, the GPU's copy has the
+  // same topology and bounds refitted to the vertices the GPU deformed.
   const Bvh& bvh() const { return bvh_; }
   // How the last geometry change reached the BVH: built anew, or refitted (the same triangles
   // moved: skinning, morph targets, rigid animation) while the refitted tree's SAH cost stays
@@ -79,6 +87,18 @@ class SceneGpu {
   // GpuVertex array of the frame before the last update() (the current one before any), for
   // motion vectors.
   const Buffer& previous_vertices() const { return previous_vertices_; }
+  // The GpuVertex array, the GpuVertexExtra array (textured scenes) and the BVH's nodes as the
+  // GPU holds them (tests compare deformed vertices and refitted bounds with the CPU's).
+  const Buffer& vertices() const { return vertices_; }
+  const Buffer& vertex_extra() const { return vertex_extra_; }
+  const Buffer& bvh_nodes() const { return nodes_; }
+  // Vertices deformed on the GPU each frame (0 without skins and morph targets).
+  uint32_t deformed_vertex_count() const { return deformer_ ? deformer_->vertex_count() : 0; }
+  // Records what update() runs for deforming meshes: the deformation pass at the pose of the
+  // last update (`save_previous`: copying each vertex to the previous vertices first), then,
+  // when `refit`, the BVH refit, each between timestamps of `timer` when given ("deform",
+  // "bvh refit"). Nothing without deforming meshes.
+  void record_deformation(VkCommandBuffer cmd, bool save_previous, bool refit, GpuTimer* timer = nullptr) const;
   const FlatGeometry& geometry() const { return geometry_; }
   const scenes::Bounds& bounds() const { return bounds_; }  // of the geometry now uploaded
   // The FeatureSet the scene was uploaded for; passes compile their shaders with its defines.
@@ -91,11 +111,20 @@ class SceneGpu {
  private:
   void upload_materials(const scenes::Scene& scene, std::vector<uint32_t>& mip_levels);
   void make_mips(ShaderCompiler& compiler, const scenes::Scene& scene, const std::vector<uint32_t>& mip_levels);
-  // `may_refit`: the triangles are those of the BVH already built, only moved.
-  void upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bool may_refit = false);
+  // `may_refit`: the triangles are those of the BVH already built, only moved. `keep_deformed`:
+  // the deforming meshes' vertices stay where they are in the buffers (the deformation pass
+  // writes them), only the others are uploaded.
+  void upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bool may_refit = false, bool keep_deformed = false);
+  // The deformer for `scene`'s deforming meshes (none without), and the vertex ranges of the
+  // other meshes.
+  void make_deformer(const scenes::Scene& scene);
   bool upload_lights(const scenes::Scene& scene);  // false when nothing changed
 
   Context* ctx_;
+  ShaderCompiler* compiler_;
+  std::unique_ptr<Deformer> deformer_;
+  std::unique_ptr<BvhRefitter> refitter_;
+  std::vector<VkBufferCopy> rigid_ranges_;  // bytes of the GpuVertex array that no deformation writes
   FlatGeometry geometry_;
   scenes::Bounds bounds_;
   scenes::FeatureSet features_;

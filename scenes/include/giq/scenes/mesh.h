@@ -4,8 +4,11 @@
 
 #include <glm/glm.hpp>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "giq/scenes/deformation.h"
 
 namespace giq::scenes {
 
@@ -36,6 +39,9 @@ struct Mesh {
   std::vector<glm::vec2> uvs, uvs2;
   std::vector<glm::vec4> colors;      // COLOR_0, linear RGBA multiplying the base colour; empty when absent
   std::vector<glm::uvec3> triangles;  // vertex indices; degenerate triangles removed
+  // A skinned or morphing mesh: how its vertices are made from its rest pose at this instant
+  // (deformation.h); empty for a rigid one.
+  std::optional<Deformation> deformation;
 
   size_t triangle_count() const { return triangles.size(); }
   // Texture coordinates at barycentrics (b1, b2) of triangle t in the first or second mapping,
