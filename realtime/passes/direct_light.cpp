@@ -29,21 +29,9 @@ DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
       shadows_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.bounds, uint32_t(ci.parameters.get_int("shadow_map_size"))) {
   shadows_.set_split_lambda(float(ci.parameters.get("cascade_split_lambda")));
   shadows_.set_cache_static(ci.parameters.get_int("cache_static_shadows") != 0);
-  // Shadow sources: the punctual lights in scene order, then one cube per area light.
-  for (const auto& l : ci.scene.lights)
-    light_layer_.push_back(l.type == scenes::LightType::Directional ? shadows_.add_cascades(l.direction)
-                                                                     : shadows_.add_cube(l.position));
   build_area_lights(ci.scene);
-  // Each area light's cube leaves out the emitter itself: from the centre of a closed emitter
-  // its own faces would shadow everything.
-  for (size_t i = 0; i < area_lights_.size(); ++i) {
-    const uint32_t mesh = ci.scene.area_lights[i].mesh;
-    const glm::uvec2 skip(ci.scene_gpu.geometry().mesh_first_vertex[mesh], uint32_t(ci.scene.meshes[mesh].positions.size()));
-    area_lights_[i].position.w = float(shadows_.add_cube(glm::vec3(area_lights_[i].position), skip));
-  }
-
+  declare_shadows(ci.scene);
   direct_ = Image(ci.ctx, {width_, height_, 1, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT});
-  light_layer_buffer_ = Buffer::storage(ci.ctx, light_layer_);
   upload_area_lights(ci.ctx);
 
   auto bindings = GBufferPass::receiver_bindings();
@@ -54,6 +42,22 @@ DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
   pipeline_ = Pipeline::compute(
       ci.ctx, ci.compiler.compile("passes/direct_light.comp", feature_defines(ci.scene.features)), bindings,
       sizeof(gpu::DirectPush));
+}
+
+void DirectLightPass::declare_shadows(const scenes::Scene& scene) {
+  // Shadow sources: the punctual lights in scene order, then one cube per area light.
+  shadows_.clear();
+  light_layer_.clear();
+  for (const auto& l : scene.lights)
+    light_layer_.push_back(l.type == scenes::LightType::Directional ? shadows_.add_cascades(l.direction) : shadows_.add_cube(l.position));
+  // Each area light's cube leaves out the emitter itself: from the centre of a closed emitter
+  // its own faces would shadow everything.
+  for (size_t i = 0; i < area_lights_.size(); ++i) {
+    const uint32_t mesh = scene.area_lights[i].mesh;
+    const glm::uvec2 skip(scene_gpu_.geometry().mesh_first_vertex[mesh], uint32_t(scene.meshes[mesh].positions.size()));
+    area_lights_[i].position.w = float(shadows_.add_cube(glm::vec3(area_lights_[i].position), skip));
+  }
+  light_layer_buffer_ = Buffer::storage(*ctx_, light_layer_);
 }
 
 void DirectLightPass::upload_area_lights(Context& ctx) {
@@ -67,16 +71,25 @@ void DirectLightPass::follow(const scenes::Scene& scene, SceneChange change) {
     shadows_.move(i, l.type == scenes::LightType::Directional ? l.direction : l.position);
   }
   if (change != SceneChange::Geometry) return;
-  // Emissive meshes moved: rebuild the area lights, keeping each one's shadow layers.
+  // Emissive meshes moved: rebuild the area lights, keeping each one's shadow layers while
+  // there are as many (particles come and go by stage of life: then the shadow maps are
+  // declared anew). A light's mesh may have moved in the vertex array or changed in size.
   std::vector<float> layers;
   for (const auto& a : area_lights_) layers.push_back(a.position.w);
+  const size_t before = area_lights_.size();
   area_lights_.clear();
   area_triangles_.clear();
   build_area_lights(scene);
   shadows_.set_bounds(scene.bounds);
-  for (size_t i = 0; i < area_lights_.size(); ++i) {
-    area_lights_[i].position.w = layers.at(i);
-    shadows_.move(scene.lights.size() + i, glm::vec3(area_lights_[i].position));
+  if (area_lights_.size() == before) {
+    for (size_t i = 0; i < area_lights_.size(); ++i) {
+      const uint32_t mesh = scene.area_lights[i].mesh;
+      area_lights_[i].position.w = layers[i];
+      shadows_.move(scene.lights.size() + i, glm::vec3(area_lights_[i].position));
+      shadows_.set_skip(scene.lights.size() + i, glm::uvec2(scene_gpu_.geometry().mesh_first_vertex[mesh], uint32_t(scene.meshes[mesh].positions.size())));
+    }
+  } else {
+    declare_shadows(scene);
   }
   upload_area_lights(*ctx_);
 }

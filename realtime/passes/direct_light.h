@@ -48,6 +48,8 @@ class DirectLightPass {
 
  private:
   void build_area_lights(const scenes::Scene& scene);
+  // The shadow sources of the scene's lights and of area_lights_ (their layers into them).
+  void declare_shadows(const scenes::Scene& scene);
   void upload_area_lights(Context& ctx);
   void follow(const scenes::Scene& scene, SceneChange change);
 

@@ -65,6 +65,20 @@ void ShadowMaps::move(size_t source, glm::vec3 v) {
   }
 }
 
+void ShadowMaps::set_skip(size_t source, glm::uvec2 skip) {
+  const Source& s = sources_.at(source);
+  if (!s.cube || skip_[s.first_layer] == skip) return;
+  std::fill(skip_.begin() + s.first_layer, skip_.begin() + s.first_layer + 6, skip);
+  cubes_stale_ = true;
+}
+
+void ShadowMaps::clear() {
+  sources_.clear(), layers_.clear(), params_.clear(), skip_.clear();
+  depth_ = Image();
+  layer_buffer_ = Buffer();
+  cubes_stale_ = true;
+}
+
 void ShadowMaps::set_bounds(const scenes::Bounds& bounds) {
   bounds_ = bounds;
   for (const auto& s : sources_)

@@ -48,6 +48,10 @@ class ShadowMaps {
   // Moves source `source` (numbered in the order of the add_ calls) to a new position (cube)
   // or direction (cascades), for a light that moved.
   void move(size_t source, glm::vec3 v);
+  // The vertices cube `source` leaves out (add_cube's `skip`) moved or changed in number.
+  void set_skip(size_t source, glm::uvec2 skip);
+  // Forgets every source, to declare them anew (the set of lights changed).
+  void clear();
   // The geometry moved: new scene bounds, and every cube map is re-rendered.
   void set_bounds(const scenes::Bounds& bounds);
 

@@ -92,6 +92,18 @@ Deformer::Deformer(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& 
   set_pose(scene);
 }
 
+std::vector<std::pair<uint32_t, uint32_t>> Deformer::ranges() const {
+  std::vector<std::pair<uint32_t, uint32_t>> out;
+  for (size_t k = 0; k < meshes_.size(); ++k) out.emplace_back(records_host_[4 * k].z, records_host_[4 * k].y);
+  return out;
+}
+
+bool Deformer::fits(const FlatGeometry& g) const {
+  for (size_t k = 0; k < meshes_.size(); ++k)
+    if (meshes_[k] >= g.mesh_first_vertex.size() || g.mesh_first_vertex[meshes_[k]] != records_host_[4 * k].z) return false;
+  return true;
+}
+
 void Deformer::set_pose(const scenes::Scene& posed) {
   if (empty()) return;
   std::vector<glm::mat4> matrices;

@@ -92,17 +92,36 @@ SceneGpu::SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& 
 SceneChange SceneGpu::update(const scenes::Scene& posed) {
   SceneChange change = SceneChange::None;
   FlatGeometry g = flatten(posed);
-  // The deforming meshes keep their places in the vertex array (they keep every vertex), unless
-  // a rigid mesh before them changed its vertex count; then the pass is made anew.
-  const bool keep_deformed = deformer_ && g.mesh_first_vertex == geometry_.mesh_first_vertex &&
-                             g.positions.size() == geometry_.positions.size();
-  // The previous frame's vertices, for motion vectors: what is current now, before it moves.
-  // The deformation pass saves its own vertices' before overwriting them.
-  if (keep_deformed)
-    previous_vertices_.upload_ranges(vertices_host_.data(), rigid_ranges_);
-  else
-    previous_vertices_.upload(vertices_host_.data(), vertices_host_.size() * sizeof(glm::vec4));
   const bool moved = g.positions != geometry_.positions || g.normals != geometry_.normals;
+  // The deforming meshes keep their places in the vertex array (they keep every vertex) unless
+  // a mesh before them changed its vertex count; then the pass is made anew. (Particles, whose
+  // count changes every frame, come after every mesh of the file.)
+  const bool keep_deformed = deformer_ && deformer_->fits(g);
+  if (keep_deformed) rigid_ranges_ = rigid_ranges(posed, g);
+
+  // The previous frame's vertices in this frame's layout, for motion vectors: a mesh whose
+  // vertices are where they were keeps its last ones; particles (a particle is not at the same
+  // index from frame to frame) and meshes whose vertex count changed get this frame's, that is
+  // no motion. The deformation pass saves its own vertices' before overwriting them.
+  std::vector<glm::vec4> previous = vertex_rows(g);
+  for (size_t m = 0; m < posed.meshes.size() && m < geometry_.mesh_first_vertex.size(); ++m) {
+    if (posed.meshes[m].emitter >= 0) continue;
+    const size_t first = g.mesh_first_vertex[m], count = posed.meshes[m].positions.size();
+    const size_t old_first = geometry_.mesh_first_vertex[m];
+    const size_t old_end = m + 1 < geometry_.mesh_first_vertex.size() ? geometry_.mesh_first_vertex[m + 1] : geometry_.positions.size();
+    if (old_end - old_first != count) continue;
+    std::copy(vertices_host_.begin() + long(2 * old_first), vertices_host_.begin() + long(2 * (old_first + count)), previous.begin() + long(2 * first));
+  }
+  const uint64_t bytes = previous.size() * sizeof(glm::vec4);
+  if (keep_deformed) {
+    reserve(previous_vertices_, bytes);
+    previous_vertices_.upload_ranges(previous.data(), rigid_ranges_);
+  } else if (previous_vertices_.size() == std::max<uint64_t>(bytes, 16)) {
+    previous_vertices_.upload(previous.data(), bytes);
+  } else {
+    previous_vertices_ = Buffer::storage(*ctx_, previous);
+  }
+
   if (moved) {
     const bool same_triangles = g.triangles == geometry_.triangles && g.positions.size() == geometry_.positions.size();
     upload_geometry(posed, std::move(g), same_triangles, keep_deformed);
@@ -118,19 +137,44 @@ SceneChange SceneGpu::update(const scenes::Scene& posed) {
   return change;
 }
 
-void SceneGpu::make_deformer(const scenes::Scene& scene) {
-  deformer_.reset();
-  rigid_ranges_.clear();
-  if (std::none_of(scene.meshes.begin(), scene.meshes.end(), [](const scenes::Mesh& m) { return m.deformation.has_value(); })) return;
+std::vector<glm::vec4> SceneGpu::vertex_rows(const FlatGeometry& g) {
+  static_assert(sizeof(gpu::GpuVertex) == 2 * sizeof(glm::vec4));
+  std::vector<glm::vec4> rows;
+  rows.reserve(2 * g.positions.size());
+  for (size_t i = 0; i < g.positions.size(); ++i) rows.insert(rows.end(), {glm::vec4(g.positions[i], 1.0f), glm::vec4(g.normals[i], 0.0f)});
+  return rows;
+}
+
+std::vector<VkBufferCopy> SceneGpu::rigid_ranges(const scenes::Scene& scene, const FlatGeometry& g) {
+  std::vector<VkBufferCopy> ranges;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     if (scene.meshes[m].deformation) continue;
-    const uint64_t first = geometry_.mesh_first_vertex[m] * sizeof(gpu::GpuVertex);
+    const uint64_t first = g.mesh_first_vertex[m] * sizeof(gpu::GpuVertex);
     const uint64_t bytes = scene.meshes[m].positions.size() * sizeof(gpu::GpuVertex);
-    if (!rigid_ranges_.empty() && rigid_ranges_.back().dstOffset + rigid_ranges_.back().size == first)
-      rigid_ranges_.back().size += bytes;
+    if (!ranges.empty() && ranges.back().dstOffset + ranges.back().size == first)
+      ranges.back().size += bytes;
     else
-      rigid_ranges_.push_back({first, first, bytes});
+      ranges.push_back({first, first, bytes});
   }
+  return ranges;
+}
+
+void SceneGpu::reserve(Buffer& buffer, uint64_t bytes) {
+  if (buffer.size() >= bytes) return;
+  // Twice what is needed, so that a growing particle count rarely moves the buffer; the
+  // deformed vertices, which only the GPU holds, go along.
+  Buffer bigger(*ctx_, 2 * bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  std::vector<VkBufferCopy> deformed;
+  for (const auto& [first, count] : deformer_->ranges())
+    deformed.push_back({first * sizeof(gpu::GpuVertex), first * sizeof(gpu::GpuVertex), uint64_t(count) * sizeof(gpu::GpuVertex)});
+  ctx_->submit_and_wait([&](VkCommandBuffer cmd) { vkCmdCopyBuffer(cmd, buffer.handle(), bigger.handle(), uint32_t(deformed.size()), deformed.data()); });
+  buffer = std::move(bigger);
+}
+
+void SceneGpu::make_deformer(const scenes::Scene& scene) {
+  deformer_.reset();
+  if (std::none_of(scene.meshes.begin(), scene.meshes.end(), [](const scenes::Mesh& m) { return m.deformation.has_value(); })) return;
+  rigid_ranges_ = rigid_ranges(scene, geometry_);
   deformer_ = std::make_unique<Deformer>(*ctx_, *compiler_, scene, geometry_, needs_textures(scene.features));
   if (!refitter_) {
     refitter_ = std::make_unique<BvhRefitter>(*ctx_, *compiler_);
@@ -170,10 +214,7 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
     if (refitter_) refitter_->set_tree(bvh_);
   }
 
-  static_assert(sizeof(GpuVertex) == 2 * sizeof(glm::vec4));
-  vertices_host_.clear();
-  for (size_t i = 0; i < geometry_.positions.size(); ++i)
-    vertices_host_.insert(vertices_host_.end(), {glm::vec4(geometry_.positions[i], 1.0f), glm::vec4(geometry_.normals[i], 0.0f)});
+  vertices_host_ = vertex_rows(geometry_);
 
   // Emissive triangles: chosen by power, as the reference does; the CDF is accumulated in
   // double so that a million small lights still end at exactly 1.
@@ -232,10 +273,12 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
   static_assert(sizeof(GpuBvhNode) == sizeof(BvhNode));
   std::memcpy(nodes.data(), bvh_.nodes.data(), nodes.size() * sizeof(GpuBvhNode));
 
-  if (keep_deformed)
+  if (keep_deformed) {
+    reserve(vertices_, vertices_host_.size() * sizeof(glm::vec4));
     vertices_.upload_ranges(vertices_host_.data(), rigid_ranges_);
-  else
+  } else {
     vertices_ = Buffer::storage(ctx, vertices_host_);
+  }
   triangles_ = Buffer::storage(ctx, triangles);
   nodes_ = Buffer::storage(ctx, nodes);
   prims_ = Buffer::storage(ctx, bvh_.prims);

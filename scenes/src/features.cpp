@@ -22,6 +22,7 @@ std::vector<std::string> FeatureSet::names() const {
       {animation, "animation"},
       {skinning, "skinning"},
       {morph_targets, "morph_targets"},
+      {particles, "particles"},
   };
   std::vector<std::string> out;
   for (const auto& [present, name] : all)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <numbers>
 
 #include "giq/base/error.h"
 
@@ -130,6 +131,92 @@ void parse_leak_regions(const Reader& r, const json& a, const SceneSource& src, 
   out.leak_object_ids = std::move(ids);
 }
 
+void parse_emitters(const Reader& r, const json& a, const SceneSource& src, Extras& out) {
+  const std::string base = "extras.giq.emitters";
+  if (!a.is_array()) r.fail(base, "must be an array of emitter objects");
+  for (size_t i = 0; i < a.size(); ++i) {
+    const std::string w = base + "[" + std::to_string(i) + "]";
+    const json& o = a[i];
+    r.only_keys(o, w, {"name", "node", "rate", "lifetime", "speed", "spread_deg", "gravity", "drag", "size", "color", "emission", "strength",
+                       "stages", "seed", "max_particles"});
+    Emitter e;
+    if (!o.contains("name") || !o["name"].is_string() || o["name"].get<std::string>().empty()) r.fail(w + ".name", "missing or not a non-empty string");
+    e.name = o["name"].get<std::string>();
+    for (const Emitter& other : out.emitters)
+      if (other.name == e.name) r.fail(w + ".name", "duplicate emitter name \"" + e.name + "\"; emitter names must be unique");
+    if (!o.contains("node") || !o["node"].is_string()) r.fail(w + ".node", "missing; expected the name of the node whose mesh emits");
+    const std::string node = o["node"].get<std::string>();
+    for (size_t n = 0; n < src.nodes.size(); ++n) {
+      if (src.nodes[n].name != node) continue;
+      if (e.node >= 0) r.fail(w + ".node", "\"" + node + "\" names more than one node; expected a unique node name");
+      e.node = int(n);
+    }
+    if (e.node < 0) r.fail(w + ".node", "no node named \"" + node + "\"");
+    if (src.nodes[size_t(e.node)].mesh < 0) r.fail(w + ".node", "node \"" + node + "\" has no mesh to emit from");
+    // A number within [lo, hi] (open at lo when `open`).
+    auto number = [&](const char* key, double fallback, double lo, double hi, bool open, const char* what) {
+      if (!o.contains(key)) return fallback;
+      const double x = r.number(o[key], w + "." + key);
+      if (open ? !(x > lo && x <= hi) : !(x >= lo && x <= hi))
+        r.fail(w + "." + key, "is " + o[key].dump() + "; expected " + what);
+      return x;
+    };
+    if (!o.contains("rate")) r.fail(w + ".rate", "missing; expected particles per second");
+    e.rate = number("rate", 0.0, 0.0, 1e7, true, "particles per second in (0, 1e7]");
+    e.lifetime = number("lifetime", 1.0, 0.0, 1e4, true, "seconds in (0, 10000]");
+    e.speed = number("speed", 0.0, 0.0, 1e6, false, "metres per second in [0, 1e6]");
+    e.spread = number("spread_deg", 0.0, 0.0, 180.0, false, "degrees in [0, 180]") * std::numbers::pi / 180.0;
+    e.drag = number("drag", 0.0, 0.0, 1e4, false, "a rate per second in [0, 10000]");
+    e.size = number("size", 0.01, 0.0, 1e6, true, "metres in (0, 1e6]");
+    e.stages = int(number("stages", 8.0, 1.0, 64.0, false, "an integer from 1 to 64"));
+    if (o.contains("stages") && !o["stages"].is_number_integer()) r.fail(w + ".stages", "is " + o["stages"].dump() + "; expected an integer from 1 to 64");
+    if (o.contains("gravity")) e.gravity = r.vec3(o["gravity"], w + ".gravity");
+    if (glm::length(e.gravity) > 1e6) r.fail(w + ".gravity", "expected an acceleration below 1e6 m/s^2");
+    if (o.contains("color")) {
+      const glm::dvec3 c = r.vec3(o["color"], w + ".color");
+      if (glm::any(glm::lessThan(c, glm::dvec3(0.0))) || glm::any(glm::greaterThan(c, glm::dvec3(1.0)))) r.fail(w + ".color", "expected a base colour in [0, 1]");
+      e.color = glm::vec3(c);
+    }
+    if (o.contains("emission")) {
+      const glm::dvec3 c = r.vec3(o["emission"], w + ".emission");
+      if (glm::any(glm::lessThan(c, glm::dvec3(0.0))) || glm::any(glm::greaterThan(c, glm::dvec3(3e38)))) r.fail(w + ".emission", "expected a non-negative radiance");
+      e.emission = glm::vec3(c);
+    }
+    if (o.contains("strength")) {
+      const json& keys = o["strength"];
+      if (!keys.is_array() || keys.empty()) r.fail(w + ".strength", "expected an array of [life fraction, strength] pairs");
+      for (size_t k = 0; k < keys.size(); ++k) {
+        const std::string kw = w + ".strength[" + std::to_string(k) + "]";
+        if (!keys[k].is_array() || keys[k].size() != 2) r.fail(kw, "is " + keys[k].dump().substr(0, 80) + "; expected [life fraction, strength]");
+        StrengthKey key{r.number(keys[k][0], kw + "[0]"), r.number(keys[k][1], kw + "[1]")};
+        if (!(key.life >= 0.0 && key.life <= 1.0)) r.fail(kw + "[0]", "expected a fraction of the lifetime in [0, 1]");
+        if (!e.strength.empty() && !(key.life > e.strength.back().life)) r.fail(kw + "[0]", "expected life fractions that increase");
+        if (!(key.strength >= 0.0 && key.strength <= 1e30)) r.fail(kw + "[1]", "expected a strength >= 0");
+        e.strength.push_back(key);
+      }
+    }
+    if (o.contains("seed")) {
+      if (!o["seed"].is_number_unsigned() || o["seed"].get<uint64_t>() > 0xffffffffull) r.fail(w + ".seed", "is " + o["seed"].dump() + "; expected an integer from 0 to 4294967295");
+      e.seed = uint32_t(o["seed"].get<uint64_t>());
+    }
+    // The most alive at once: the ids born in any half-open window of `lifetime` seconds.
+    const double most = std::floor(e.rate * e.lifetime) + 1.0;
+    if (most > double(kMaxParticles))
+      r.fail(w + ".rate", "rate x lifetime = " + std::to_string(e.rate * e.lifetime) + " particles alive at once; expected at most " + std::to_string(kMaxParticles));
+    e.max_particles = uint32_t(most);
+    if (o.contains("max_particles")) {
+      const json& m = o["max_particles"];
+      if (!m.is_number_unsigned() || m.get<uint64_t>() < uint64_t(most) || m.get<uint64_t>() > kMaxParticles)
+        r.fail(w + ".max_particles", "is " + m.dump() + "; expected an integer from " + std::to_string(uint64_t(most)) + " (floor(rate x lifetime) + 1, the most alive at once) to " +
+                                         std::to_string(kMaxParticles));
+      e.max_particles = uint32_t(m.get<uint64_t>());
+    }
+    e.object_id = uint32_t(src.nodes.size() + 1 + i);
+    out.emitters.push_back(std::move(e));
+    out.emitter_fields.push_back(w);
+  }
+}
+
 }  // namespace
 
 Extras parse_extras(const Document& doc, const SceneSource& src) {
@@ -142,7 +229,8 @@ Extras parse_extras(const Document& doc, const SceneSource& src) {
   }
   if (!src.animations.empty()) out.sequence.animation = 0;  // the first clip plays unless told otherwise
   if (giq) {
-    r.only_keys(*giq, "extras.giq", {"views", "sequence", "leak_regions", "environment"});
+    r.only_keys(*giq, "extras.giq", {"views", "sequence", "leak_regions", "environment", "emitters"});
+    if (giq->contains("emitters")) parse_emitters(r, (*giq)["emitters"], src, out);
     if (giq->contains("views")) parse_views(r, (*giq)["views"], out);
     if (giq->contains("sequence")) parse_sequence(r, (*giq)["sequence"], src, out, frames_given);
     if (giq->contains("leak_regions")) parse_leak_regions(r, (*giq)["leak_regions"], src, out);

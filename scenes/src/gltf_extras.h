@@ -1,6 +1,6 @@
 #pragma once
 // The toolkit's data in the glTF root's `extras.giq` (schema in docs/scene-format.md): named
-// views, the sequence to play, leak regions and the environment. Keys are checked strictly so
+// views, the sequence to play, leak regions, the environment and particle emitters. Keys are checked strictly so
 // a typo is an error rather than a silently ignored setting.
 
 #include <glm/glm.hpp>
@@ -28,6 +28,9 @@ struct Extras {
   std::vector<uint32_t> leak_object_ids;
   glm::vec3 environment{0.0f};
   std::vector<AreaShape> area_shapes;  // per glTF mesh: meshes[i].extras.giq.area_light
+  // As declared, their node found; the loader completes them (complete_emitter).
+  std::vector<Emitter> emitters;
+  std::vector<std::string> emitter_fields;  // "extras.giq.emitters[i]", for messages
 };
 
 Extras parse_extras(const Document& doc, const SceneSource& src);

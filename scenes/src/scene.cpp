@@ -9,6 +9,7 @@
 #include "giq/base/suggest.h"
 #include "giq/base/hash.h"
 #include "giq/scenes/environment.h"
+#include "particle_geometry.h"
 #include "scene_source.h"
 
 namespace giq::scenes {
@@ -71,10 +72,22 @@ void Scene::derive_area_lights() {
     if (emissive_triangles[i].power > 0.0f) per_mesh[emissive_triangles[i].mesh].push_back(i);
   const float offset = 1e-4f * bounds.diagonal();
   for (uint32_t m = 0; m < per_mesh.size(); ++m) {
-    if (per_mesh[m].empty()) continue;
     const Mesh& mesh = meshes[m];
+    // A glowing stage of an emitter's particles is a light in every frame, even one where it
+    // has no particle (dark, at the emitter's surface), so that renderers see one set of
+    // lights through a sequence.
+    const bool stage = mesh.emitter >= 0 && materials[size_t(mesh.material)].is_emissive();
+    if (per_mesh[m].empty() && !stage) continue;
     AreaLight l;
     l.mesh = m;
+    if (per_mesh[m].empty()) {
+      const std::vector<glm::dvec3>& surface = emitters[size_t(mesh.emitter)].surface;
+      glm::dvec3 centre(0.0);
+      for (const glm::dvec3& p : surface) centre += p / double(surface.size());
+      l.centroid = l.representative = glm::vec3(centre);
+      area_lights.push_back(std::move(l));
+      continue;
+    }
     l.triangles = per_mesh[m];
     l.two_sided = materials[size_t(mesh.material)].double_sided;
     glm::vec3 normal(0.0f);
@@ -178,12 +191,14 @@ void Scene::derive() {
 
   derive_area_lights();
 
-  // The sequence moves something when the playing clip has a channel whose keys differ and
-  // there is more than one frame to see it.
+  // The sequence moves something when the playing clip has a channel whose keys differ, or an
+  // emitter emits, and there is more than one frame to see it.
   if (source_ && sequence.frames > 1 && sequence.animation >= 0 && size_t(sequence.animation) < source_->animations.size()) {
     for (const auto& c : source_->animations[size_t(sequence.animation)].channels)
       features.animation |= c.varies();
   }
+  features.particles = !emitters.empty();
+  for (const Emitter& e : emitters) features.animation |= sequence.frames > 1 && e.rate > 0.0;
 }
 
 double Scene::duration() const {
@@ -194,10 +209,16 @@ double Scene::duration() const {
 Scene Scene::at(double t) const {
   Scene s = *this;
   s.time = t;
-  if (!source_ || sequence.animation < 0) return s;
-  pose(*source_, pose_nodes(*source_, sequence.animation, t), s);
-  s.lights.insert(s.lights.end(), added_lights_.begin(), added_lights_.end());
-  s.views.insert(s.views.end(), added_views_.begin(), added_views_.end());
+  const bool animated = source_ && sequence.animation >= 0;
+  if (!animated && emitters.empty()) return s;
+  if (animated) {
+    pose(*source_, pose_nodes(*source_, sequence.animation, t), s);
+    s.lights.insert(s.lights.end(), added_lights_.begin(), added_lights_.end());
+    s.views.insert(s.views.end(), added_views_.begin(), added_views_.end());
+  } else {
+    std::erase_if(s.meshes, [](const Mesh& m) { return m.emitter >= 0; });
+  }
+  add_particle_meshes(s.emitters, t, s.meshes, path.string());
   s.derive();
   return s;
 }

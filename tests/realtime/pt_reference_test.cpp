@@ -143,6 +143,15 @@ TEST_F(PtReferenceCases, SkinnedFrameAgreesWithinNoise) {
   expect_pt_agrees(*ctx, *compiler, scene, "side", 64, 32, "blender_figure, frame 15", 15, false);
 }
 
+// Particles of the generated fountain (tests/data/scenes/generate.py) at frame 20, lit by
+// nothing but themselves: both sides render the octahedra the scene library places for that
+// frame, and the floor under them takes their light (emissive triangles sampled by power).
+TEST_F(PtReferenceCases, ParticlesAgreeWithinNoise) {
+  const scenes::Scene scene = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "fountain.gltf");
+  ASSERT_TRUE(scene.features.particles);
+  expect_pt_agrees(*ctx, *compiler, scene, "side", 64, 32, "fountain, frame 20", 20);
+}
+
 INSTANTIATE_TEST_SUITE_P(BuiltinScenes, PtReferenceTest,
                          ::testing::Values("cornell", "leak", "movinglight", "sunroom", "atrium"));
 

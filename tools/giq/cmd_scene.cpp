@@ -49,6 +49,14 @@ void print_table(const json& j) {
     else std::snprintf(b, sizeof b, "  fov %.2f deg  ", v["yfov_deg"].get<double>());
     row("  " + v["name"].get<std::string>(), v["source"].get<std::string>() + b + "from " + v3(v["position"]));
   }
+  if (!j["emitters"].empty()) std::printf("  particle emitters\n");
+  for (const auto& e : j["emitters"]) {
+    char d[160];
+    std::snprintf(d, sizeof d, "%.6g per s, %.6g s each, %d stages, at most %u alive (%llu now), objectId %u", e["rate"].get<double>(),
+                  e["lifetime_s"].get<double>(), e["stages"].get<int>(), e["max_particles"].get<unsigned>(),
+                  (unsigned long long)e["alive"].get<uint64_t>(), e["object_id"].get<unsigned>());
+    row("  " + e["name"].get<std::string>(), d);
+  }
   const auto& sq = j["sequence"];
   char b[128];
   std::snprintf(b, sizeof b, "%d frames at %.3g fps (animation %d, %.3g s)", sq["frames"].get<int>(),

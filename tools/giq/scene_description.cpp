@@ -88,6 +88,16 @@ json describe_scene(const sc::Scene& s) {
                    {"fps", s.sequence.fps},
                    {"animation", s.sequence.animation},
                    {"duration_s", s.duration()}};
+  json emitters = json::array();
+  for (const scenes::Emitter& e : s.emitters)
+    emitters.push_back({{"name", e.name},
+                        {"rate", e.rate},
+                        {"lifetime_s", e.lifetime},
+                        {"stages", e.stages},
+                        {"max_particles", e.max_particles},
+                        {"alive", scenes::alive_range(e, s.time).count()},
+                        {"object_id", e.object_id}});
+  j["emitters"] = emitters;
   j["leak_regions"] = s.leak_regions;
   j["leak_object_ids"] = s.leak_object_ids;
   j["warnings"] = s.warnings;

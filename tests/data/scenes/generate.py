@@ -445,6 +445,26 @@ def area_shapes():
     return g.finish()
 
 
+def fountain():
+    """A particle fountain: a 0.2 m square nozzle facing up 0.1 above a 4 m floor emits 200
+    particles a second (extras.giq.emitters), 1.2 s each, at 3 m/s within 15 degrees of the
+    normal, under gravity and a little drag; they glow orange, brightest a tenth into their life,
+    in four stages. 31 frames at 30 fps, with nothing animated but the particles."""
+    g = Gltf()
+    g.mesh("floor", [(-2.0, 0.0, 2.0), (2.0, 0.0, 2.0), (2.0, 0.0, -2.0), (-2.0, 0.0, -2.0)], [0, 1, 2, 0, 2, 3], [(0.0, 1.0, 0.0)] * 4)
+    g.mesh("nozzle", [(-0.1, 0.1, 0.1), (0.1, 0.1, 0.1), (0.1, 0.1, -0.1), (-0.1, 0.1, -0.1)], [0, 1, 2, 0, 2, 3], [(0.0, 1.0, 0.0)] * 4)
+    g.node(name="floor", mesh=0)
+    g.node(name="nozzle", mesh=1)
+    d = g.finish()
+    d["extras"] = {"giq": {
+        "sequence": {"frames": 31, "fps": 30},
+        "views": [{"name": "side", "eye": [0, 1, 4], "target": [0, 0.8, 0], "yfov_deg": 50}],
+        "emitters": [{"name": "fountain", "node": "nozzle", "rate": 200, "lifetime": 1.2, "speed": 3.0, "spread_deg": 15,
+                      "drag": 0.3, "size": 0.01, "color": [0.8, 0.8, 0.8], "emission": [8, 5, 2],
+                      "strength": [[0, 0], [0.1, 1], [1, 0]], "stages": 4, "seed": 7}]}}
+    return d
+
+
 def lights_cameras():
     g = Gltf()
     quad = g.mesh("floor", QUAD_P, QUAD_I, QUAD_N)
@@ -797,6 +817,14 @@ def hostile():
     case("extras_bad_eye.gltf", "extras.giq.views[0].eye", minimal(a=extras({"views": [dict(view, eye=[0, 0])]})))
     case("extras_unknown_leak_region.gltf", "extras.giq.leak_regions[0]", minimal(a=extras({"leak_regions": ["nowhere"]})))
     case("extras_unknown_animation.gltf", "extras.giq.sequence.animation", minimal(a=extras({"sequence": {"animation": "walk"}})))
+    emitter = {"name": "e", "node": "tri", "rate": 10, "lifetime": 1}
+    case("emitter_unknown_node.gltf", "extras.giq.emitters[0].node", minimal(a=extras({"emitters": [dict(emitter, node="nozzle")]})))
+    case("emitter_no_rate.gltf", "extras.giq.emitters[0].rate", minimal(a=extras({"emitters": [{"name": "e", "node": "tri"}]})))
+    case("emitter_capacity.gltf", "extras.giq.emitters[0].max_particles", minimal(a=extras({"emitters": [dict(emitter, max_particles=5)]})))
+    case("emitter_strength.gltf", "extras.giq.emitters[0].strength[1][0]",
+         minimal(a=extras({"emitters": [dict(emitter, strength=[[0.5, 1], [0.2, 0]])]})))
+    case("emitter_key.gltf", "extras.giq.emitters[0].velocity", minimal(a=extras({"emitters": [dict(emitter, velocity=[0, 1, 0])]})))
+    case("emitter_too_many.gltf", "extras.giq.emitters[0].rate", minimal(a=extras({"emitters": [dict(emitter, rate=1e7, lifetime=10)]})))
 
     tri_glb = glb(None)
     case("truncated.glb", "glb header.length", tri_glb[: len(tri_glb) // 2])
@@ -815,6 +843,7 @@ def main():
     write(os.path.join(HERE, "morphed.gltf"), morphed())
     write(os.path.join(HERE, "collapsing.gltf"), collapsing())
     write(os.path.join(HERE, "area_shapes.gltf"), area_shapes())
+    write(os.path.join(HERE, "fountain.gltf"), fountain())
     write(os.path.join(HERE, "lights_cameras.gltf"), lights_cameras())
     write(os.path.join(HERE, "materials.gltf"), materials())
     write(os.path.join(HERE, "textured_room.gltf"), textured_room())

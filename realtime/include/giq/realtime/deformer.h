@@ -7,6 +7,7 @@
 // SceneGpu runs it, then refits the BVH on the GPU (BvhRefitter).
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "giq/realtime/pipeline.h"
@@ -28,6 +29,11 @@ class Deformer {
 
   bool empty() const { return slot_count_ == 0; }
   uint32_t vertex_count() const { return slot_count_; }  // vertices deformed each frame
+
+  // The scene vertices it writes, [first, first + count) per deforming mesh; whether they are
+  // still where `g` puts its meshes.
+  std::vector<std::pair<uint32_t, uint32_t>> ranges() const;
+  bool fits(const FlatGeometry& g) const;
 
   // Brings the matrices, weights and windings to `posed` (the same scene at another instant).
   void set_pose(const scenes::Scene& posed);

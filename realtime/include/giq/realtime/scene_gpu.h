@@ -118,6 +118,11 @@ class SceneGpu {
   // The deformer for `scene`'s deforming meshes (none without), and the vertex ranges of the
   // other meshes.
   void make_deformer(const scenes::Scene& scene);
+  // GpuVertex rows of `g`; the bytes of its vertex array that no deformation writes.
+  static std::vector<glm::vec4> vertex_rows(const FlatGeometry& g);
+  static std::vector<VkBufferCopy> rigid_ranges(const scenes::Scene& scene, const FlatGeometry& g);
+  // Grows a vertex buffer to hold `bytes`, keeping its deformed vertices.
+  void reserve(Buffer& buffer, uint64_t bytes);
   bool upload_lights(const scenes::Scene& scene);  // false when nothing changed
 
   Context* ctx_;

@@ -24,6 +24,7 @@ struct FeatureSet {
   bool animation = false;     // the sequence moves something
   bool skinning = false;      // some mesh is skinned (glTF skins): its vertices move with joints
   bool morph_targets = false;  // some mesh blends morph targets
+  bool particles = false;      // the scene declares particle emitters (Scene::emitters)
 
   // Stable lower-case names of the features present, e.g. {"point_lights", "specular"}; used
   // for `giq scene info`, shader #defines (upper-cased, "GIQ_" prefixed) and reports.

@@ -28,6 +28,7 @@ struct Mesh {
   // Value of the `objectId` layer for this mesh's pixels: glTF node index + 1 (0 = no hit).
   uint32_t object_id = 0;
   int material = 0;  // index into Scene::materials (always valid; a default one is added)
+  int emitter = -1;  // >= 0: the particles of Scene::emitters[emitter] in one stage of life (node -1)
   AreaShape area_shape = AreaShape::Mesh;  // as declared on the glTF mesh
 
   std::vector<glm::vec3> positions;   // local frame

@@ -20,6 +20,7 @@
 #include "giq/scenes/light.h"
 #include "giq/scenes/material.h"
 #include "giq/scenes/mesh.h"
+#include "giq/scenes/particles.h"
 #include "giq/scenes/texture.h"
 
 namespace giq::scenes {
@@ -125,13 +126,18 @@ class Scene {
   int environment_map = -1;
   std::vector<View> views;      // glTF camera nodes first, then the views from extras
   Sequence sequence;
+  // Particle emitters declared in extras (particles.h): their particles alive at this instant
+  // are meshes at the end of `meshes` (Mesh::emitter), made anew by at(t).
+  std::vector<Emitter> emitters;
   std::vector<std::string> leak_regions;  // node names declared in extras
   std::vector<uint32_t> leak_object_ids;  // their object ids (Mesh::object_id)
 
   // --- derived by derive(); do not edit
   FeatureSet features;
   std::vector<EmissiveTriangle> emissive_triangles;
-  std::vector<AreaLight> area_lights;  // one per mesh with emissive triangles, in mesh order
+  // One per mesh with emissive triangles, in mesh order, and one per glowing stage of life of
+  // an emitter's particles (AreaLight::area 0 when the stage has none at this instant).
+  std::vector<AreaLight> area_lights;
   Bounds bounds;
   SceneStats stats;
 

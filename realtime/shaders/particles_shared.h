@@ -1,0 +1,54 @@
+// The GPU particle system's buffers (ParticleSystem, shaders/particles_*.comp): one layout for
+// the C++ that fills them and the GLSL that reads them (std430, 16-byte rows).
+#ifndef GIQ_PARTICLES_SHARED_H
+#define GIQ_PARTICLES_SHARED_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace giq::realtime::gpu {
+using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
+using uint = uint32_t;
+#endif
+
+// The counter buffer's words.
+#define GIQ_PARTICLES_IN 0u    // alive at the last frame: the list simulated now
+#define GIQ_PARTICLES_DEAD 1u  // free slots on the dead list
+#define GIQ_PARTICLES_EMIT 2u  // emitted this frame: min(requested, dead)
+#define GIQ_PARTICLES_OUT 3u   // alive now: the list the next frame simulates
+// The indirect argument buffer's words: VkDispatchIndirectCommand for simulate and emit, then
+// VkDrawIndirectCommand for the alive particles' octahedra (24 vertices each).
+#define GIQ_PARTICLES_SIMULATE_ARGS 0u
+#define GIQ_PARTICLES_EMIT_ARGS 3u
+#define GIQ_PARTICLES_DRAW_ARGS 6u
+#define GIQ_PARTICLES_GROUP 256u  // invocations per group of every particle pass
+
+// One particle: where and how it was emitted, and its state at the last frame.
+struct GpuParticle {
+  vec4 position;        // xyz; w age (s)
+  vec4 velocity;        // xyz
+  vec4 birth_position;  // xyz
+  vec4 birth_velocity;  // xyz
+  uvec4 info;           // x id, y stage of life
+};
+
+// The emitter (scenes::Emitter) as every pass reads it.
+struct GpuEmitter {
+  vec4 gravity;  // xyz; w drag (1/s)
+  vec4 motion;   // x speed, y 1 - cos(spread), z 1 / rate, w size
+  uvec4 params;  // x surface triangles, y seed, z stages, w capacity
+};
+
+// This frame (ParticleSystem::step), from the host's integer decisions (scenes::alive_range,
+// scenes::stage_starts).
+struct GpuParticleFrame {
+  uvec4 ids;     // x first id to emit, y ids to emit, z first id alive, w anchor id
+  vec4 time;     // x the anchor's age (t - anchor / rate, in double on the host)
+  uvec4 starts[16];  // stage_starts, four a row (63 at most)
+};
+
+#ifdef __cplusplus
+}  // namespace giq::realtime::gpu
+#endif
+#endif
