@@ -8,6 +8,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/particles_bindings.glsl"
+#include "shaders/particle_lists.glsl"
 #include "shaders/particle_motion.glsl"
 
 layout(local_size_x = GIQ_PARTICLES_GROUP) in;
@@ -38,17 +39,20 @@ void emission(uint id, out vec3 p0, out vec3 v0) {
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= counters[GIQ_PARTICLES_EMIT]) return;
-  uint slot = dead_list[atomicAdd(counters[GIQ_PARTICLES_DEAD], 0xffffffffu) - 1u];
+  bool emits = i < counters[GIQ_PARTICLES_EMIT];
+  // Popped from the dead list's end: the counter less one, less this invocation's rank.
+  uint dead_at = subgroup_atomic_add(GIQ_PARTICLES_DEAD, emits, 0xffffffffu);
+  uint alive_at = subgroup_atomic_add(GIQ_PARTICLES_OUT, emits, 1u);
+  if (!emits) return;
+  uint slot = dead_list[dead_at - 1u];
   uint id = frame.ids.x + i;
   vec3 p0, v0, p, v;
   emission(id, p0, v0);
   float age = particle_age(emitter, frame, id);
   particle_state(emitter, p0, v0, age, p, v);
-  particles[slot].birth_position = vec4(p0, 0.0);
+  particles[slot].birth_position = vec4(p0, uintBitsToFloat(id));
   particles[slot].birth_velocity = vec4(v0, 0.0);
   particles[slot].position = vec4(p, age);
-  particles[slot].velocity = vec4(v, 0.0);
-  particles[slot].info = uvec4(id, particle_stage(frame, emitter.params.z, id), 0u, 0u);
-  alive_out[atomicAdd(counters[GIQ_PARTICLES_OUT], 1u)] = slot;
+  particles[slot].velocity = vec4(v, uintBitsToFloat(particle_stage(frame, emitter.params.z, id)));
+  alive_out[alive_at] = slot;
 }

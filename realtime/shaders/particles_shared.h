@@ -24,13 +24,14 @@ using uint = uint32_t;
 #define GIQ_PARTICLES_DRAW_ARGS 6u
 #define GIQ_PARTICLES_GROUP 256u  // invocations per group of every particle pass
 
-// One particle: where and how it was emitted, and its state at the last frame.
+// One particle, 64 bytes: its state at the last frame (what renderers read, written by the
+// simulation) in the first 32-byte half, where and how it was emitted (read by the simulation)
+// in the second, so that simulating one touches two aligned 32-byte sectors.
 struct GpuParticle {
   vec4 position;        // xyz; w age (s)
-  vec4 velocity;        // xyz
-  vec4 birth_position;  // xyz
+  vec4 velocity;        // xyz; w the stage of life (uint bits)
+  vec4 birth_position;  // xyz; w the id (uint bits)
   vec4 birth_velocity;  // xyz
-  uvec4 info;           // x id, y stage of life
 };
 
 // The emitter (scenes::Emitter) as every pass reads it.

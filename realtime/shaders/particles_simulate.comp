@@ -6,24 +6,27 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/particles_bindings.glsl"
+#include "shaders/particle_lists.glsl"
 #include "shaders/particle_motion.glsl"
 
 layout(local_size_x = GIQ_PARTICLES_GROUP) in;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= counters[GIQ_PARTICLES_IN]) return;
-  uint slot = alive_in[i];
-  uint id = particles[slot].info.x;
-  if (id < frame.ids.z) {
-    dead_list[atomicAdd(counters[GIQ_PARTICLES_DEAD], 1u)] = slot;
-    return;
-  }
+  bool present = i < counters[GIQ_PARTICLES_IN];
+  uint slot = present ? alive_in[i] : 0u;
+  vec4 birth = present ? particles[slot].birth_position : vec4(0.0);
+  uint id = floatBitsToUint(birth.w);
+  bool dies = present && id < frame.ids.z;
+  bool lives = present && !dies;
+  uint dead_at = subgroup_atomic_add(GIQ_PARTICLES_DEAD, dies, 1u);
+  uint alive_at = subgroup_atomic_add(GIQ_PARTICLES_OUT, lives, 1u);
+  if (dies) dead_list[dead_at] = slot;
+  if (!lives) return;
   float age = particle_age(emitter, frame, id);
   vec3 p, v;
-  particle_state(emitter, particles[slot].birth_position.xyz, particles[slot].birth_velocity.xyz, age, p, v);
+  particle_state(emitter, birth.xyz, particles[slot].birth_velocity.xyz, age, p, v);
   particles[slot].position = vec4(p, age);
-  particles[slot].velocity = vec4(v, 0.0);
-  particles[slot].info.y = particle_stage(frame, emitter.params.z, id);
-  alive_out[atomicAdd(counters[GIQ_PARTICLES_OUT], 1u)] = slot;
+  particles[slot].velocity = vec4(v, uintBitsToFloat(particle_stage(frame, emitter.params.z, id)));
+  alive_out[alive_at] = slot;
 }

@@ -83,12 +83,13 @@ void ParticleSystem::record(VkCommandBuffer cmd, GpuTimer* timer) {
     vkCmdDispatch(cmd, 1, 1, 1);
     full_barrier(cmd);
   };
-  if (timer) timer->begin(cmd, "particles");
+  if (timer) timer->begin(cmd, "particle simulation");
   count(0);
   simulate_.bind(cmd);
   simulate_.push_descriptors(cmd, d);
   vkCmdDispatchIndirect(cmd, indirect_.handle(), GIQ_PARTICLES_SIMULATE_ARGS * sizeof(uint32_t));
   full_barrier(cmd);
+  if (timer) timer->end(cmd), timer->begin(cmd, "particle emission");
   count(1);
   emit_.bind(cmd);
   emit_.push_descriptors(cmd, d);
@@ -116,7 +117,10 @@ std::vector<ParticleSystem::State> ParticleSystem::alive() const {
     std::memcpy(&slot, list.data() + 4 * i, 4);
     gpu::GpuParticle p;
     std::memcpy(&p, all.data() + uint64_t(slot) * sizeof(p), sizeof(p));
-    out.push_back({slot, p.info.x, p.info.y, glm::vec3(p.position), glm::vec3(p.velocity), p.position.w});
+    uint32_t id, stage;
+    std::memcpy(&id, &p.birth_position.w, sizeof id);
+    std::memcpy(&stage, &p.velocity.w, sizeof stage);
+    out.push_back({slot, id, stage, glm::vec3(p.position), glm::vec3(p.velocity), p.position.w});
   }
   return out;
 }

@@ -82,7 +82,7 @@ SceneGpu::SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& 
   std::vector<uint32_t> levels;
   upload_materials(scene, levels);
   upload_geometry(scene, flatten(scene));
-  previous_vertices_ = Buffer::storage(ctx, vertices_host_);
+  previous_vertices_ = Buffer::storage(ctx, previous_rows(scene, geometry_));
   make_deformer(scene);
   if (deformer_) ctx.submit_and_wait([&](VkCommandBuffer cmd) { record_deformation(cmd, false, true); });
   upload_lights(scene);
@@ -101,9 +101,10 @@ SceneChange SceneGpu::update(const scenes::Scene& posed) {
 
   // The previous frame's vertices in this frame's layout, for motion vectors: a mesh whose
   // vertices are where they were keeps its last ones; particles (a particle is not at the same
-  // index from frame to frame) and meshes whose vertex count changed get this frame's, that is
-  // no motion. The deformation pass saves its own vertices' before overwriting them.
-  std::vector<glm::vec4> previous = vertex_rows(g);
+  // index from frame to frame) bring theirs; meshes whose vertex count changed get this
+  // frame's, that is no motion. The deformation pass saves its own vertices' before
+  // overwriting them.
+  std::vector<glm::vec4> previous = previous_rows(posed, g);
   for (size_t m = 0; m < posed.meshes.size() && m < geometry_.mesh_first_vertex.size(); ++m) {
     if (posed.meshes[m].emitter >= 0) continue;
     const size_t first = g.mesh_first_vertex[m], count = posed.meshes[m].positions.size();
@@ -142,6 +143,15 @@ std::vector<glm::vec4> SceneGpu::vertex_rows(const FlatGeometry& g) {
   std::vector<glm::vec4> rows;
   rows.reserve(2 * g.positions.size());
   for (size_t i = 0; i < g.positions.size(); ++i) rows.insert(rows.end(), {glm::vec4(g.positions[i], 1.0f), glm::vec4(g.normals[i], 0.0f)});
+  return rows;
+}
+
+std::vector<glm::vec4> SceneGpu::previous_rows(const scenes::Scene& scene, const FlatGeometry& g) {
+  std::vector<glm::vec4> rows = vertex_rows(g);
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const std::vector<glm::vec3>& was = scene.meshes[m].previous_positions;
+    for (size_t i = 0; i < was.size(); ++i) rows[2 * (g.mesh_first_vertex[m] + i)] = glm::vec4(was[i], 1.0f);
+  }
   return rows;
 }
 

@@ -49,7 +49,7 @@ void complete_emitter(Emitter& e, const std::vector<Mesh>& meshes, std::vector<M
   }
 }
 
-void add_particle_meshes(const std::vector<Emitter>& emitters, double t, std::vector<Mesh>& meshes, const std::string& file) {
+void add_particle_meshes(const std::vector<Emitter>& emitters, double t, double frame, std::vector<Mesh>& meshes, const std::string& file) {
   // The octahedron: six vertices on the axes, normals pointing out along them (a small sphere's),
   // eight faces counter-clockwise from outside.
   static const glm::dvec3 kAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
@@ -63,10 +63,14 @@ void add_particle_meshes(const std::vector<Emitter>& emitters, double t, std::ve
     std::vector<Mesh> stage(size_t(e.stages));
     for (uint64_t id = alive.first; id < alive.end; ++id) {
       const Particle p = particle_at(e, uint32_t(id), t);
+      // One frame earlier by the same closed form, before its birth too (the motion it would
+      // have had), so that a newborn particle moves like the others.
+      const glm::dvec3 was = particle_at(e, uint32_t(id), t - frame).position;
       Mesh& m = stage[size_t(p.stage)];
       const uint32_t base = uint32_t(m.positions.size());
       for (const glm::dvec3& axis : kAxes) {
         m.positions.push_back(glm::vec3(p.position + e.size * axis));
+        m.previous_positions.push_back(glm::vec3(was + e.size * axis));
         m.normals.push_back(glm::vec3(axis));
       }
       for (const glm::uvec3& f : kFaces) m.triangles.push_back(f + glm::uvec3(base));

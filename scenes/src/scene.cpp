@@ -218,7 +218,7 @@ Scene Scene::at(double t) const {
   } else {
     std::erase_if(s.meshes, [](const Mesh& m) { return m.emitter >= 0; });
   }
-  add_particle_meshes(s.emitters, t, s.meshes, path.string());
+  add_particle_meshes(s.emitters, t, 1.0 / sequence.fps, s.meshes, path.string());
   s.derive();
   return s;
 }

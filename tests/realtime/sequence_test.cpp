@@ -166,6 +166,51 @@ TEST_F(SequenceTest, MotionVectorsFollowSkinnedGeometry) {
   }
 }
 
+// Particles of the fountain (made 10 cm wide so that they cover pixels) between frames 19 and
+// 20: a particle is not at the same vertex index from frame to frame, so its motion comes from
+// where the scene library says it was a frame earlier (Mesh::previous_positions); a point on a
+// particle was at its barycentric coordinates in the triangle's previous vertices, a point on
+// the floor where it is.
+TEST_F(SequenceTest, MotionVectorsFollowParticles) {
+  scenes::Scene fountain = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "fountain.gltf");
+  fountain.emitters[0].size = 0.1;
+  const scenes::Scene before = fountain.at_frame(19), after = fountain.at_frame(20);
+  const scenes::Camera cam = after.view("side").camera;
+  const FlatGeometry now = flatten(after);
+  std::vector<glm::vec3> was(now.positions);
+  for (size_t m = 0; m < after.meshes.size(); ++m)
+    for (size_t i = 0; i < after.meshes[m].previous_positions.size(); ++i) was[now.mesh_first_vertex[m] + i] = after.meshes[m].previous_positions[i];
+  for (bool ray_traced : {false, true}) {
+    SCOPED_TRACE(ray_traced ? "ray traced" : "rasterised");
+    const Frame f = gbuffer_sequence(*ctx, *compiler, {before, after}, {cam, cam}, 64, ray_traced);
+    SceneGpu gpu(*ctx, *compiler, after);
+    GBufferPass gb(*ctx, *compiler, gpu, after.features, 64, 64, ray_traced ? GBufferBuilder::RayTraced : GBufferBuilder::Raster);
+    GpuTimer timer(*ctx);
+    ctx->submit_and_wait([&](VkCommandBuffer cmd) {
+      timer.reset(cmd);
+      gb.record(cmd, cam, timer);
+    });
+    const std::vector<float> ids = gb.ids().read_floats();
+    int moved = 0;
+    expect_motion(
+        f, cam, 64,
+        [&](glm::vec3 p, size_t i) {
+          uint32_t tri;
+          std::memcpy(&tri, &ids[4 * i], sizeof tri);
+          const glm::uvec3 t = now.triangles[tri - 1];
+          const glm::vec3 a = now.positions[t.x], b = now.positions[t.y], c = now.positions[t.z];
+          const glm::vec3 n = glm::cross(b - a, c - a);
+          const float area = glm::dot(n, n);
+          const float wb = glm::dot(glm::cross(p - a, c - a), n) / area, wc = glm::dot(glm::cross(b - a, p - a), n) / area;
+          const glm::vec3 old = (1.0f - wb - wc) * was[t.x] + wb * was[t.y] + wc * was[t.z];
+          moved += glm::length(old - p) > 0.01f;
+          return old;
+        },
+        200);
+    EXPECT_GT(moved, 20);  // pixels on particles, which move by 3 cm or more a frame
+  }
+}
+
 TEST_F(SequenceTest, UpdateReportsWhatMoved) {
   scenes::Scene s = test::cornell_box();
   scenes::Light l;

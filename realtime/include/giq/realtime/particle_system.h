@@ -35,7 +35,8 @@ class ParticleSystem {
   // uploaded. A time before the last one's starts the system over (every slot dead).
   void prepare(double t);
   // The passes (bookkeeping, simulate, bookkeeping, emit, bookkeeping), each behind a barrier,
-  // between timestamps "particles" of `timer` when given.
+  // timed by `timer` when given as "particle simulation" (the first two) and "particle
+  // emission" (the rest).
   void record(VkCommandBuffer cmd, GpuTimer* timer = nullptr);
 
   struct Counts {

@@ -120,6 +120,9 @@ class SceneGpu {
   void make_deformer(const scenes::Scene& scene);
   // GpuVertex rows of `g`; the bytes of its vertex array that no deformation writes.
   static std::vector<glm::vec4> vertex_rows(const FlatGeometry& g);
+  // The same with the particles' vertices where they were a frame earlier
+  // (Mesh::previous_positions).
+  static std::vector<glm::vec4> previous_rows(const scenes::Scene& scene, const FlatGeometry& g);
   static std::vector<VkBufferCopy> rigid_ranges(const scenes::Scene& scene, const FlatGeometry& g);
   // Grows a vertex buffer to hold `bytes`, keeping its deformed vertices.
   void reserve(Buffer& buffer, uint64_t bytes);
