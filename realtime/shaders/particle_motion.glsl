@@ -1,12 +1,14 @@
 // A particle's emission and motion (scenes/particles.h, evaluated there in double precision for
 // the reference) in float: the same random words, the same integer choice of triangle, the same
 // closed form. Where the CPU calls std::sin, std::cos and std::expm1, the GPU uses polynomials
-// accurate to a few float ulps, since Vulkan only bounds sin and cos to 2^-11 absolutely.
+// accurate to a few float ulps, since Vulkan only bounds sin and cos to 2^-11 absolutely. The
+// emitter and the frame are read from their buffers where needed, not passed by value: a copy
+// of the frame's 288 bytes per invocation would cost more than the particle itself.
 #ifndef GIQ_PARTICLE_MOTION_GLSL
 #define GIQ_PARTICLE_MOTION_GLSL
 
+#include "shaders/particles_bindings.glsl"
 #include "shaders/sampling.glsl"
-#include "shaders/particles_shared.h"
 
 uint particle_random(uint seed, uint id, uint k) { return pcg_hash(k ^ pcg_hash(id ^ pcg_hash(seed))); }
 float particle_unit(uint seed, uint id, uint k) { return float(particle_random(seed, id, k) >> 8u) * (1.0 / 16777216.0); }
@@ -42,21 +44,22 @@ float phi2(float z) {
 }
 
 // The particle at `age` from its birth state, in closed form (scenes/particles.h).
-void particle_state(GpuEmitter e, vec3 p0, vec3 v0, float age, out vec3 p, out vec3 v) {
-  float z = -e.gravity.w * age, f1 = age * phi1(z);
-  v = v0 * exp(z) + e.gravity.xyz * f1;
-  p = p0 + v0 * f1 + e.gravity.xyz * (age * age * phi2(z));
+void particle_state(vec3 p0, vec3 v0, float age, out vec3 p, out vec3 v) {
+  vec4 g = emitter.gravity;
+  float z = -g.w * age, f1 = age * phi1(z);
+  v = v0 * exp(z) + g.xyz * f1;
+  p = p0 + v0 * f1 + g.xyz * (age * age * phi2(z));
 }
 
 // The stage of life of an alive particle: how many of the frame's stage starts lie above its id.
-uint particle_stage(GpuParticleFrame f, uint stages, uint id) {
+uint particle_stage(uint id) {
   uint stage = 0u;
-  for (uint s = 0u; s + 1u < stages; ++s) stage += id < f.starts[s >> 2u][s & 3u] ? 1u : 0u;
+  for (uint s = 0u; s + 1u < emitter.params.z; ++s) stage += id < frame.starts[s >> 2u][s & 3u] ? 1u : 0u;
   return stage;
 }
 
 // Its age at this frame: the anchor's, less its birth after the anchor's (a small integer
 // times 1 / rate, so no large times meet in float).
-float particle_age(GpuEmitter e, GpuParticleFrame f, uint id) { return f.time.x - float(id - f.ids.w) * e.motion.z; }
+float particle_age(uint id) { return frame.time.x - float(id - frame.ids.w) * emitter.motion.z; }
 
 #endif

@@ -48,11 +48,11 @@ void main() {
   uint id = frame.ids.x + i;
   vec3 p0, v0, p, v;
   emission(id, p0, v0);
-  float age = particle_age(emitter, frame, id);
-  particle_state(emitter, p0, v0, age, p, v);
+  float age = particle_age(id);
+  particle_state(p0, v0, age, p, v);
   particles[slot].birth_position = vec4(p0, uintBitsToFloat(id));
   particles[slot].birth_velocity = vec4(v0, 0.0);
   particles[slot].position = vec4(p, age);
-  particles[slot].velocity = vec4(v, uintBitsToFloat(particle_stage(frame, emitter.params.z, id)));
+  particles[slot].velocity = vec4(v, uintBitsToFloat(particle_stage(id)));
   alive_out[alive_at] = slot;
 }

@@ -23,10 +23,10 @@ void main() {
   uint alive_at = subgroup_atomic_add(GIQ_PARTICLES_OUT, lives, 1u);
   if (dies) dead_list[dead_at] = slot;
   if (!lives) return;
-  float age = particle_age(emitter, frame, id);
+  float age = particle_age(id);
   vec3 p, v;
-  particle_state(emitter, birth.xyz, particles[slot].birth_velocity.xyz, age, p, v);
+  particle_state(birth.xyz, particles[slot].birth_velocity.xyz, age, p, v);
   particles[slot].position = vec4(p, age);
-  particles[slot].velocity = vec4(v, uintBitsToFloat(particle_stage(frame, emitter.params.z, id)));
+  particles[slot].velocity = vec4(v, uintBitsToFloat(particle_stage(id)));
   alive_out[alive_at] = slot;
 }
