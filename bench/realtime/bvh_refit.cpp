@@ -13,27 +13,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <numbers>
 #include <vector>
 
+#include "cpu_model.h"
 #include "giq/realtime/bvh.h"
+#include "giq/realtime/timer.h"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown CPU";
-}
 
 struct Tube {
   std::vector<glm::vec3> rest;
@@ -82,7 +71,7 @@ int main(int argc, char** argv) {
 
   const Tube tube = make_tube(rings, segments);
   std::printf("# BVH refit against build: a bending tube of %zu triangles\n\nMachine: %s, one thread\n\n", tube.triangles.size(),
-              cpu_model().c_str());
+              giq::bench::cpu_model().c_str());
   const auto seconds = [](Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); };
 
   // Times at the middle of the motion.
@@ -100,11 +89,11 @@ int main(int argc, char** argv) {
   }
   std::printf("| | median ms | runs |\n|---|---:|---|\n");
   for (const auto* v : {&build_ms, &refit_ms}) {
-    std::printf("| %s | %.2f |", v == &build_ms ? "build_bvh" : "refit_bvh", median(*v));
+    std::printf("| %s | %.2f |", v == &build_ms ? "build_bvh" : "refit_bvh", giq::realtime::percentile(*v, 0.5));
     for (double x : *v) std::printf(" %.2f", x);
     std::printf(" |\n");
   }
-  std::printf("\nBuild / refit: %.1fx\n\n", median(build_ms) / median(refit_ms));
+  std::printf("\nBuild / refit: %.1fx\n\n", giq::realtime::percentile(build_ms, 0.5) / giq::realtime::percentile(refit_ms, 0.5));
 
   // Quality over the motion: the SAH cost of the frame-0 tree refitted to each frame (never
   // rebuilt), against a fresh build for that frame, and what SceneGpu's policy does.

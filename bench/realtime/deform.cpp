@@ -15,7 +15,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <numbers>
 #include <vector>
 
@@ -24,23 +23,12 @@
 #include "giq/realtime/context.h"
 #include "giq/realtime/scene_gpu.h"
 #include "giq/realtime/shader.h"
+#include "cpu_model.h"
 #include "giq/realtime/timer.h"
 
 namespace {
 
 using namespace giq;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown CPU";
-}
 
 // The chain's joint matrices at time t (joint k at height 2k / (joints - 1), each turning the
 // part above it): world times inverse bind, relative to the scene origin (0).
@@ -141,7 +129,7 @@ int main(int argc, char** argv) {
     realtime::GpuTimer timer(ctx);
 
     std::printf("# GPU deformation and BVH refit: a skinned tube of %u vertices, %u triangles\n\n", gpu.deformed_vertex_count(), gpu.triangle_count());
-    std::printf("GPU: %s; CPU: %s (refit_bvh, one thread)\n\n", ctx.properties().deviceName, cpu_model().c_str());
+    std::printf("GPU: %s; CPU: %s (refit_bvh, one thread)\n\n", ctx.properties().deviceName, bench::cpu_model().c_str());
     std::printf("%d joints, 4 influences a vertex, %d morph targets; medians over %d frames x %d runs\n\n", joints, targets, frames, reps);
 
     std::vector<double> deform_ms, refit_ms, cpu_refit_ms;
@@ -170,7 +158,7 @@ int main(int argc, char** argv) {
       }
     std::printf("| pass | median ms | min | max |\n|---|---:|---:|---:|\n");
     for (const auto& [name, v] : {std::pair{"deform (GPU)", &deform_ms}, std::pair{"BVH refit (GPU)", &refit_ms}, std::pair{"BVH refit (CPU)", &cpu_refit_ms}})
-      std::printf("| %s | %.4f | %.4f | %.4f |\n", name, median(*v), *std::min_element(v->begin(), v->end()), *std::max_element(v->begin(), v->end()));
+      std::printf("| %s | %.4f | %.4f | %.4f |\n", name, realtime::percentile(*v, 0.5), *std::min_element(v->begin(), v->end()), *std::max_element(v->begin(), v->end()));
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "giq-bench-deform: %s\n", e.what());

@@ -19,16 +19,7 @@
 #include "giq/realtime/shader.h"
 #include "giq/realtime/timer.h"
 
-namespace {
-
 using namespace giq;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"The GPU particle system with a million particles alive (Markdown on stdout)", "giq-bench-particles"};
@@ -86,9 +77,9 @@ int main(int argc, char** argv) {
     }
     std::printf("| | value |\n|---|---:|\n");
     std::printf("| particles alive at the last frame | %u |\n", alive);
-    std::printf("| GPU ms per frame (median) | %.4f |\n", median(ms));
-    std::printf("| of which simulation (bookkeeping and simulate pass) | %.4f |\n", median(simulate_ms));
-    std::printf("| of which emission (%.0f a frame, bookkeeping and emit pass) | %.4f |\n", rate / 30.0, median(emit_ms));
+    std::printf("| GPU ms per frame (median) | %.4f |\n", realtime::percentile(ms, 0.5));
+    std::printf("| of which simulation (bookkeeping and simulate pass) | %.4f |\n", realtime::percentile(simulate_ms, 0.5));
+    std::printf("| of which emission (%.0f a frame, bookkeeping and emit pass) | %.4f |\n", rate / 30.0, realtime::percentile(emit_ms, 0.5));
     std::printf("| min | %.4f |\n| max | %.4f |\n", *std::min_element(ms.begin(), ms.end()), *std::max_element(ms.begin(), ms.end()));
     std::printf("| worst position error against the CPU, relative to 1 m + |v| a + g a^2 (1 in 997 particles) | %.2e |\n", worst);
     return 0;

@@ -60,12 +60,14 @@ void add_particle_meshes(const std::vector<Emitter>& emitters, double t, double 
       throw InputError(file, "extras.giq.emitters[" + std::to_string(i) + "]",
                        "emitter \"" + e.name + "\" has emitted 2^32 particles by t = " + std::to_string(t) + " s; expected fewer (a lower rate or a shorter sequence)");
     const AliveRange alive = alive_range(e, t);
+    const std::vector<uint64_t> starts = stage_starts(e, t);
     std::vector<Mesh> stage(size_t(e.stages));
     for (uint64_t id = alive.first; id < alive.end; ++id) {
-      const Particle p = particle_at(e, uint32_t(id), t);
+      const ParticleBirth birth = particle_birth(e, uint32_t(id));
+      const Particle p = particle_at(e, uint32_t(id), birth, t, starts);
       // One frame earlier by the same closed form, before its birth too (the motion it would
-      // have had), so that a newborn particle moves like the others.
-      const glm::dvec3 was = particle_at(e, uint32_t(id), t - frame).position;
+      // have had), so that a newborn particle moves like the others. (Its stage then is unused.)
+      const glm::dvec3 was = particle_at(e, uint32_t(id), birth, t - frame, {}).position;
       Mesh& m = stage[size_t(p.stage)];
       const uint32_t base = uint32_t(m.positions.size());
       for (const glm::dvec3& axis : kAxes) {

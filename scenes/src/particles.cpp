@@ -65,20 +65,15 @@ uint32_t particle_random(uint32_t seed, uint32_t id, uint32_t k) { return pcg_ha
 
 double particle_unit(uint32_t seed, uint32_t id, uint32_t k) { return double(particle_random(seed, id, k) >> 8) * 0x1p-24; }
 
-Particle particle_at(const Emitter& e, uint32_t id, double t) {
-  Particle p;
-  p.id = id;
-  p.age = t - double(id) / e.rate;
-  const std::vector<uint64_t> starts = stage_starts(e, t);
-  p.stage = int(std::count_if(starts.begin(), starts.end(), [&](uint64_t s) { return id < s; }));
-  if (e.choice.empty()) return p;
-
+ParticleBirth particle_birth(const Emitter& e, uint32_t id) {
+  ParticleBirth birth;
+  if (e.choice.empty()) return birth;
   // Where: a triangle by area (words 0), a uniform point on it (1, 2).
   const uint32_t r = particle_random(e.seed, id, 0);
   const size_t k = size_t(std::lower_bound(e.choice.begin(), e.choice.end(), r) - e.choice.begin());
   const glm::dvec3 &a = e.surface[3 * k], &b = e.surface[3 * k + 1], &c = e.surface[3 * k + 2];
   const double s = std::sqrt(particle_unit(e.seed, id, 1)), u = particle_unit(e.seed, id, 2);
-  const glm::dvec3 p0 = a + s * ((b - a) + u * (c - b));
+  birth.position = a + s * ((b - a) + u * (c - b));
   // Which way: uniform in the cone about the face's normal (3, 4).
   const glm::dvec3 n = glm::normalize(glm::cross(b - a, c - a));
   glm::dvec3 tx, ty;
@@ -86,12 +81,21 @@ Particle particle_at(const Emitter& e, uint32_t id, double t) {
   // sin from 1 - cos (x (2 - x) = 1 - cos^2), which does not cancel near the cone's axis.
   const double x = particle_unit(e.seed, id, 3) * (1.0 - std::cos(e.spread)), cos_theta = 1.0 - x, sin_theta = std::sqrt(x * (2.0 - x));
   const double phi = 2.0 * std::numbers::pi * particle_unit(e.seed, id, 4);
-  const glm::dvec3 v0 = e.speed * (cos_theta * n + sin_theta * (std::cos(phi) * tx + std::sin(phi) * ty));
+  birth.velocity = e.speed * (cos_theta * n + sin_theta * (std::cos(phi) * tx + std::sin(phi) * ty));
+  return birth;
+}
 
+Particle particle_at(const Emitter& e, uint32_t id, const ParticleBirth& birth, double t, const std::vector<uint64_t>& starts) {
+  Particle p;
+  p.id = id;
+  p.age = t - double(id) / e.rate;
+  p.stage = int(std::count_if(starts.begin(), starts.end(), [&](uint64_t s) { return id < s; }));
   const double z = -e.drag * p.age;
-  p.velocity = v0 * std::exp(z) + e.gravity * (p.age * phi1(z));
-  p.position = p0 + v0 * (p.age * phi1(z)) + e.gravity * (p.age * p.age * phi2(z));
+  p.velocity = birth.velocity * std::exp(z) + e.gravity * (p.age * phi1(z));
+  p.position = birth.position + birth.velocity * (p.age * phi1(z)) + e.gravity * (p.age * p.age * phi2(z));
   return p;
 }
+
+Particle particle_at(const Emitter& e, uint32_t id, double t) { return particle_at(e, id, particle_birth(e, id), t, stage_starts(e, t)); }
 
 }  // namespace giq::scenes

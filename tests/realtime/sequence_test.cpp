@@ -122,30 +122,27 @@ TEST_F(SequenceTest, MotionVectorsFollowMovingGeometry) {
   EXPECT_GT(on_block, 100);  // the block is in view and its motion was checked
 }
 
-// A skinned, morphing mesh (tests/data/scenes/blender_figure.glb, Blender's export) deforms
-// between frames 7 and 15 of its walk: a surface point's previous position is its barycentric
-// coordinates in its triangle applied to that triangle's previous vertices (the vertices keep
-// their indices: docs/scene-format.md), and the motion vectors must point there.
-TEST_F(SequenceTest, MotionVectorsFollowSkinnedGeometry) {
-  const scenes::Scene figure = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "blender_figure.glb");
-  ASSERT_TRUE(figure.features.skinning);
-  const scenes::Scene before = figure.at_frame(7), after = figure.at_frame(15);
-  const glm::vec3 eye = glm::vec3(glm::dvec3(1.6, 1.0, 1.6) - figure.origin), target = glm::vec3(glm::dvec3(0.0, 0.9, -0.3) - figure.origin);
-  const scenes::Camera cam = scenes::Camera::look_at(eye, target, {0, 1, 0}, 1.1f);
-  const FlatGeometry was = flatten(before), now = flatten(after);
-  ASSERT_EQ(was.positions.size(), now.positions.size());
+// Geometry that moved from `before` to `after` (seen by `cam` both times): a surface point of
+// `after` was at its barycentric coordinates in its triangle applied to that triangle's
+// previous vertices, `was` (indexed like flatten(after)), and the motion vectors, rasterised
+// and ray traced, must point there. Returns, per builder, the checked pixels that moved by
+// more than 1 cm.
+std::vector<int> expect_motion_follows_vertices(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& before,
+                                                const scenes::Scene& after, const scenes::Camera& cam, const std::vector<glm::vec3>& was) {
+  const FlatGeometry now = flatten(after);
+  std::vector<int> moved;
   for (bool ray_traced : {false, true}) {
     SCOPED_TRACE(ray_traced ? "ray traced" : "rasterised");
-    const Frame f = gbuffer_sequence(*ctx, *compiler, {before, after}, {cam, cam}, 64, ray_traced);
-    SceneGpu gpu(*ctx, *compiler, after);
-    GBufferPass gb(*ctx, *compiler, gpu, after.features, 64, 64, ray_traced ? GBufferBuilder::RayTraced : GBufferBuilder::Raster);
-    GpuTimer timer(*ctx);
-    ctx->submit_and_wait([&](VkCommandBuffer cmd) {
+    const Frame f = gbuffer_sequence(ctx, compiler, {before, after}, {cam, cam}, 64, ray_traced);
+    SceneGpu gpu(ctx, compiler, after);
+    GBufferPass gb(ctx, compiler, gpu, after.features, 64, 64, ray_traced ? GBufferBuilder::RayTraced : GBufferBuilder::Raster);
+    GpuTimer timer(ctx);
+    ctx.submit_and_wait([&](VkCommandBuffer cmd) {
       timer.reset(cmd);
       gb.record(cmd, cam, timer);
     });
     const std::vector<float> ids = gb.ids().read_floats();
-    int moved = 0;
+    moved.push_back(0);
     expect_motion(
         f, cam, 64,
         [&](glm::vec3 p, size_t i) {
@@ -157,58 +154,44 @@ TEST_F(SequenceTest, MotionVectorsFollowSkinnedGeometry) {
           const glm::vec3 n = glm::cross(b - a, c - a);
           const float area = glm::dot(n, n);
           const float wb = glm::dot(glm::cross(p - a, c - a), n) / area, wc = glm::dot(glm::cross(b - a, p - a), n) / area;
-          const glm::vec3 old = (1.0f - wb - wc) * was.positions[t.x] + wb * was.positions[t.y] + wc * was.positions[t.z];
-          moved += glm::length(old - p) > 0.01f;
+          const glm::vec3 old = (1.0f - wb - wc) * was[t.x] + wb * was[t.y] + wc * was[t.z];
+          moved.back() += glm::length(old - p) > 0.01f;
           return old;
         },
         200);
-    EXPECT_GT(moved, 100);  // the figure's limbs moved by more than 1 cm where they were checked
   }
+  return moved;
+}
+
+// A skinned, morphing mesh (tests/data/scenes/blender_figure.glb, Blender's export) deforms
+// between frames 7 and 15 of its walk; its vertices keep their indices (docs/scene-format.md),
+// so the previous vertices are frame 7's.
+TEST_F(SequenceTest, MotionVectorsFollowSkinnedGeometry) {
+  const scenes::Scene figure = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "blender_figure.glb");
+  ASSERT_TRUE(figure.features.skinning);
+  const scenes::Scene before = figure.at_frame(7), after = figure.at_frame(15);
+  const glm::vec3 eye = glm::vec3(glm::dvec3(1.6, 1.0, 1.6) - figure.origin), target = glm::vec3(glm::dvec3(0.0, 0.9, -0.3) - figure.origin);
+  const scenes::Camera cam = scenes::Camera::look_at(eye, target, {0, 1, 0}, 1.1f);
+  const FlatGeometry was = flatten(before);
+  ASSERT_EQ(was.positions.size(), flatten(after).positions.size());
+  for (int moved : expect_motion_follows_vertices(*ctx, *compiler, before, after, cam, was.positions))
+    EXPECT_GT(moved, 100);  // the figure's limbs moved by more than 1 cm where they were checked
 }
 
 // Particles of the fountain (made 10 cm wide so that they cover pixels) between frames 19 and
-// 20: a particle is not at the same vertex index from frame to frame, so its motion comes from
-// where the scene library says it was a frame earlier (Mesh::previous_positions); a point on a
-// particle was at its barycentric coordinates in the triangle's previous vertices, a point on
-// the floor where it is.
+// 20: a particle is not at the same vertex index from frame to frame, so its previous vertices
+// are where the scene library says it was a frame earlier (Mesh::previous_positions); the
+// floor's are where they are.
 TEST_F(SequenceTest, MotionVectorsFollowParticles) {
   scenes::Scene fountain = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "fountain.gltf");
   fountain.emitters[0].size = 0.1;
   const scenes::Scene before = fountain.at_frame(19), after = fountain.at_frame(20);
-  const scenes::Camera cam = after.view("side").camera;
   const FlatGeometry now = flatten(after);
   std::vector<glm::vec3> was(now.positions);
   for (size_t m = 0; m < after.meshes.size(); ++m)
     for (size_t i = 0; i < after.meshes[m].previous_positions.size(); ++i) was[now.mesh_first_vertex[m] + i] = after.meshes[m].previous_positions[i];
-  for (bool ray_traced : {false, true}) {
-    SCOPED_TRACE(ray_traced ? "ray traced" : "rasterised");
-    const Frame f = gbuffer_sequence(*ctx, *compiler, {before, after}, {cam, cam}, 64, ray_traced);
-    SceneGpu gpu(*ctx, *compiler, after);
-    GBufferPass gb(*ctx, *compiler, gpu, after.features, 64, 64, ray_traced ? GBufferBuilder::RayTraced : GBufferBuilder::Raster);
-    GpuTimer timer(*ctx);
-    ctx->submit_and_wait([&](VkCommandBuffer cmd) {
-      timer.reset(cmd);
-      gb.record(cmd, cam, timer);
-    });
-    const std::vector<float> ids = gb.ids().read_floats();
-    int moved = 0;
-    expect_motion(
-        f, cam, 64,
-        [&](glm::vec3 p, size_t i) {
-          uint32_t tri;
-          std::memcpy(&tri, &ids[4 * i], sizeof tri);
-          const glm::uvec3 t = now.triangles[tri - 1];
-          const glm::vec3 a = now.positions[t.x], b = now.positions[t.y], c = now.positions[t.z];
-          const glm::vec3 n = glm::cross(b - a, c - a);
-          const float area = glm::dot(n, n);
-          const float wb = glm::dot(glm::cross(p - a, c - a), n) / area, wc = glm::dot(glm::cross(b - a, p - a), n) / area;
-          const glm::vec3 old = (1.0f - wb - wc) * was[t.x] + wb * was[t.y] + wc * was[t.z];
-          moved += glm::length(old - p) > 0.01f;
-          return old;
-        },
-        200);
+  for (int moved : expect_motion_follows_vertices(*ctx, *compiler, before, after, after.view("side").camera, was))
     EXPECT_GT(moved, 20);  // pixels on particles, which move by 3 cm or more a frame
-  }
 }
 
 TEST_F(SequenceTest, UpdateReportsWhatMoved) {

@@ -42,6 +42,7 @@
 #include <thread>
 #include <vector>
 
+#include "cpu_model.h"
 #include "giq/base/error.h"
 #include "giq/image/io.h"
 #include "giq/reference/reference_exr.h"
@@ -99,13 +100,6 @@ std::string first_line_of(const std::string& command) {
   }
   while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
   return line;
-}
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown CPU";
 }
 
 std::string load_average() {
@@ -325,7 +319,7 @@ int main(int argc, char** argv) try {
   std::printf(
       "Machine: %s, %u hardware threads; both renderers on %d threads; %s; load average at start "
       "%s\n\n",
-      cpu_model().c_str(), std::thread::hardware_concurrency(), threads, version.c_str(),
+      giq::bench::cpu_model().c_str(), std::thread::hardware_concurrency(), threads, version.c_str(),
       load_average().c_str());
   std::fflush(stdout);
 

@@ -83,11 +83,19 @@ struct Particle {
   double age = 0.0;  // seconds
   int stage = 0;
 };
-// Particle `id` at time t (at any age, even outside its life): emitted at the point and in the
-// direction its random words choose, then moved in closed form. Under constant gravity g and
-// linear drag k, with a = age: v(a) = v0 e^(-k a) + g a phi1(-k a) and
+// Where and how particle `id` is emitted: the point and the velocity its random words choose
+// (0 for an emitter without a surface).
+struct ParticleBirth {
+  glm::dvec3 position{0.0}, velocity{0.0};
+};
+ParticleBirth particle_birth(const Emitter& e, uint32_t id);
+// Particle `id`, emitted as `birth`, at time t (at any age, even outside its life), in its
+// stage among `starts` (stage_starts(e, t)), moved in closed form. Under constant gravity g
+// and linear drag k, with a = age: v(a) = v0 e^(-k a) + g a phi1(-k a) and
 // p(a) = p0 + v0 a phi1(-k a) + g a^2 phi2(-k a), where phi1(z) = (e^z - 1) / z and
 // phi2(z) = (e^z - 1 - z) / z^2 (1 and 1/2 at z = 0: free fall without drag).
+Particle particle_at(const Emitter& e, uint32_t id, const ParticleBirth& birth, double t, const std::vector<uint64_t>& starts);
+// The same from the id alone: its birth and the stage starts at t worked out for it.
 Particle particle_at(const Emitter& e, uint32_t id, double t);
 
 }  // namespace giq::scenes
