@@ -1,12 +1,15 @@
 // What each built-in scene must contain, read from the files themselves (no scene loader):
 // the published Cornell numbers, the leak scene's sealed rooms, the sunroom's window and sun,
-// the movinglight path.
+// the movinglight path, the dynamic scene's skin, lamp and fountain.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <map>
 #include <numbers>
 
 #include "gltf_file.h"
@@ -308,4 +311,116 @@ TEST(MovingLightFile, LightFollowsTheDocumentedPath) {
   const glm::dvec3 expected = 0.130 * 0.105 * glm::dvec3(17.0, 12.0, 4.0) / 4.0;
   EXPECT_NEAR(glm::length(radiant - expected), 0.0, 1e-7);
   EXPECT_LT(f.node("light"), 0) << "the ceiling light is off in movinglight";
+}
+
+namespace {
+
+// A node's transform at rest as a matrix (translation, rotation; the writer writes no scale).
+glm::dmat4 local_matrix(const json& node) {
+  return glm::translate(glm::dmat4(1.0), translation(node)) * glm::mat4_cast(rotation(node));
+}
+
+}  // namespace
+
+// The walker's skin (glTF 2.0 §3.7.3): its joints are walker_root and its descendants; each
+// inverse bind matrix is the inverse of its joint's world transform at rest, so the mesh as
+// written is the bind pose and stands where the root stands; every vertex's weights sum to 1
+// over at most two joints, the same joint or a parent and its child (a bend, not a tear).
+TEST(DynamicFile, WalkerSkinIsItsOwnBindPoseAndBlendsOnlyNeighbours) {
+  const GltfFile f = scene("dynamic");
+  const int walker = f.node("walker");
+  ASSERT_GE(walker, 0);
+  const json& node = f.doc["nodes"][walker];
+  ASSERT_TRUE(node.contains("skin"));
+  EXPECT_FALSE(node.contains("translation") || node.contains("rotation")) << "a skinned node's transform is ignored";
+  const json& skin = f.doc["skins"][node["skin"].get<int>()];
+  const std::vector<int> joints = skin["joints"].get<std::vector<int>>();
+  ASSERT_EQ(joints.size(), 10u);
+  EXPECT_EQ(joints[0], f.node("walker_root"));
+  EXPECT_EQ(skin["skeleton"], joints[0]);
+
+  std::map<int, int> parent;
+  for (size_t i = 0; i < f.doc["nodes"].size(); ++i)
+    for (const json& c : f.doc["nodes"][i].value("children", json::array())) parent[c.get<int>()] = int(i);
+  auto world = [&](int n) {
+    glm::dmat4 m = local_matrix(f.doc["nodes"][n]);
+    for (auto it = parent.find(n); it != parent.end(); it = parent.find(it->second))
+      m = local_matrix(f.doc["nodes"][it->second]) * m;
+    return m;
+  };
+  const std::vector<glm::mat4> inverse_bind = f.mat4s(skin["inverseBindMatrices"].get<int>());
+  ASSERT_EQ(inverse_bind.size(), joints.size());
+  for (size_t j = 0; j < joints.size(); ++j) {
+    if (j > 0) {
+      EXPECT_TRUE(parent.count(joints[j]) && std::count(joints.begin(), joints.end(), parent[joints[j]])) << j;
+    }
+    // Float storage of matrices with entries below 10: ~1e-6 each.
+    const glm::dmat4 product = world(joints[j]) * glm::dmat4(inverse_bind[j]);
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) EXPECT_NEAR(product[c][r], c == r ? 1.0 : 0.0, 1e-5) << "joint " << j;
+  }
+
+  const json& attributes = f.doc["meshes"][node["mesh"].get<int>()]["primitives"][0]["attributes"];
+  const auto indices = f.bytes4(attributes["JOINTS_0"].get<int>());
+  const auto weights = f.vec4s(attributes["WEIGHTS_0"].get<int>());
+  const auto positions = f.vec3s(attributes["POSITION"].get<int>());
+  ASSERT_EQ(indices.size(), positions.size());
+  ASSERT_EQ(weights.size(), positions.size());
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (size_t v = 0; v < positions.size(); ++v) {
+    lo = glm::min(lo, glm::dvec3(positions[v])), hi = glm::max(hi, glm::dvec3(positions[v]));
+    const glm::dvec4 w(weights[v]);
+    // glTF 2.0 §3.7.3.3: the sum within the float rounding of its terms.
+    EXPECT_NEAR(w.x + w.y + w.z + w.w, 1.0, 4e-7) << v;
+    EXPECT_EQ(w.z, 0.0);
+    EXPECT_EQ(w.w, 0.0);
+    const int a = joints.at(indices[v].x), b = joints.at(indices[v].y);
+    if (w.y > 0.0) {
+      EXPECT_TRUE(a == b || parent[a] == b || parent[b] == a) << "vertex " << v;
+    }
+  }
+  // At rest the figure stands on the floor at the root's place, 1.8 m tall.
+  const glm::dvec3 root = translation(f.doc["nodes"][joints[0]]);
+  EXPECT_NEAR(lo.y, 0.0, kPositionTolerance);
+  EXPECT_NEAR(hi.y, 1.8, kPositionTolerance);
+  EXPECT_LT(glm::length(glm::dvec2((lo + hi).x / 2 - root.x, (lo + hi).z / 2 - root.z)), 0.1);
+}
+
+// The lamp jumps once, by a STEP key half-way between frames 29 and 30, and declares itself a
+// rectangle; the fountain emits from the nozzle on the basin, inside the main room.
+TEST(DynamicFile, LampStepsOnceAndTheFountainIsInTheRoom) {
+  const GltfFile f = scene("dynamic");
+  const int lamp = f.node("lamp");
+  ASSERT_GE(lamp, 0);
+  EXPECT_EQ(f.doc["meshes"][f.doc["nodes"][lamp]["mesh"].get<int>()]["extras"]["giq"]["area_light"], "rectangle");
+  const json& seq = f.doc["extras"]["giq"]["sequence"];
+  EXPECT_EQ(seq["frames"], 120);
+  const json& anim = f.doc["animations"][seq["animation"].get<int>()];
+  int lamp_channels = 0;
+  for (const json& ch : anim["channels"]) {
+    if (ch["target"]["node"] != lamp) continue;
+    ++lamp_channels;
+    const json& sampler = anim["samplers"][ch["sampler"].get<int>()];
+    EXPECT_EQ(sampler["interpolation"], "STEP");
+    EXPECT_EQ(f.floats(sampler["input"].get<int>()), (std::vector<float>{0.0f, float(29.5 / 30.0)}));
+    for (int frame : {0, 29})
+      EXPECT_NEAR(glm::length(sample(f, sampler, frame / 30.0) - glm::dvec3(3.6, 2.4, 3.0)), 0.0, kPositionTolerance);
+    for (int frame : {30, 119})
+      EXPECT_NEAR(glm::length(sample(f, sampler, frame / 30.0) - glm::dvec3(5.4, 2.4, 2.4)), 0.0, kPositionTolerance);
+  }
+  EXPECT_EQ(lamp_channels, 1);
+
+  const json& emitters = f.doc["extras"]["giq"]["emitters"];
+  ASSERT_EQ(emitters.size(), 1u);
+  EXPECT_EQ(emitters[0]["node"], "nozzle");
+  const Surface nozzle = surface(f, "nozzle"), basin = surface(f, "basin");
+  for (size_t i = 0; i < nozzle.positions.size(); ++i) {
+    EXPECT_NEAR(glm::length(nozzle.normals[i] - glm::dvec3(0.0, 1.0, 0.0)), 0.0, 1e-6);
+    EXPECT_GT(nozzle.positions[i].y, basin.hi().y);
+    EXPECT_LT(nozzle.positions[i].y, basin.hi().y + 0.01);
+  }
+  // Inside the main room, short of the thin wall at x = 8 +- 0.01.
+  EXPECT_LT(basin.hi().x, 7.99);
+  EXPECT_LT(surface(f, "thin_wall_room").hi().x, 8.0);
+  EXPECT_GT(surface(f, "thin_wall_closet").lo().x, 8.0);
 }

@@ -19,7 +19,7 @@ using nlohmann::json;
 
 namespace {
 
-const std::vector<std::string> kScenes = {"cornell", "leak", "sunroom", "movinglight", "atrium"};
+const std::vector<std::string> kScenes = {"cornell", "leak", "sunroom", "movinglight", "atrium", "dynamic"};
 // Scenes with curved surfaces, smooth-shaded: vertex normals of the surface, not of the face.
 const std::set<std::string> kSmooth = {"atrium"};
 
@@ -144,7 +144,7 @@ TEST_P(BuiltinFile, NamesViewsAndExtrasFollowTheSchema) {
   const json& giq = f.doc.at("extras").at("giq");
   for (const auto& [key, ignored] : giq.items())
     EXPECT_TRUE(key == "views" || key == "sequence" || key == "leak_regions" ||
-                key == "environment")
+                key == "environment" || key == "emitters")
         << key;
   std::set<std::string> views;
   for (const auto& n : f.doc.at("nodes"))

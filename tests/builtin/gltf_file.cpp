@@ -9,6 +9,7 @@ namespace giq::test {
 namespace {
 
 constexpr int kFloat = 5126;
+constexpr int kUnsignedByte = 5121;
 constexpr int kUnsignedShort = 5123;
 
 // Byte range of an accessor's data, checked against its bufferView and the buffer.
@@ -18,7 +19,7 @@ const uint8_t* accessor_data(const GltfFile& f, int index, int component_type, i
   if (a.at("componentType").get<int>() != component_type)
     throw std::runtime_error("accessor " + std::to_string(index) + ": unexpected componentType");
   const std::string type = a.at("type").get<std::string>();
-  const int n = type == "SCALAR" ? 1 : type == "VEC3" ? 3 : 0;
+  const int n = type == "SCALAR" ? 1 : type == "VEC3" ? 3 : type == "VEC4" ? 4 : type == "MAT4" ? 16 : 0;
   if (n != components)
     throw std::runtime_error("accessor " + std::to_string(index) + ": unexpected type " + type);
   const auto& view = f.doc.at("bufferViews").at(a.at("bufferView").get<int>());
@@ -111,6 +112,30 @@ std::vector<uint32_t> GltfFile::indices(int accessor) const {
   std::vector<uint16_t> raw(count);
   std::memcpy(raw.data(), p, count * sizeof(uint16_t));
   return {raw.begin(), raw.end()};
+}
+
+std::vector<glm::vec4> GltfFile::vec4s(int accessor) const {
+  size_t count = 0;
+  const uint8_t* p = accessor_data(*this, accessor, kFloat, 4, sizeof(float), count);
+  std::vector<glm::vec4> out(count);
+  std::memcpy(out.data(), p, count * sizeof(glm::vec4));
+  return out;
+}
+
+std::vector<glm::mat4> GltfFile::mat4s(int accessor) const {
+  size_t count = 0;
+  const uint8_t* p = accessor_data(*this, accessor, kFloat, 16, sizeof(float), count);
+  std::vector<glm::mat4> out(count);
+  std::memcpy(out.data(), p, count * sizeof(glm::mat4));  // both column-major
+  return out;
+}
+
+std::vector<glm::u8vec4> GltfFile::bytes4(int accessor) const {
+  size_t count = 0;
+  const uint8_t* p = accessor_data(*this, accessor, kUnsignedByte, 4, 1, count);
+  std::vector<glm::u8vec4> out(count);
+  std::memcpy(out.data(), p, count * 4);
+  return out;
 }
 
 int GltfFile::node(const std::string& name) const {

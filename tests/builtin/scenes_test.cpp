@@ -54,7 +54,11 @@ FeatureSet features(std::initializer_list<bool FeatureSet::*> flags) {
 // (AtriumDetail::builtin()): floor and walls 5 x 2^2 quads, ceiling 4, sacristy 6 x 1, 12
 // columns of 16 x 2 quads, 10 arches of 4 grids of 12 x 2, 3 curtains of 2 sheets of 48 x 2:
 // 1950 quads; every surface textured and normal-mapped, its materials with a specular lobe
-// (dielectric, textured roughness), the curtains' double-sided.
+// (dielectric, textured roughness), the curtains' double-sided. dynamic: 2 rooms of 5 quads,
+// the thin wall's 6, the lamp 1, the basin 6 and the nozzle 1 = 24 quads; the walker's
+// tubes of 4 sides with 2 caps (torso 7 levels, neck 2, legs 12, arms 7) and boxes (head, 2
+// feet): 52 + 12 + 2 x 92 + 2 x 52 + 3 x 12 = 388 triangles; at t = 0 one particle (8
+// triangles) is alive, born at t = 0. The tiles are glossy, the lamp and the particles emit.
 const Expected kExpected[] = {
     {"cornell", 32, 0, 2, "front", 0, 1,
      features({&FeatureSet::emissive_meshes, &FeatureSet::one_sided})},
@@ -67,6 +71,9 @@ const Expected kExpected[] = {
     {"atrium", 3900, 1, 4, "nave", 6, 1,
      features({&FeatureSet::directional_lights, &FeatureSet::specular, &FeatureSet::textures, &FeatureSet::normal_maps,
                &FeatureSet::double_sided, &FeatureSet::one_sided})},
+    {"dynamic", 48 + 388 + 8, 0, 3, "room", 6, 120,
+     features({&FeatureSet::emissive_meshes, &FeatureSet::specular, &FeatureSet::one_sided, &FeatureSet::animation,
+               &FeatureSet::skinning, &FeatureSet::particles})},
 };
 
 class BuiltinScene : public testing::TestWithParam<Expected> {};
@@ -179,4 +186,76 @@ TEST(MovingLightScene, LightFollowsThePath) {
   // Same power as the cornell light: I = A L / 4.
   const glm::dvec3 radiant = 0.130 * 0.105 * glm::dvec3(17.0, 12.0, 4.0) / 4.0;
   EXPECT_NEAR(glm::length(glm::dvec3(s.lights[0].radiant()) - radiant), 0.0, 1e-6);
+}
+
+namespace {
+
+const giq::scenes::Mesh& mesh(const Scene& s, const std::string& name) {
+  for (const auto& m : s.meshes)
+    if (m.name == name) return m;
+  throw std::runtime_error("no mesh " + name);
+}
+
+}  // namespace
+
+// The walker goes once round its circle (radius 0.8 m about (4.5, 0, 4) m, counter-clockwise
+// from +x, 4 s a lap) on the floor: the middle of its posed skin follows the circle within
+// the spread of its swinging limbs, its head stays up and its feet on the floor.
+TEST(DynamicScene, WalkerGoesRoundTheCircleOnTheFloor) {
+  const Scene s = load("dynamic");
+  for (int frame = 0; frame < 120; frame += 10) {
+    const Scene posed = s.at_frame(frame);
+    const auto& walker = mesh(posed, "walker");
+    ASSERT_TRUE(walker.deformation.has_value());
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    for (glm::vec3 p : walker.positions) lo = glm::min(lo, world(posed, p)), hi = glm::max(hi, world(posed, p));
+    const double phi = 2.0 * std::numbers::pi * frame / 120.0;
+    const glm::dvec3 on_circle = glm::dvec3(4.5, 0.0, 4.0) + 0.8 * glm::dvec3(std::cos(phi), 0.0, std::sin(phi));
+    // Bounds of a body 0.58 m across the shoulders whose feet and arms swing by up to
+    // 0.92 sin(20 deg) = 0.31 m (the hip swing, docs/builtin-scenes.md): their middle is
+    // within 0.3 m of the root.
+    const glm::dvec3 middle = (lo + hi) * 0.5;
+    EXPECT_LT(glm::length(glm::dvec2(middle.x - on_circle.x, middle.z - on_circle.z)), 0.3) << "frame " << frame;
+    // The head's top is 1.8 m at rest; the pelvis dips by at most 15 mm.
+    EXPECT_NEAR(hi.y, 1.8, 0.016) << "frame " << frame;
+    // The feet: the standing sole at most 0.92 (1 - cos 20 deg) = 5.5 cm up. The swinging
+    // foot's toe, turned about the bent knee, dips into the floor by up to 2.3 cm mid-swing
+    // (measured; the figure is not foot-planted): it must stay within 5 cm, or the figure
+    // has sunk or floats.
+    EXPECT_GT(lo.y, -0.05) << "frame " << frame;
+    EXPECT_LT(lo.y, 0.08) << "frame " << frame;
+  }
+}
+
+// The lamp is a declared rectangle over the floor at (3.6, 2.4, 3) m until frame 29 and at
+// (5.4, 2.4, 2.4) m from frame 30; the fountain's particles glow from frame 1 on.
+TEST(DynamicScene, LampJumpsAtFrame30AndTheFountainGlows) {
+  const Scene s = load("dynamic");
+  ASSERT_EQ(s.emitters.size(), 1u);
+  for (const auto& [frame, where] : {std::pair{0, glm::dvec3(3.6, 2.4, 3.0)}, {29, {3.6, 2.4, 3.0}}, {30, {5.4, 2.4, 2.4}},
+                                     {119, {5.4, 2.4, 2.4}}}) {
+    const Scene posed = s.at_frame(frame);
+    int lamps = 0, stages = 0;
+    for (const auto& l : posed.area_lights) {
+      const auto& m = posed.meshes[l.mesh];
+      if (m.name == "lamp") {
+        ++lamps;
+        EXPECT_EQ(m.area_shape, giq::scenes::AreaShape::Rectangle);
+        EXPECT_NEAR(glm::length(world(posed, l.centroid) - where), 0.0, kPositionTolerance) << "frame " << frame;
+        EXPECT_NEAR(l.area, 1.2 * 0.6, 1e-6);
+      } else {
+        EXPECT_EQ(m.emitter, 0);
+        ++stages;
+      }
+    }
+    EXPECT_EQ(lamps, 1);
+    EXPECT_EQ(stages, 4) << "every glowing stage is a light in every frame";
+  }
+  // At t = 2 s, particle i is alive when born (i / 300 s) no later and less than 0.7 s
+  // before: i = 391 .. 600.
+  const Scene steady = s.at_frame(60);
+  size_t particle_triangles = 0;
+  for (const auto& m : steady.meshes)
+    if (m.emitter == 0) particle_triangles += m.triangles.size();
+  EXPECT_EQ(particle_triangles, 8u * 210u);
 }

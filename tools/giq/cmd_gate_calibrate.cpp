@@ -5,6 +5,7 @@
 //   giq gate calibrate                    cases and bounds for every technique (renders the
 //                                         missing goldens first)
 //   giq gate calibrate --technique rsm    measure only rsm's cases; keep the others' bounds
+//   giq gate calibrate --scene dynamic    measure only the cases of scenes/dynamic.gltf
 //   giq gate calibrate --check            exit 1 when gate.json lacks a case the plan and the
 //                                         registered techniques call for (a CI test runs it)
 //
@@ -60,6 +61,7 @@ struct CalibrateArgs {
   std::string device = "llvmpipe";  // as tools/test runs the gate
   std::string giq;
   std::vector<std::string> techniques;
+  std::vector<std::string> scenes;  // scene file stems
   int jobs = int(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
   bool check = false;
 };
@@ -95,6 +97,7 @@ struct PlannedCase {
   std::vector<std::string> metrics;
   std::string name() const { return json["name"].get<std::string>(); }
   std::string technique() const { return json["technique"].get<std::string>(); }
+  std::string scene() const { return fs::path(json["scene"].get<std::string>()).stem().string(); }
 };
 
 // The cases the plan asks for, in a stable order: scene by scene, technique by technique.
@@ -222,13 +225,14 @@ int check(const ordered& plan, const std::vector<PlannedCase>& cases, const json
   std::map<std::string, json> old;
   for (const auto& c : existing.value("cases", json::array())) old[c.value("name", "")] = c;
   std::vector<std::string> missing, differ, extra;
-  std::set<std::string> planned, uncalibrated;
+  std::set<std::string> planned, uncalibrated, uncalibrated_scenes;
   for (const PlannedCase& c : cases) {
     planned.insert(c.name());
     const auto it = old.find(c.name());
     if (it == old.end()) {
       missing.push_back(c.name());
       uncalibrated.insert(c.technique());
+      uncalibrated_scenes.insert(c.scene());
       continue;
     }
     json without_bounds = it->second;
@@ -236,6 +240,7 @@ int check(const ordered& plan, const std::vector<PlannedCase>& cases, const json
     if (without_bounds != json(c.json)) {
       differ.push_back(c.name());
       uncalibrated.insert(c.technique());
+      uncalibrated_scenes.insert(c.scene());
     }
   }
   for (const auto& [name, c] : old)
@@ -251,7 +256,11 @@ int check(const ordered& plan, const std::vector<PlannedCase>& cases, const json
   const json defaults = {{"resolution", json(plan.at("resolution"))}, {"golden", json(plan.at("golden"))}};
   if (!missing.empty() || !differ.empty() || !extra.empty() || existing.value("defaults", json()) != defaults) {
     std::string command = "giq gate calibrate";
-    for (const auto& t : uncalibrated) command += " --technique " + t;
+    // A new scene touches every technique's cases: name the scene rather than them all.
+    if (uncalibrated.size() == names.size() && uncalibrated_scenes.size() < uncalibrated.size())
+      for (const auto& sc : uncalibrated_scenes) command += " --scene " + sc;
+    else
+      for (const auto& t : uncalibrated) command += " --technique " + t;
     std::cerr << "gate.json does not match golden/gate-plan.json and the registered techniques (" << list(names)
               << "); run: " << command << '\n';
     return 1;
@@ -289,14 +298,19 @@ int run_calibrate(const CalibrateArgs& a) {
   for (const auto& t : a.techniques)
     if (std::find(names.begin(), names.end(), t) == names.end())
       throw InputError("", "--technique", "'" + t + "' is not registered (giq realtime --list --json)");
+  for (const auto& s : a.scenes)
+    if (std::none_of(cases.begin(), cases.end(), [&](const PlannedCase& c) { return c.scene() == s; }))
+      throw InputError(plan_path.string(), "--scene", "'" + s + "' has no case in the plan (expected a scene file's stem, e.g. cornell)");
   std::vector<const PlannedCase*> to_measure, keep;
+  auto selected = [](const std::vector<std::string>& filter, const std::string& value) {
+    return filter.empty() || std::count(filter.begin(), filter.end(), value) > 0;
+  };
   for (const PlannedCase& c : cases)
-    (a.techniques.empty() || std::count(a.techniques.begin(), a.techniques.end(), c.technique()) ? to_measure : keep)
-        .push_back(&c);
-  if (to_measure.empty()) throw InputError("", "--technique", "no planned case for these techniques");
+    (selected(a.techniques, c.technique()) && selected(a.scenes, c.scene()) ? to_measure : keep).push_back(&c);
+  if (to_measure.empty()) throw InputError("", "--technique", "no planned case for these techniques and scenes");
   for (const PlannedCase* c : keep)
     if (!old.count(c->name()) || !old[c->name()].contains("bounds"))
-      throw InputError(config_path.string(), c->name(), "has no bounds yet; calibrate its technique too");
+      throw InputError(config_path.string(), c->name(), "has no bounds yet; calibrate its technique or scene too");
 
   // Measuring configs live beside gate.json, so that scene paths and the manifest stay relative
   // to golden/ exactly as there; they are removed afterwards. A run with "parameters" (e.g.
@@ -431,12 +445,15 @@ CLI::App* add_gate_calibrate_command(CLI::App& gate, int& exit_code) {
   cmd->add_option("--config", a->config, "The gate config written (or checked)")->capture_default_str();
   cmd->add_option("--out", a->out, "Folder for the measuring gate runs")->capture_default_str();
   cmd->add_option("--technique", a->techniques, "Measure only these techniques' cases (repeatable); keep the others'");
+  cmd->add_option("--scene", a->scenes,
+                  "Measure only the cases of these scenes, by file stem (repeatable; with --technique, both must match)");
   cmd->add_option("--jobs", a->jobs, "Cases run in parallel")->capture_default_str();
   cmd->add_option("--device", a->device, "Vulkan device of the gate runs")->capture_default_str();
   cmd->add_option("--giq", a->giq, "giq binary whose subcommands are run (default: this one)");
   cmd->add_flag("--check", a->check,
                 "Only check that the config has every case the plan and the registered techniques call for (exit 1 if not)");
-  cmd->footer("Example: bounds for a newly registered technique, the others' kept:\n  giq gate calibrate --technique ddgi");
+  cmd->footer("Example: bounds for a newly registered technique, the others' kept:\n  giq gate calibrate --technique ddgi\n"
+              "Bounds for a new built-in scene:\n  giq gate calibrate --scene dynamic");
   cmd->callback([a, &exit_code] { exit_code = run_calibrate(*a); });
   return cmd;
 }

@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <zlib.h>
 
 namespace giq::scenegen {
@@ -17,6 +18,7 @@ static_assert(std::endian::native == std::endian::little,
 
 // glTF 2.0 §5.1.3 / §5.12 constants.
 constexpr int kFloat = 5126;
+constexpr int kUnsignedByte = 5121;
 constexpr int kUnsignedShort = 5123;
 constexpr int kUnsignedInt = 5125;
 constexpr int kArrayBuffer = 34962;
@@ -251,8 +253,8 @@ int GltfWriter::add_node(Json node, int parent, const Pose& pose) {
   return index;
 }
 
-int GltfWriter::add_mesh_node(const std::string& name, const MeshData& mesh, int material,
-                              const Pose& pose) {
+int GltfWriter::add_mesh(const std::string& name, const MeshData& mesh, int material,
+                         const Pose& pose, Json extra_attributes) {
   if (mesh.positions.empty()) throw std::logic_error(name + ": no vertices");
   if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()) throw std::logic_error(name + ": one UV a vertex");
   Json attributes;
@@ -263,6 +265,7 @@ int GltfWriter::add_mesh_node(const std::string& name, const MeshData& mesh, int
     for (const glm::dvec2& t : mesh.uvs) uv.insert(uv.end(), {clean(t.x), clean(t.y)});
     attributes["TEXCOORD_0"] = add_accessor(uv.data(), uv.size() * sizeof(float), kFloat, mesh.uvs.size(), "VEC2", kArrayBuffer);
   }
+  for (auto& [key, value] : extra_attributes.items()) attributes[key] = value;
   // 16-bit indices where they suffice (the small built-in scenes), 32-bit otherwise.
   int index_accessor;
   if (mesh.positions.size() <= 65535) {
@@ -282,11 +285,6 @@ int GltfWriter::add_mesh_node(const std::string& name, const MeshData& mesh, int
   m["primitives"] = Json::array({std::move(primitive)});
   meshes_.push_back(std::move(m));
 
-  Json node;
-  node["name"] = name;
-  node["mesh"] = meshes_.size() - 1;
-  write_pose(node, pose);
-
   NodeFacts facts;
   facts.name = name;
   facts.material = materials_.at(material)["name"].get<std::string>();
@@ -299,7 +297,69 @@ int GltfWriter::add_mesh_node(const std::string& name, const MeshData& mesh, int
     facts.world_hi = glm::max(facts.world_hi, w);
   }
   facts_.push_back(facts);
+  return static_cast<int>(meshes_.size() - 1);
+}
+
+int GltfWriter::add_mesh_node(const std::string& name, const MeshData& mesh, int material,
+                              const Pose& pose) {
+  Json node;
+  node["name"] = name;
+  node["mesh"] = add_mesh(name, mesh, material, pose, Json::object());
+  write_pose(node, pose);
   return add_node(std::move(node), -1, pose);
+}
+
+int GltfWriter::add_skinned_mesh_node(const std::string& name, const MeshData& mesh,
+                                      const SkinWeights& weights, int material, int skin) {
+  const size_t n = mesh.positions.size();
+  if (weights.joints.size() != n || weights.weights.size() != n)
+    throw std::logic_error(name + ": one joint set and one weight set a vertex");
+  const size_t joint_count = skins_.at(skin)["joints"].size();
+  std::vector<uint8_t> joints;
+  std::vector<float> w;
+  for (size_t v = 0; v < n; ++v) {
+    const glm::dvec4& wv = weights.weights[v];
+    if (std::abs(wv.x + wv.y + wv.z + wv.w - 1.0) > 1e-9 || glm::any(glm::lessThan(wv, glm::dvec4(0.0))))
+      throw std::logic_error(name + ": weights must be non-negative and sum to 1");
+    for (int k = 0; k < 4; ++k) {
+      if (weights.joints[v][k] >= joint_count) throw std::logic_error(name + ": joint index beyond the skin");
+      joints.push_back(weights.joints[v][k]);
+      w.push_back(clean(wv[k]));
+    }
+  }
+  Json attributes;
+  attributes["JOINTS_0"] = add_accessor(joints.data(), joints.size(), kUnsignedByte, n, "VEC4", kArrayBuffer);
+  attributes["WEIGHTS_0"] = add_accessor(w.data(), w.size() * sizeof(float), kFloat, n, "VEC4", kArrayBuffer);
+  Json node;
+  node["name"] = name;
+  node["mesh"] = add_mesh(name, mesh, material, {}, std::move(attributes));
+  node["skin"] = skin;
+  return add_node(std::move(node), -1, {});
+}
+
+int GltfWriter::add_skin(const std::string& name, const std::vector<int>& joints) {
+  if (joints.empty() || joints.size() > 256) throw std::logic_error(name + ": 1 to 256 joints");
+  std::vector<float> inverse_bind;
+  for (int j : joints) {
+    const Pose& world = world_poses_.at(j);
+    const glm::dmat4 m = glm::inverse(glm::translate(glm::dmat4(1.0), world.translation) * glm::mat4_cast(world.rotation));
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) inverse_bind.push_back(clean(m[c][r]));  // column-major (§3.6.2.2)
+  }
+  Json skin;
+  skin["name"] = name;
+  skin["inverseBindMatrices"] =
+      add_accessor(inverse_bind.data(), inverse_bind.size() * sizeof(float), kFloat, joints.size(), "MAT4", std::nullopt);
+  skin["skeleton"] = joints.front();
+  skin["joints"] = joints;
+  skins_.push_back(std::move(skin));
+  return static_cast<int>(skins_.size() - 1);
+}
+
+void GltfWriter::declare_area_light(int node, const std::string& shape) {
+  if (shape != "sphere" && shape != "disc" && shape != "rectangle" && shape != "tube")
+    throw std::logic_error("area light shape " + shape);
+  meshes_.at(nodes_.at(node).at("mesh").get<size_t>())["extras"] = {{"giq", {{"area_light", shape}}}};
 }
 
 int GltfWriter::add_camera_node(const ViewSpec& view, double aspect_ratio, double znear) {
@@ -349,28 +409,49 @@ int GltfWriter::add_group_node(const std::string& name, const Pose& pose, int pa
 }
 
 int GltfWriter::add_animation(const std::string& name,
-                              const std::vector<TranslationTrack>& tracks) {
+                              const std::vector<TranslationTrack>& tracks,
+                              const std::vector<RotationTrack>& rotations) {
   Json samplers = Json::array(), channels = Json::array();
-  for (const TranslationTrack& track : tracks) {
-    if (track.times.empty() || track.times.size() != track.values.size() ||
-        !std::is_sorted(track.times.begin(), track.times.end(), std::less_equal<double>()))
+  // The key times' accessor first, then the values', as each channel is added.
+  auto input = [&](const std::vector<double>& key_times, size_t values) {
+    if (key_times.empty() || key_times.size() != values ||
+        !std::is_sorted(key_times.begin(), key_times.end(), std::less_equal<double>()))
       throw std::logic_error(name + ": key times must be strictly increasing, one per value");
     std::vector<float> times;
-    for (double t : track.times) times.push_back(clean(t));
+    for (double t : key_times) times.push_back(clean(t));
     // §3.11: sampler input accessors must declare min and max.
-    const int input =
-        add_accessor(times.data(), times.size() * sizeof(float), kFloat, times.size(), "SCALAR",
-                     std::nullopt, Json::array({times.front()}), Json::array({times.back()}));
-    const int output = add_vec3_accessor(track.values, std::nullopt, false);
+    return add_accessor(times.data(), times.size() * sizeof(float), kFloat, times.size(), "SCALAR", std::nullopt,
+                        Json::array({times.front()}), Json::array({times.back()}));
+  };
+  auto channel = [&](int node, int input_accessor, Interpolation interpolation, const char* path, int output) {
     Json sampler;
-    sampler["input"] = input;
-    sampler["interpolation"] = track.interpolation == Interpolation::Linear ? "LINEAR" : "STEP";
+    sampler["input"] = input_accessor;
+    sampler["interpolation"] = interpolation == Interpolation::Linear ? "LINEAR" : "STEP";
     sampler["output"] = output;
-    Json channel;
-    channel["sampler"] = samplers.size();
-    channel["target"] = {{"node", track.node}, {"path", "translation"}};
+    Json c;
+    c["sampler"] = samplers.size();
+    c["target"] = {{"node", node}, {"path", path}};
     samplers.push_back(std::move(sampler));
-    channels.push_back(std::move(channel));
+    channels.push_back(std::move(c));
+  };
+  for (const TranslationTrack& track : tracks) {
+    const int times = input(track.times, track.values.size());
+    channel(track.node, times, track.interpolation, "translation", add_vec3_accessor(track.values, std::nullopt, false));
+  }
+  for (const RotationTrack& track : rotations) {
+    const int times = input(track.times, track.values.size());
+    // Each key in the hemisphere of the one before, so slerp turns the short way between them
+    // in every reader (q and -q are the same rotation).
+    std::vector<float> q;
+    glm::dquat previous(1.0, 0.0, 0.0, 0.0);
+    for (glm::dquat v : track.values) {
+      v = glm::normalize(v);
+      if (glm::dot(v, previous) < 0.0) v = -v;
+      previous = v;
+      q.insert(q.end(), {clean(v.x), clean(v.y), clean(v.z), clean(v.w)});
+    }
+    channel(track.node, times, track.interpolation, "rotation",
+            add_accessor(q.data(), q.size() * sizeof(float), kFloat, track.values.size(), "VEC4", std::nullopt));
   }
   Json animation;
   animation["name"] = name;
@@ -396,6 +477,10 @@ void GltfWriter::add_leak_region(const std::string& node_name) {
   leak_regions_.push_back(node_name);
 }
 
+void GltfWriter::add_emitter(const EmitterSpec& emitter) {
+  emitters_.push_back(emitter);
+}
+
 Json GltfWriter::document(const std::string* buffer_uri) const {
   std::set<std::string> node_names, view_names;
   for (const Json& n : nodes_)
@@ -419,6 +504,28 @@ Json GltfWriter::document(const std::string* buffer_uri) const {
   }
   if (sequence_) giq["sequence"] = *sequence_;
   if (!leak_regions_.empty()) giq["leak_regions"] = leak_regions_;
+  for (const EmitterSpec& e : emitters_) {
+    if (!node_names.count(e.node)) throw std::logic_error("emitter on no node: " + e.node);
+    Json j;
+    j["name"] = e.name;
+    j["node"] = e.node;
+    j["rate"] = clean(e.rate);
+    j["lifetime"] = clean(e.lifetime);
+    j["speed"] = clean(e.speed);
+    j["spread_deg"] = clean(e.spread_deg);
+    j["gravity"] = vec3(e.gravity);
+    j["drag"] = clean(e.drag);
+    j["size"] = clean(e.size);
+    j["color"] = vec3(e.color);
+    j["emission"] = vec3(e.emission);
+    if (!e.strength.empty()) {
+      j["strength"] = Json::array();
+      for (glm::dvec2 k : e.strength) j["strength"].push_back(Json::array({clean(k.x), clean(k.y)}));
+    }
+    j["stages"] = e.stages;
+    j["seed"] = e.seed;
+    giq["emitters"].push_back(std::move(j));
+  }
   doc["extras"] = {{"giq", std::move(giq)}};
 
   doc["scene"] = 0;
@@ -429,6 +536,7 @@ Json GltfWriter::document(const std::string* buffer_uri) const {
   if (!materials_.empty()) doc["materials"] = materials_;
   if (!cameras_.empty()) doc["cameras"] = cameras_;
   if (!animations_.empty()) doc["animations"] = animations_;
+  if (!skins_.empty()) doc["skins"] = skins_;
   if (!images_.empty()) {
     doc["images"] = images_;
     doc["textures"] = textures_;

@@ -10,6 +10,7 @@
 // 4-byte aligned, so no byteStride is needed (§3.6.2.4: byteStride only when accessors share a
 // vertex bufferView).
 
+#include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -78,6 +79,34 @@ struct TranslationTrack {
   std::vector<glm::dvec3> values;
 };
 
+// One animated rotation (LINEAR keys are interpolated by slerp, glTF 2.0 Appendix C).
+struct RotationTrack {
+  int node = -1;
+  Interpolation interpolation = Interpolation::Linear;
+  std::vector<double> times;
+  std::vector<glm::dquat> values;
+};
+
+// Joint influences of a skinned mesh, per vertex: four indices into the skin's joint list and
+// their weights (non-negative, summing to 1; unused slots weigh 0).
+struct SkinWeights {
+  std::vector<std::array<uint8_t, 4>> joints;
+  std::vector<glm::dvec4> weights;
+};
+
+// A particle emitter as extras.giq.emitters declares it (docs/scene-format.md); the node is
+// named, the emitting surface is its mesh.
+struct EmitterSpec {
+  std::string name, node;
+  double rate = 1.0, lifetime = 1.0, speed = 0.0, spread_deg = 0.0;
+  glm::dvec3 gravity{0.0, -9.81, 0.0};
+  double drag = 0.0, size = 0.01;
+  glm::dvec3 color{1.0}, emission{0.0};
+  std::vector<glm::dvec2> strength;  // (life fraction, strength) keys
+  int stages = 8;
+  uint32_t seed = 0;
+};
+
 // What the documentation says about a mesh node (filled as nodes are added).
 struct NodeFacts {
   std::string name;
@@ -107,13 +136,25 @@ class GltfWriter {
   int add_light_node(const LightSpec& light, const Pose& pose, int parent = -1);
   // A node that only carries a transform (to be animated, with children).
   int add_group_node(const std::string& name, const Pose& pose, int parent = -1);
-  // One glTF animation with one translation channel per track.
-  int add_animation(const std::string& name, const std::vector<TranslationTrack>& tracks);
+  // One glTF animation with one translation channel per translation track and one rotation
+  // channel per rotation track.
+  int add_animation(const std::string& name, const std::vector<TranslationTrack>& tracks,
+                    const std::vector<RotationTrack>& rotations = {});
+  // A skin over these joint nodes (glTF 2.0 §3.7.3): each joint's inverse bind matrix is the
+  // inverse of its world transform at rest, so a mesh written in world coordinates at rest is
+  // its own bind pose.
+  int add_skin(const std::string& name, const std::vector<int>& joints);
+  // A node with a skinned mesh (world coordinates at rest) of one triangle primitive.
+  int add_skinned_mesh_node(const std::string& name, const MeshData& mesh,
+                            const SkinWeights& weights, int material, int skin);
+  // meshes[].extras.giq.area_light of a mesh node's mesh: "sphere", "disc", "rectangle", "tube".
+  void declare_area_light(int node, const std::string& shape);
 
   // extras.giq
   void add_view(const ViewSpec& view);
   void set_sequence(int frames, double fps, int animation);
   void add_leak_region(const std::string& node_name);
+  void add_emitter(const EmitterSpec& emitter);
 
   // The finished document (validates names first; throws std::logic_error on a broken scene).
   std::string dump() const;
@@ -126,6 +167,7 @@ class GltfWriter {
   const std::vector<ViewSpec>& camera_views() const { return camera_views_; }
   const std::vector<ViewSpec>& extra_views() const { return extra_views_; }
   const std::vector<std::string>& leak_regions() const { return leak_regions_; }
+  const std::vector<EmitterSpec>& emitters() const { return emitters_; }
   int sequence_frames() const { return sequence_ ? (*sequence_)["frames"].get<int>() : 1; }
   double sequence_fps() const { return sequence_ ? (*sequence_)["fps"].get<double>() : 0.0; }
 
@@ -137,11 +179,14 @@ class GltfWriter {
   int add_vec3_accessor(const std::vector<glm::dvec3>& values, std::optional<int> target,
                         bool bounds);
   int add_node(Json node, int parent, const Pose& pose);
+  // The mesh of one triangle primitive with these extra attributes, its facts recorded.
+  int add_mesh(const std::string& name, const MeshData& mesh, int material, const Pose& pose,
+               Json extra_attributes);
   Json document(const std::string* buffer_uri) const;
 
   std::vector<uint8_t> buffer_;
   std::vector<Json> buffer_views_, accessors_, meshes_, materials_, nodes_, cameras_, lights_,
-      animations_, images_, textures_;
+      animations_, images_, textures_, skins_;
   std::vector<int> roots_;
   std::set<std::string> extensions_;
   std::vector<NodeFacts> facts_;
@@ -150,6 +195,7 @@ class GltfWriter {
   std::vector<Pose> world_poses_;  // per node, at rest
   std::vector<ViewSpec> camera_views_, extra_views_;
   std::vector<std::string> leak_regions_;
+  std::vector<EmitterSpec> emitters_;
   std::optional<Json> sequence_;
 };
 

@@ -1,6 +1,7 @@
 // `leak`: two sealed rooms sharing one thin wall; the light is in room A, the camera in room B,
 // where the truth is exactly black. Any light a technique puts in room B leaked.
 
+#include "room.h"
 #include "scenes.h"
 #include "text.h"
 
@@ -15,26 +16,6 @@ constexpr double kHalf = kWallThickness / 2.0;  // the thin wall spans x in [-kH
 const glm::dvec3 kLightPosition{-1.0, 1.6, 2.0};
 // Room A well lit: the thin wall's A side, about 1 m away, receives about I / d^2 = 10 W/m^2.
 constexpr double kLightIntensity = 10.0;
-
-// Adds a room's floor, ceiling and three outer walls as nodes `<prefix>_floor` etc.; the face on
-// the thin wall's side is left out. Floors, ceilings and the front and back walls run on to
-// x = 0, under, over and beside the thin wall, so every seam between a room and the wall is
-// covered by a surface behind it: no ray finds a crack between two quads that merely touch.
-void add_room(GltfWriter& gltf, const std::string& prefix, glm::dvec3 lo, glm::dvec3 hi,
-              BoxFace shared, int walls, int floor) {
-  const glm::dvec3 inside = (lo + hi) * 0.5;
-  const std::array<Quad, 6> q = box_quads(lo, hi);
-  auto face = [&](BoxFace f, const std::string& name, int material) {
-    MeshData m;
-    add_quad_facing_point(m, q[f], inside);
-    gltf.add_mesh_node(prefix + "_" + name, m, material);
-  };
-  face(kYLo, "floor", floor);
-  face(kYHi, "ceiling", walls);
-  face(kZLo, "front_wall", walls);
-  face(kZHi, "back_wall", walls);
-  face(shared == kXHi ? kXLo : kXHi, "end_wall", walls);
-}
 
 }  // namespace
 
@@ -56,16 +37,8 @@ BuiltinScene make_leak() {
 
   // The thin wall is a closed box: its two large faces are separate nodes (room B's side is a
   // leak region) and its four narrow faces one more.
-  const glm::dvec3 wall_lo{-kHalf, 0.0, 0.0}, wall_hi{kHalf, kRoomHeight, kRoomDepth};
-  const glm::dvec3 wall_centre = (wall_lo + wall_hi) * 0.5;
-  const std::array<Quad, 6> w = box_quads(wall_lo, wall_hi);
-  MeshData side_a, side_b, edges;
-  add_quad_away_from(side_a, w[kXLo], wall_centre);
-  add_quad_away_from(side_b, w[kXHi], wall_centre);
-  for (BoxFace f : {kYLo, kYHi, kZLo, kZHi}) add_quad_away_from(edges, w[f], wall_centre);
-  g.add_mesh_node("thin_wall_A", side_a, walls);
-  g.add_mesh_node("thin_wall_B", side_b, walls);
-  g.add_mesh_node("thin_wall_edges", edges, walls);
+  add_thin_wall(g, {-kHalf, 0.0, 0.0}, {kHalf, kRoomHeight, kRoomDepth}, "thin_wall_A", "thin_wall_B",
+                "thin_wall_edges", walls);
 
   g.add_light_node({"light_A", LightKind::Point, glm::dvec3(1.0), kLightIntensity},
                    {kLightPosition});

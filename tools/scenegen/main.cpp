@@ -25,6 +25,7 @@ std::vector<BuiltinScene> all_scenes() {
   scenes.push_back(make_sunroom());
   scenes.push_back(make_movinglight());
   scenes.push_back(make_atrium(AtriumDetail::builtin()));
+  scenes.push_back(make_dynamic());
   return scenes;
 }
 

@@ -20,6 +20,7 @@ BuiltinScene make_cornell();
 BuiltinScene make_leak();
 BuiltinScene make_sunroom();
 BuiltinScene make_movinglight();
+BuiltinScene make_dynamic();
 
 // How finely the atrium is made: materials (three textures each, of texture_size^2 texels),
 // quads round a column and up it, along an arch, across and down a curtain, along a wall.
