@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 namespace giq::test {
 namespace {
@@ -32,6 +33,17 @@ const uint8_t* accessor_data(const GltfFile& f, int index, int component_type, i
       offset + bytes > f.buffer.size())
     throw std::runtime_error("accessor " + std::to_string(index) + " overruns its bufferView");
   return f.buffer.data() + offset;
+}
+
+// An accessor's elements copied out as T (component_size x components bytes each).
+template <class T>
+std::vector<T> elements(const GltfFile& f, int accessor, int component_type, int components, size_t component_size) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  size_t count = 0;
+  const uint8_t* p = accessor_data(f, accessor, component_type, components, component_size, count);
+  std::vector<T> out(count);
+  std::memcpy(out.data(), p, count * sizeof(T));
+  return out;
 }
 
 }  // namespace
@@ -91,51 +103,28 @@ GltfFile GltfFile::read(const std::filesystem::path& path) {
 }
 
 std::vector<glm::vec3> GltfFile::vec3s(int accessor) const {
-  size_t count = 0;
-  const uint8_t* p = accessor_data(*this, accessor, kFloat, 3, sizeof(float), count);
-  std::vector<glm::vec3> out(count);
-  std::memcpy(out.data(), p, count * sizeof(glm::vec3));
-  return out;
+  return elements<glm::vec3>(*this, accessor, kFloat, 3, sizeof(float));
 }
 
 std::vector<float> GltfFile::floats(int accessor) const {
-  size_t count = 0;
-  const uint8_t* p = accessor_data(*this, accessor, kFloat, 1, sizeof(float), count);
-  std::vector<float> out(count);
-  std::memcpy(out.data(), p, count * sizeof(float));
-  return out;
+  return elements<float>(*this, accessor, kFloat, 1, sizeof(float));
 }
 
 std::vector<uint32_t> GltfFile::indices(int accessor) const {
-  size_t count = 0;
-  const uint8_t* p = accessor_data(*this, accessor, kUnsignedShort, 1, sizeof(uint16_t), count);
-  std::vector<uint16_t> raw(count);
-  std::memcpy(raw.data(), p, count * sizeof(uint16_t));
+  const auto raw = elements<uint16_t>(*this, accessor, kUnsignedShort, 1, sizeof(uint16_t));
   return {raw.begin(), raw.end()};
 }
 
 std::vector<glm::vec4> GltfFile::vec4s(int accessor) const {
-  size_t count = 0;
-  const uint8_t* p = accessor_data(*this, accessor, kFloat, 4, sizeof(float), count);
-  std::vector<glm::vec4> out(count);
-  std::memcpy(out.data(), p, count * sizeof(glm::vec4));
-  return out;
+  return elements<glm::vec4>(*this, accessor, kFloat, 4, sizeof(float));
 }
 
 std::vector<glm::mat4> GltfFile::mat4s(int accessor) const {
-  size_t count = 0;
-  const uint8_t* p = accessor_data(*this, accessor, kFloat, 16, sizeof(float), count);
-  std::vector<glm::mat4> out(count);
-  std::memcpy(out.data(), p, count * sizeof(glm::mat4));  // both column-major
-  return out;
+  return elements<glm::mat4>(*this, accessor, kFloat, 16, sizeof(float));  // both column-major
 }
 
 std::vector<glm::u8vec4> GltfFile::bytes4(int accessor) const {
-  size_t count = 0;
-  const uint8_t* p = accessor_data(*this, accessor, kUnsignedByte, 4, 1, count);
-  std::vector<glm::u8vec4> out(count);
-  std::memcpy(out.data(), p, count * 4);
-  return out;
+  return elements<glm::u8vec4>(*this, accessor, kUnsignedByte, 4, 1);
 }
 
 int GltfFile::node(const std::string& name) const {

@@ -27,11 +27,6 @@ struct Influence {
   double wb;
 };
 
-double smoothstep(double y, double lo, double hi) {
-  const double t = std::clamp((y - lo) / (hi - lo), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
-
 // Appends triangles over the vertices i0-i1-i2-i3 (a planar quad in cyclic order), wound so
 // that their normal points along `n`.
 void add_face(MeshData& m, uint32_t i0, uint32_t i1, uint32_t i2, uint32_t i3, glm::dvec3 n) {
@@ -88,22 +83,22 @@ void add_rigid_box(MeshData& m, SkinWeights& w, glm::dvec3 lo, glm::dvec3 hi, Jo
 void build_body(MeshData& m, SkinWeights& w) {
   // Torso, waist bending between pelvis and spine.
   add_tube(m, w, 0.0, 0.0, 0.17, 0.1, {0.9, 1.0, 1.1, 1.2, 1.3, 1.4, 1.5},
-           [](double y) { return Influence{kPelvis, kSpine, smoothstep(y, 1.0, 1.1)}; });
+           [](double y) { return Influence{kPelvis, kSpine, glm::smoothstep(1.0, 1.1, y)}; });
   add_rigid_box(m, w, {-0.1, 1.55, -0.11}, {0.1, kHeadTop, 0.11}, kHead);
-  add_tube(m, w, 0.0, 0.0, 0.045, 0.045, {1.48, 1.56}, [](double y) { return Influence{kSpine, kHead, smoothstep(y, 1.5, 1.56)}; });
+  add_tube(m, w, 0.0, 0.0, 0.045, 0.045, {1.48, 1.56}, [](double y) { return Influence{kSpine, kHead, glm::smoothstep(1.5, 1.56, y)}; });
   // Legs: the hip blends pelvis into thigh, the knee thigh into shin.
   const std::vector<double> leg = {0.05, 0.2, 0.35, 0.41, 0.47, 0.53, 0.59, 0.7, 0.8, 0.87, 0.93, 0.98};
   for (const auto& [x, thigh, shin] : {std::tuple{kHipX, kThighL, kShinL}, std::tuple{-kHipX, kThighR, kShinR}}) {
     add_tube(m, w, x, 0.0, 0.065, 0.07, leg, [thigh, shin](double y) {
-      if (y > 0.59) return Influence{thigh, kPelvis, smoothstep(y, 0.86, 0.98)};
-      return Influence{shin, thigh, smoothstep(y, kKneeHeight - 0.06, kKneeHeight + 0.06)};
+      if (y > 0.59) return Influence{thigh, kPelvis, glm::smoothstep(0.86, 0.98, y)};
+      return Influence{shin, thigh, glm::smoothstep(kKneeHeight - 0.06, kKneeHeight + 0.06, y)};
     });
     add_rigid_box(m, w, {x - 0.06, 0.0, -0.06}, {x + 0.06, 0.07, 0.18}, shin);
   }
   // Arms hang from the shoulders, which blend spine into arm.
   const std::vector<double> arm = {0.78, 0.95, 1.1, 1.25, 1.35, 1.42, 1.48};
   for (const auto& [x, joint] : {std::pair{kShoulderX, kArmL}, std::pair{-kShoulderX, kArmR}})
-    add_tube(m, w, x, 0.0, 0.045, 0.05, arm, [joint](double y) { return Influence{joint, kSpine, smoothstep(y, 1.36, 1.47)}; });
+    add_tube(m, w, x, 0.0, 0.045, 0.05, arm, [joint](double y) { return Influence{joint, kSpine, glm::smoothstep(1.36, 1.47, y)}; });
 }
 
 glm::dquat about_x(double angle) { return glm::angleAxis(angle, glm::dvec3(1.0, 0.0, 0.0)); }
