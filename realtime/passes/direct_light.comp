@@ -7,7 +7,8 @@
 // (shaders/polygon_irradiance.glsl), the specular part uses a representative point with
 // energy normalisation (Karis 2013, "Real Shading in Unreal Engine 4"; Turánszki 2017, "Area
 // Lights"): of the declared shape (sphere, disc, rectangle, tube) when the mesh declares one,
-// else of each triangle, the point closest to the reflection ray.
+// else of each triangle, the point closest to the reflection ray. A glowing particle is one
+// light (shaders/octahedron_irradiance.glsl), a small sphere for the specular part.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/scene.glsl"
@@ -17,6 +18,7 @@
 #include "shaders/lights.glsl"
 #include "shaders/closest_point.glsl"
 #include "shaders/polygon_irradiance.glsl"
+#include "shaders/octahedron_irradiance.glsl"
 #include "shaders/environment.glsl"
 #include "passes/direct_light_shared.h"
 #include "passes/shadow_maps_shared.h"
@@ -30,12 +32,21 @@ layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 2) readonly buffer AreaLig
 layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 3) readonly buffer AreaTriangles { GpuAreaTriangle area_triangles[]; };
 layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 4) readonly buffer LightShadow { uint light_shadow_layer[]; };
 layout(binding = GIQ_RECEIVER_BINDING_COUNT + 5, rgba32f) uniform writeonly image2D out_direct;
+layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 6) readonly buffer ParticleLights { GpuParticleLight particle_lights[]; };
 
 layout(push_constant) uniform Push { DirectPush pc; };
 
 #include "passes/shadow.glsl"
 
 #ifdef GIQ_SPECULAR
+// The point of the sphere of `radius` about c (relative to the shading point) closest to the
+// reflection ray r (Karis 2013, "Sphere Lights").
+vec3 sphere_point(vec3 c, vec3 r, float radius) {
+  vec3 to_ray = dot(c, r) * r - c;
+  float d = length(to_ray);
+  return d > 0.0 ? c + to_ray * min(1.0, radius / d) : c;
+}
+
 // The point of the declared shape (GpuAreaLight::shape*, relative to the shading point) closest
 // to the reflection ray r from the shading point (Turánszki 2017, "Area Lights": sphere, disc,
 // rectangle, tube), and its source radius for the energy normalisation. Disc and rectangle
@@ -51,11 +62,7 @@ vec3 shape_point(GpuAreaLight l, vec3 c, vec3 r, int shape, out float source_rad
     float t = denom > 0.0 ? clamp((dot(r, a) * rab - dot(a, ab)) / denom, 0.0, 1.0) : 0.5;
     c = a + t * ab;
   }
-  if (shape == GIQ_AREA_SPHERE || shape == GIQ_AREA_TUBE) {
-    vec3 to_ray = dot(c, r) * r - c;
-    float d = length(to_ray);
-    return d > 0.0 ? c + to_ray * min(1.0, radius / d) : c;
-  }
+  if (shape == GIQ_AREA_SPHERE || shape == GIQ_AREA_TUBE) return sphere_point(c, r, radius);
   // Disc and rectangle: the plane's normal (a disc keeps it in v, a rectangle's is u x v).
   vec3 n = shape == GIQ_AREA_DISC ? l.shape_v.xyz : normalize(cross(l.shape_u.xyz, l.shape_v.xyz));
   float rn = dot(r, n);
@@ -81,11 +88,39 @@ float widening(float alpha, float source_radius, float d) {
   return a2 > 0.0 ? (alpha * alpha) / (a2 * a2) : 1.0;
 }
 
+// Particle k as one light: the diffuse part from its octahedron's irradiance, the specular
+// part from the representative point of the sphere of its mean projected area (a convex
+// body's is a quarter of its surface, sqrt(3) r^2 for the octahedron: radius
+// r (sqrt(3) / pi)^(1/2)), energy-normalised like a declared sphere.
+vec3 particle_light(uint k, Surface s, vec3 p, vec3 wo) {
+  vec3 c = particle_lights[k].centre.xyz - p;
+  float r = particle_lights[k].centre.w;
+  float e = octahedron_irradiance(c, r, s.n);
+  if (e <= 0.0) return vec3(0.0);
+  float d = length(c);
+  vec3 diffuse, specular;
+  brdf_parts(s, wo, c / d, diffuse, specular);
+  vec3 f = diffuse;
+#ifdef GIQ_SPECULAR
+  float radius = r * sqrt(sqrt(3.0) / PI);
+  vec3 q = sphere_point(c, reflect(-wo, s.n), radius);
+  float dq = length(q);
+  if (dq > 0.0) {
+    brdf_parts(s, wo, q / dq, diffuse, specular);
+    f += specular * widening(s.alpha, radius, dq);
+  }
+#endif
+  return f * particle_lights[k].radiance.rgb * e;
+}
+
 vec3 area_light(GpuAreaLight l, Surface s, vec3 p, vec3 wo) {
   vec3 sum = vec3(0.0);
   vec3 incident = vec3(0.0);  // sum of radiance x irradiance over the triangles (declared shapes)
   int shape = int(l.shape.w);
-  for (uint k = 0u; k < l.range.y; ++k) {
+  for (uint k = 0u; k < l.range.w; ++k) sum += particle_light(l.range.z + k, s, p, wo);
+  // A stage of particles is lit by particle (above), not by triangle.
+  uint triangles = l.range.w > 0u ? 0u : l.range.y;
+  for (uint k = 0u; k < triangles; ++k) {
     GpuAreaTriangle t = area_triangles[l.range.x + k];
     vec3 a = t.a.xyz - p, b = t.b.xyz - p, c = t.c.xyz - p;
     vec3 ng = cross(b - a, c - a);

@@ -9,6 +9,7 @@
 #include "giq/realtime/scene_gpu.h"
 #include "giq/realtime/shader.h"
 #include "giq/realtime/timer.h"
+#include "giq/scenes/particles.h"
 #include "passes/gbuffer.h"
 
 namespace giq::realtime {
@@ -19,13 +20,21 @@ std::vector<Parameter> DirectLightPass::parameters() {
           {"normal_offset", 1.5, 0, 8, false, "receiver offset along its normal, in shadow-map texels"},
           {"cascade_split_lambda", 0.5, 0, 1, false, "cascade splits: 0 uniform, 1 logarithmic"},
           {"cache_static_shadows", 1, 0, 1, true,
-           "1: render cube shadow maps only when the geometry or the lights moved"}};
+           "1: render cube shadow maps only when the geometry or the lights moved"},
+          {"particle_lights", 1, 0, 1, true,
+           "1: light a stage of glowing particles particle by particle, each face of one 16 circumradii away "
+           "as a point (shaders/octahedron_irradiance.glsl); 0: every triangle exactly"},
+          {"particle_shadow_map_size", 512, 64, 8192, true,
+           "texels per side of the cube shadow map of a stage of glowing particles (at most shadow_map_size): "
+           "one point of a cloud of particles casts its shadows, which need no finer map"}};
 }
 
 DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
     : ctx_(&ci.ctx), scene_gpu_(ci.scene_gpu), width_(ci.width), height_(ci.height),
       pcf_radius_(uint32_t(ci.parameters.get_int("pcf_radius"))),
       normal_offset_(float(ci.parameters.get("normal_offset"))),
+      particle_lights_(ci.parameters.get_int("particle_lights") != 0),
+      particle_shadow_size_(uint32_t(ci.parameters.get_int("particle_shadow_map_size"))),
       shadows_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.bounds, uint32_t(ci.parameters.get_int("shadow_map_size"))) {
   shadows_.set_split_lambda(float(ci.parameters.get("cascade_split_lambda")));
   shadows_.set_cache_static(ci.parameters.get_int("cache_static_shadows") != 0);
@@ -38,7 +47,7 @@ DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
   bindings.insert(bindings.end(), {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+                                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   pipeline_ = Pipeline::compute(
       ci.ctx, ci.compiler.compile("passes/direct_light.comp", feature_defines(ci.scene.features)), bindings,
       sizeof(gpu::DirectPush));
@@ -50,12 +59,12 @@ void DirectLightPass::declare_shadows(const scenes::Scene& scene) {
   light_layer_.clear();
   for (const auto& l : scene.lights)
     light_layer_.push_back(l.type == scenes::LightType::Directional ? shadows_.add_cascades(l.direction) : shadows_.add_cube(l.position));
-  // Each area light's cube leaves out the emitter itself: from the centre of a closed emitter
-  // its own faces would shadow everything.
+  // Each area light's cube leaves out the emitter itself (own_geometry).
   for (size_t i = 0; i < area_lights_.size(); ++i) {
     const uint32_t mesh = scene.area_lights[i].mesh;
-    const glm::uvec2 skip(scene_gpu_.geometry().mesh_first_vertex[mesh], uint32_t(scene.meshes[mesh].positions.size()));
-    area_lights_[i].position.w = float(shadows_.add_cube(glm::vec3(area_lights_[i].position), skip));
+    const glm::uvec2 skip(own_geometry(scene, scene_gpu_.geometry(), mesh));
+    const uint32_t size = scene.meshes[mesh].emitter >= 0 ? particle_shadow_size_ : 0u;
+    area_lights_[i].position.w = float(shadows_.add_cube(glm::vec3(area_lights_[i].position), skip, size));
   }
   light_layer_buffer_ = Buffer::storage(*ctx_, light_layer_);
 }
@@ -63,6 +72,7 @@ void DirectLightPass::declare_shadows(const scenes::Scene& scene) {
 void DirectLightPass::upload_area_lights(Context& ctx) {
   area_light_buffer_ = Buffer::storage(ctx, area_lights_);
   area_triangle_buffer_ = Buffer::storage(ctx, area_triangles_);
+  particle_light_buffer_ = Buffer::storage(ctx, particles_);
 }
 
 void DirectLightPass::follow(const scenes::Scene& scene, SceneChange change) {
@@ -79,6 +89,7 @@ void DirectLightPass::follow(const scenes::Scene& scene, SceneChange change) {
   const size_t before = area_lights_.size();
   area_lights_.clear();
   area_triangles_.clear();
+  particles_.clear();
   build_area_lights(scene);
   shadows_.set_bounds(scene.bounds);
   if (area_lights_.size() == before) {
@@ -86,7 +97,7 @@ void DirectLightPass::follow(const scenes::Scene& scene, SceneChange change) {
       const uint32_t mesh = scene.area_lights[i].mesh;
       area_lights_[i].position.w = layers[i];
       shadows_.move(scene.lights.size() + i, glm::vec3(area_lights_[i].position));
-      shadows_.set_skip(scene.lights.size() + i, glm::uvec2(scene_gpu_.geometry().mesh_first_vertex[mesh], uint32_t(scene.meshes[mesh].positions.size())));
+      shadows_.set_skip(scene.lights.size() + i, glm::uvec2(own_geometry(scene, scene_gpu_.geometry(), mesh)));
     }
   } else {
     declare_shadows(scene);
@@ -110,6 +121,7 @@ void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer
   d.push_back(Descriptor::storage(area_triangle_buffer_));
   d.push_back(Descriptor::storage(light_layer_buffer_));
   d.push_back(Descriptor::storage_image(direct_));
+  d.push_back(Descriptor::storage(particle_light_buffer_));
   pipeline_.push_descriptors(in.cmd, d);
   gpu::DirectPush pc{};
   pc.camera = gpu::make_gpu_camera(in.camera);
@@ -125,9 +137,9 @@ void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer
   in.timer.end(in.cmd);
 }
 
-// One area light per emissive mesh (the scene's AreaLight), its triangles integrated exactly;
-// its representative point is where the shadow cube sits. The shadow layer (position.w) is set
-// by the caller.
+// One area light per emissive mesh (the scene's AreaLight), its triangles integrated exactly,
+// or, for a stage of glowing particles, its particles one by one; its representative point is
+// where the shadow cube sits. The shadow layer (position.w) is set by the caller.
 void DirectLightPass::build_area_lights(const scenes::Scene& scene) {
   for (const scenes::AreaLight& a : scene.area_lights) {
     const scenes::Mesh& mesh = scene.meshes[a.mesh];
@@ -139,6 +151,17 @@ void DirectLightPass::build_area_lights(const scenes::Scene& scene) {
       area_triangles_.push_back({glm::vec4(mesh.positions[t.x], a.two_sided ? 1.0f : 0.0f),
                                  glm::vec4(mesh.positions[t.y], 0.0f), glm::vec4(mesh.positions[t.z], 0.0f),
                                  glm::vec4(e.radiance, 0.0f)});
+    }
+    // Every triangle of a stage glows alike (one material), eight to a particle.
+    if (particle_lights_ && mesh.emitter >= 0) {
+      const std::vector<glm::vec3> centres = scenes::particle_centres(mesh);
+      if (!centres.empty() && a.triangles.size() == 8 * centres.size()) {
+        const float radius = float(scene.emitters[size_t(mesh.emitter)].size);
+        const glm::vec3 radiance = scene.emissive_triangles[a.triangles.front()].radiance;
+        l.range.z = uint32_t(particles_.size());
+        l.range.w = uint32_t(centres.size());
+        for (const glm::vec3& c : centres) particles_.push_back({glm::vec4(c, radius), glm::vec4(radiance, 0.0f)});
+      }
     }
     l.position = glm::vec4(a.representative, 0.0f);
     l.extent = glm::vec4(a.extent, 0.0f, 0.0f, 0.0f);

@@ -40,11 +40,12 @@ class DirectLightPass {
   // Shadow-map layer of punctual light i (scene order), and the area lights.
   const std::vector<uint32_t>& light_layers() const { return light_layer_; }
   const std::vector<gpu::GpuAreaLight>& area_lights() const { return area_lights_; }
-  // The area lights as the GPU reads them (GpuAreaLight, GpuAreaTriangle), for passes that
-  // light other points than the G-buffer's; rebuilt when emitters move, so take them when
-  // recording, after record_shadows().
+  // The area lights as the GPU reads them (GpuAreaLight, GpuAreaTriangle, GpuParticleLight),
+  // for passes that light other points than the G-buffer's; rebuilt when emitters move, so
+  // take them when recording, after record_shadows().
   const Buffer& area_light_buffer() const { return area_light_buffer_; }
   const Buffer& area_triangle_buffer() const { return area_triangle_buffer_; }
+  const Buffer& particle_light_buffer() const { return particle_light_buffer_; }
 
  private:
   void build_area_lights(const scenes::Scene& scene);
@@ -58,11 +59,14 @@ class DirectLightPass {
   uint32_t width_, height_;
   uint32_t pcf_radius_;
   float normal_offset_;
+  bool particle_lights_;          // light particle stages particle by particle
+  uint32_t particle_shadow_size_;  // texels per side of a particle stage's shadow cube
   ShadowMaps shadows_;
   std::vector<uint32_t> light_layer_;
   std::vector<gpu::GpuAreaLight> area_lights_;
   std::vector<gpu::GpuAreaTriangle> area_triangles_;
-  Buffer light_layer_buffer_, area_light_buffer_, area_triangle_buffer_;
+  std::vector<gpu::GpuParticleLight> particles_;
+  Buffer light_layer_buffer_, area_light_buffer_, area_triangle_buffer_, particle_light_buffer_;
   Image direct_;
   Pipeline pipeline_;
 };

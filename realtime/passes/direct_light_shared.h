@@ -21,11 +21,15 @@ struct DirectPush {
   uint pad0, pad1;
 };
 
-// An emissive mesh as one area light: its triangles are integrated exactly (unshadowed), and
-// shadowed as a whole from a representative point with a cube shadow map.
+// An emissive mesh as one area light: its triangles are integrated exactly, a stage of glowing
+// particles particle by particle (shaders/octahedron_irradiance.glsl), unshadowed; the light
+// is shadowed as a whole from a representative point with a cube shadow map.
 struct GpuAreaLight {
   vec4 position;  // xyz representative point; w: first shadow layer
-  uvec4 range;    // x: first GpuAreaTriangle, y: count
+  // x: first GpuAreaTriangle, y: count; z: first GpuParticleLight, w: count. A stage of an
+  // emitter's particles (w > 0) is lit particle by particle; its triangles stay listed for
+  // the passes that sample emitters by triangle (gi1's light grid).
+  uvec4 range;
   vec4 extent;    // x: how far from `position` shadow rays towards it stop (AreaLight::extent)
   // The declared shape for glossy reflections (scenes::AreaLight::shape_*): xyz centre, w the
   // shape (GIQ_AREA_*); u and v: xyz half vectors (rectangle: sides; tube: half segment; disc:
@@ -46,6 +50,12 @@ struct GpuAreaTriangle {
   vec4 a;         // xyz vertex; w: 1 when the emitter is double-sided
   vec4 b;
   vec4 c;
+  vec4 radiance;  // rgb emitted radiance
+};
+
+// A glowing particle: an octahedron (shaders/octahedron_irradiance.glsl).
+struct GpuParticleLight {
+  vec4 centre;    // xyz centre; w circumradius
   vec4 radiance;  // rgb emitted radiance
 };
 

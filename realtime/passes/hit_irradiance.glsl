@@ -1,18 +1,26 @@
 // The irradiance the light sources send onto a surface point that a probe's or a cache's ray
 // found (off screen, so the frame's shadow maps do not cover it): punctual lights exactly,
 // emissive meshes by the exact polygon irradiance of each triangle (shaders/
-// polygon_irradiance.glsl), each light shadowed by one BVH ray (towards an area light's
-// representative point). Written once for `ddgi`'s probe rays and `gi1`'s cache rays.
-// The includer declares the frame's area lights as `area_lights[]` and their triangles as
-// `area_triangles[]` (passes/direct_light.h); needs shaders/scene.glsl, bvh.glsl, lights.glsl,
-// sampling.glsl, polygon_irradiance.glsl and passes/direct_light_shared.h.
+// polygon_irradiance.glsl) or, for glowing particles, particle by particle, each light
+// shadowed by one BVH ray (towards an area light's representative point). Written once for
+// `ddgi`'s probe rays and `gi1`'s cache rays.
+// The includer declares the frame's area lights as `area_lights[]`, their triangles as
+// `area_triangles[]` and their particles as `particle_lights[]` (passes/direct_light.h); needs
+// shaders/scene.glsl, bvh.glsl, lights.glsl, sampling.glsl, octahedron_irradiance.glsl and
+// passes/direct_light_shared.h.
 #ifndef GIQ_HIT_IRRADIANCE_GLSL
 #define GIQ_HIT_IRRADIANCE_GLSL
 
-// Diffuse irradiance of area light l at p (normal n): each triangle exactly, unshadowed.
+// Diffuse irradiance of area light l at p (normal n): each triangle exactly, or each particle
+// of a stage of them (shaders/octahedron_irradiance.glsl), unshadowed.
 vec3 area_irradiance(GpuAreaLight l, vec3 p, vec3 n) {
   vec3 e = vec3(0.0);
-  for (uint k = 0u; k < l.range.y; ++k) {
+  for (uint k = 0u; k < l.range.w; ++k) {
+    GpuParticleLight q = particle_lights[l.range.z + k];
+    e += q.radiance.rgb * octahedron_irradiance(q.centre.xyz - p, q.centre.w, n);
+  }
+  uint triangles = l.range.w > 0u ? 0u : l.range.y;
+  for (uint k = 0u; k < triangles; ++k) {
     GpuAreaTriangle t = area_triangles[l.range.x + k];
     vec3 a = t.a.xyz - p, b = t.b.xyz - p, c = t.c.xyz - p;
     // A one-sided emitter lights only the half-space in front of it.

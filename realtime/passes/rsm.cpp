@@ -66,12 +66,11 @@ void build(const scenes::Scene& scene, const FlatGeometry& geometry, uint32_t or
     emitters.push_back(e);
   }
   for (const scenes::AreaLight& a : scene.area_lights) {
-    // The emitter's own triangles are left out of its cube (rsm.frag): from the centre of a
-    // closed emitter they would be all it sees.
-    const uint32_t first = geometry.mesh_first_triangle[a.mesh];
+    // The emitter's own triangles are left out of its cube (rsm.frag, own_geometry): from the
+    // centre of a closed emitter they would be all it sees.
+    const glm::uvec4 own = own_geometry(scene, geometry, a.mesh);
     gpu::GpuRsmEmitter e{glm::vec4(a.representative, GIQ_RSM_AREA), area_emitter_normal(a),
-                         glm::vec4(a.intensity, 0.0f),
-                         glm::uvec4(uint32_t(layers.size()), 6, first, uint32_t(scene.meshes[a.mesh].triangles.size()))};
+                         glm::vec4(a.intensity, 0.0f), glm::uvec4(uint32_t(layers.size()), 6, own.z, own.w)};
     add_cube(a.representative, a.intensity);
     emitters.push_back(e);
   }

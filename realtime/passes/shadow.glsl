@@ -11,13 +11,16 @@ float shadow_pcf(uint layer, vec3 p, int radius) {
   vec4 c = shadow_layers[layer].view_proj * vec4(p, 1.0);
   if (c.w <= 0.0) return 1.0;
   vec3 ndc = c.xyz / c.w;
-  vec2 uv = ndc.xy * 0.5 + 0.5;
+  // A layer may use only its corner (ShadowMaps::add_cube's size): taps stay inside it, as
+  // clamping to the edge keeps them inside a whole layer.
+  float used = shadow_layers[layer].params.w;
+  vec2 uv = (ndc.xy * 0.5 + 0.5) * used;
   if (ndc.z >= 1.0) return 1.0;  // beyond the far plane: nothing there casts
   float texel = 1.0 / float(textureSize(shadow_map, 0).x);
   float lit = 0.0;
   for (int j = -radius; j <= radius; ++j)
     for (int i = -radius; i <= radius; ++i)
-      lit += texture(shadow_map, vec4(uv + vec2(i, j) * texel, float(layer), ndc.z));
+      lit += texture(shadow_map, vec4(clamp(uv + vec2(i, j) * texel, vec2(0.5 * texel), vec2(used - 0.5 * texel)), float(layer), ndc.z));
   float n = float(2 * radius + 1);
   return lit / (n * n);
 }

@@ -26,9 +26,9 @@ ShadowMaps::ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& s
   pipeline_ = Pipeline::graphics(ctx, g, SceneGpu::binding_types(), sizeof(gpu::ShadowPush));
 }
 
-uint32_t ShadowMaps::add_cube(glm::vec3 position, glm::uvec2 skip) {
+uint32_t ShadowMaps::add_cube(glm::vec3 position, glm::uvec2 skip, uint32_t size) {
   const uint32_t first = uint32_t(layers_.size());
-  sources_.push_back({true, position, first});
+  sources_.push_back({true, position, first, size == 0 ? size_ : std::min(size, size_)});
   layers_.resize(first + 6);
   params_.resize(first + 6);
   skip_.resize(first + 6, skip);
@@ -50,7 +50,7 @@ void ShadowMaps::place_cube(const Source& s) {
   for (int f = 0; f < 6; ++f) {
     layers_[s.first_layer + f] = cube_face_view_proj(s.v, bounds_, f);
     // A 90-degree face is 2 units wide at distance 1.
-    params_[s.first_layer + f] = glm::vec4(GIQ_SHADOW_CUBE_FACE, 2.0f / float(size_), 0.0f, 0.0f);
+    params_[s.first_layer + f] = glm::vec4(GIQ_SHADOW_CUBE_FACE, 2.0f / float(s.size), 0.0f, float(s.size) / float(size_));
   }
 }
 
@@ -88,10 +88,10 @@ void ShadowMaps::set_bounds(const scenes::Bounds& bounds) {
 
 uint32_t ShadowMaps::add_cascades(glm::vec3 direction) {
   const uint32_t first = uint32_t(layers_.size());
-  sources_.push_back({false, glm::normalize(direction), first});
+  sources_.push_back({false, glm::normalize(direction), first, size_});
   for (int c = 0; c < kCascades; ++c) {
     layers_.emplace_back(1.0f);
-    params_.emplace_back(GIQ_SHADOW_CASCADE, 0.0f, 0.0f, 0.0f);
+    params_.emplace_back(GIQ_SHADOW_CASCADE, 0.0f, 0.0f, 1.0f);
     skip_.emplace_back(0u);
   }
   return first;
@@ -151,7 +151,7 @@ void ShadowMaps::update_cascades(const Source& s, const scenes::Camera& camera, 
     m.y = std::round(m.y / texel) * texel;
     const glm::mat4 proj = glm::orthoRH_ZO(m.x - r, m.x + r, m.y - r, m.y + r, 0.0f, 4.0f * radius);
     layers_[s.first_layer + c] = proj * view;
-    params_[s.first_layer + c] = glm::vec4(GIQ_SHADOW_CASCADE, texel, d1, 0.0f);
+    params_[s.first_layer + c] = glm::vec4(GIQ_SHADOW_CASCADE, texel, d1, 1.0f);
   }
 }
 
@@ -168,7 +168,8 @@ void ShadowMaps::record(VkCommandBuffer cmd, const scenes::Camera& camera, float
   pipeline_.push_descriptors(cmd, scene_.descriptors());
   for (uint32_t l = 0; l < layer_count(); ++l) {
     if (cache_static_ && !cubes_stale_ && params_[l].x == GIQ_SHADOW_CUBE_FACE) continue;
-    begin_rendering(cmd, size_, size_, {{}, depth_.layer_view(l), true});
+    const uint32_t size = uint32_t(std::lround(params_[l].w * float(size_)));
+    begin_rendering(cmd, size, size, {{}, depth_.layer_view(l), true});
     // Slope-scaled bias: surfaces at grazing angles to the light need the most.
     vkCmdSetDepthBias(cmd, 0.0f, 0.0f, 1.5f);
     pipeline_.push_constants(cmd, gpu::ShadowPush{layers_[l], glm::uvec4(skip_[l], 0u, 0u)});

@@ -36,8 +36,9 @@ class ShadowMaps {
 
   // Declare the maps before the first record(); each returns its first layer. A cube may leave
   // out the vertices [skip.x, skip.x + skip.y) (an emissive mesh's own, so that a closed
-  // emitter does not shadow its light from its centre: Scene::AreaLight::representative).
-  uint32_t add_cube(glm::vec3 position, glm::uvec2 skip = glm::uvec2(0u));
+  // emitter does not shadow its light from its centre: Scene::AreaLight::representative), and
+  // may use `size` texels per side (at most size(); 0: size()), the corner of its layers.
+  uint32_t add_cube(glm::vec3 position, glm::uvec2 skip = glm::uvec2(0u), uint32_t size = 0);
   uint32_t add_cascades(glm::vec3 direction);
   // The fraction between logarithmic (1) and uniform (0) cascade splits (Zhang et al. 2006,
   // "Parallel-Split Shadow Maps", practical split scheme).
@@ -69,6 +70,7 @@ class ShadowMaps {
     bool cube;
     glm::vec3 v;  // position (cube) or direction (cascades)
     uint32_t first_layer;
+    uint32_t size;  // texels per side used
   };
   std::vector<glm::uvec2> skip_;  // per layer: vertices left out (add_cube)
   void create_resources();

@@ -23,7 +23,8 @@ struct ShadowPush {
 struct GpuShadowLayer {
   mat4 view_proj;  // local frame -> clip, depth in [0, 1]
   vec4 params;     // x: kind (GIQ_SHADOW_*); y: world size of a texel at distance 1 (cube) or
-                   // of a texel (cascade); z: far split distance along the view (cascade)
+                   // of a texel (cascade); z: far split distance along the view (cascade);
+                   // w: the fraction of the layer's side in use, from its corner (cube)
 };
 
 #ifdef __cplusplus

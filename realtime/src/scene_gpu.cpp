@@ -32,6 +32,17 @@ FlatGeometry flatten(const scenes::Scene& scene) {
   return g;
 }
 
+glm::uvec4 own_geometry(const scenes::Scene& scene, const FlatGeometry& g, uint32_t mesh) {
+  size_t first = mesh, end = size_t(mesh) + 1;
+  if (scene.meshes[mesh].emitter >= 0) {
+    while (first > 0 && scene.meshes[first - 1].emitter >= 0) --first;
+    while (end < scene.meshes.size() && scene.meshes[end].emitter >= 0) ++end;
+  }
+  auto vertex = [&](size_t m) { return m < g.mesh_first_vertex.size() ? g.mesh_first_vertex[m] : uint32_t(g.positions.size()); };
+  auto triangle = [&](size_t m) { return m < g.mesh_first_triangle.size() ? g.mesh_first_triangle[m] : uint32_t(g.triangles.size()); };
+  return {vertex(first), vertex(end) - vertex(first), triangle(first), triangle(end) - triangle(first)};
+}
+
 namespace {
 
 uint32_t wrap_code(scenes::Wrap w) {

@@ -1,6 +1,7 @@
 #include "particle_geometry.h"
 
 #include <cmath>
+#include <iterator>
 
 #include "giq/base/error.h"
 
@@ -49,11 +50,21 @@ void complete_emitter(Emitter& e, const std::vector<Mesh>& meshes, std::vector<M
   }
 }
 
+namespace {
+// The octahedron: six vertices on the axes, normals pointing out along them (a small sphere's),
+// eight faces counter-clockwise from outside.
+const glm::dvec3 kAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+const glm::uvec3 kFaces[8] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+}  // namespace
+
+std::vector<glm::vec3> particle_centres(const Mesh& m) {
+  std::vector<glm::vec3> centres;
+  // Vertices 0 and 1 of each particle are its +x and -x corners.
+  for (size_t v = 0; v + 1 < m.positions.size(); v += std::size(kAxes)) centres.push_back(0.5f * (m.positions[v] + m.positions[v + 1]));
+  return centres;
+}
+
 void add_particle_meshes(const std::vector<Emitter>& emitters, double t, double frame, std::vector<Mesh>& meshes, const std::string& file) {
-  // The octahedron: six vertices on the axes, normals pointing out along them (a small sphere's),
-  // eight faces counter-clockwise from outside.
-  static const glm::dvec3 kAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  static const glm::uvec3 kFaces[8] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
   for (size_t i = 0; i < emitters.size(); ++i) {
     const Emitter& e = emitters[i];
     if (e.rate * t >= 4294967295.0)

@@ -19,7 +19,7 @@
 #include "shaders/surface.glsl"
 #include "shaders/sampling.glsl"
 #include "shaders/lights.glsl"
-#include "shaders/polygon_irradiance.glsl"
+#include "shaders/octahedron_irradiance.glsl"
 #include "shaders/environment.glsl"
 #include "passes/direct_light_shared.h"
 #include "passes/rsm_albedo.glsl"
@@ -34,6 +34,7 @@ layout(binding = GIQ_SCENE_BINDING_COUNT + 3) uniform sampler2D ddgi_distance;
 layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 4) readonly buffer AreaLights { GpuAreaLight area_lights[]; };
 layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 5) readonly buffer AreaTriangles { GpuAreaTriangle area_triangles[]; };
 layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 6) writeonly buffer Rays { vec4 rays[]; };
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 7) readonly buffer ParticleLights { GpuParticleLight particle_lights[]; };
 
 layout(push_constant) uniform Push { DdgiTracePush pc; };
 

@@ -20,7 +20,7 @@
 #include "shaders/surface.glsl"
 #include "shaders/sampling.glsl"
 #include "shaders/lights.glsl"
-#include "shaders/polygon_irradiance.glsl"
+#include "shaders/octahedron_irradiance.glsl"
 #include "shaders/environment.glsl"
 #include "shaders/camera.glsl"
 #include "passes/direct_light_shared.h"
@@ -54,6 +54,8 @@ layout(std430, binding = GIQ_GI1_BINDING_COUNT + 12) readonly buffer LightGrid {
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 13) readonly buffer Reservoirs { GpuGi1Reservoir reservoirs[]; };
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 14) buffer ReservoirClaims { uint reservoir_claims[]; };
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 15) writeonly buffer ReservoirStash { GpuGi1Reservoir reservoir_stash[]; };
+// The area lights' particles (passes/hit_irradiance.glsl).
+layout(std430, binding = GIQ_GI1_BINDING_COUNT + 16) readonly buffer ParticleLights { GpuParticleLight particle_lights[]; };
 
 #include "passes/hit_irradiance.glsl"
 #include "techniques/gi1/gi1_probe.glsl"

@@ -38,6 +38,13 @@ struct FlatGeometry {
   std::vector<uint32_t> mesh_first_vertex;
 };
 FlatGeometry flatten(const scenes::Scene& scene);
+// What the views from an area light's representative point (its shadow cube, its reflective
+// shadow map) leave out, as vertices [x, x + y) and triangles [z, z + w) of `g`: the light's
+// own mesh, whose faces would hide a closed emitter's light from its centre; for a stage of
+// glowing particles, every particle mesh next to it (the scene library places them together,
+// after the file's meshes), since from the one point at a stage's centroid the particles of the
+// other stages around it would cast shadows metres wide.
+glm::uvec4 own_geometry(const scenes::Scene& scene, const FlatGeometry& g, uint32_t mesh);
 
 // Where each texture's texel words go: textures of `words` words each, in scene order, packed
 // into chunks of at most `chunk_words` (next fit). chunk[i] is -1 for a texture larger than a

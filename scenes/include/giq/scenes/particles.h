@@ -98,4 +98,11 @@ Particle particle_at(const Emitter& e, uint32_t id, const ParticleBirth& birth, 
 // The same from the id alone: its birth and the stage starts at t worked out for it.
 Particle particle_at(const Emitter& e, uint32_t id, double t);
 
+struct Mesh;
+// The centres of the particles in a mesh that Scene::at made for a stage of an emitter's
+// particles (Mesh::emitter >= 0), read back from their octahedra (each Emitter::size in
+// circumradius, eight consecutive triangles), in the mesh's order: renderers that treat a
+// particle as one small light rather than eight triangles (the real-time direct light).
+std::vector<glm::vec3> particle_centres(const Mesh& m);
+
 }  // namespace giq::scenes
