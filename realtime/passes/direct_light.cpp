@@ -24,9 +24,9 @@ std::vector<Parameter> DirectLightPass::parameters() {
           {"particle_lights", 1, 0, 1, true,
            "1: light a stage of glowing particles particle by particle, each face of one 16 circumradii away "
            "as a point (shaders/octahedron_irradiance.glsl); 0: every triangle exactly"},
-          {"particle_shadow_map_size", 512, 64, 8192, true,
+          {"particle_shadow_map_size", 1024, 64, 8192, true,
            "texels per side of the cube shadow map of a stage of glowing particles (at most shadow_map_size): "
-           "one point of a cloud of particles casts its shadows, which need no finer map"}};
+           "one point of a cloud of particles casts its shadows, so a coarser map than a lamp's does"}};
 }
 
 DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
