@@ -7,8 +7,11 @@
 // 4 standard errors (reference_agreement.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <vector>
 
 #include "giq/realtime/renderer.h"
 #include "giq/reference/renderer.h"
@@ -150,6 +153,56 @@ TEST_F(PtReferenceCases, ParticlesAgreeWithinNoise) {
   const scenes::Scene scene = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "fountain.gltf");
   ASSERT_TRUE(scene.features.particles);
   expect_pt_agrees(*ctx, *compiler, scene, "side", 64, 32, "fountain, frame 20", 20);
+}
+
+// Skinned and morphing glTF files that nobody here wrote (the Khronos sample models, say), from
+// the folder GIQ_SAMPLE_ASSETS names, searched recursively; skipped without it, since the suite
+// carries no third-party assets. Each file with a skin or morph targets is rendered at frame
+// min(45, last) under the skinned frame's sun and sky above, from the front of its posed
+// bounds (as `--camera auto` frames a scene): `pt` must agree with the reference within noise
+// and `direct` must give finite light. docs/realtime.md lists the files run and what they gave.
+TEST_F(PtReferenceCases, SampleAssetsAgreeWithinNoise) {
+  const char* dir = std::getenv("GIQ_SAMPLE_ASSETS");
+  if (dir == nullptr) GTEST_SKIP() << "set GIQ_SAMPLE_ASSETS to a folder of skinned or morphing glTF files";
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    if (e.is_regular_file() && (e.path().extension() == ".gltf" || e.path().extension() == ".glb")) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  int deforming = 0;
+  for (const std::filesystem::path& file : files) {
+    scenes::Scene scene = scenes::load(file);
+    if (!scene.features.skinning && !scene.features.morph_targets) continue;
+    ++deforming;
+    const int frame = std::min(45, scene.sequence.frames - 1);
+    scenes::Light sun;
+    sun.type = scenes::LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.5f));
+    sun.intensity = 3.0f;
+    scene.add_light(sun, "sun");
+    scene.set_environment(glm::vec3(0.3f), "sky");
+    const scenes::Bounds posed = scene.at_frame(frame).bounds;
+    const float fov = 0.7f, radius = 0.5f * posed.diagonal();
+    const float distance = 1.05f * radius / std::sin(0.5f * fov), elevation = 0.35f;
+    const glm::vec3 target = posed.centre();
+    scene.add_view({"front", scenes::Camera::look_at(target + distance * glm::vec3(0.0f, std::sin(elevation), std::cos(elevation)), target, {0, 1, 0}, fov), -1});
+    const std::string what = file.filename().string() + ", frame " + std::to_string(frame);
+    expect_pt_agrees(*ctx, *compiler, scene, "front", 64, 32, what, frame, false);
+
+    RenderOptions o;
+    o.technique = "direct";
+    o.view = "front";
+    o.width = o.height = 64;
+    o.warmup = frame;
+    const image::Image lit = render_last(scene, o);
+    double sum = 0.0;
+    for (const char* c : test::kRgb)
+      for (size_t i = 0; i < lit.pixel_count(); ++i) {
+        ASSERT_TRUE(std::isfinite(lit.channel(c)[i])) << what << ": direct, pixel " << i;
+        sum += lit.channel(c)[i];
+      }
+    EXPECT_GT(sum, 0.0) << what << ": direct is black";
+  }
+  EXPECT_GT(deforming, 0) << dir << " holds no glTF file with a skin or morph targets";
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltinScenes, PtReferenceTest,

@@ -66,9 +66,10 @@ inline Agreement expect_agreement(const image::Image& gpu, const image::Image& c
   if (m > 1) {
     a.mean_z = sum / double(m);
     a.mean_z_se = std::sqrt(std::max(0.0, sum2 / double(m) - a.mean_z * a.mean_z) / double(m - 1));
-    if (check_mean_z)
+    if (check_mean_z) {
       EXPECT_LE(std::abs(a.mean_z), 4.0 * a.mean_z_se)
           << what << ": mean z " << a.mean_z << ", se " << a.mean_z_se;
+    }
   }
   EXPECT_LE(double(a.outliers), 0.005 * double(a.n))
       << what << ": " << a.outliers << " of " << a.n << " beyond 4 sigma";
