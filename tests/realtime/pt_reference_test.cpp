@@ -166,7 +166,8 @@ TEST_F(PtReferenceCases, SampleAssetsAgreeWithinNoise) {
   if (dir == nullptr) GTEST_SKIP() << "set GIQ_SAMPLE_ASSETS to a folder of skinned or morphing glTF files";
   std::vector<std::filesystem::path> files;
   for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
-    if (e.is_regular_file() && (e.path().extension() == ".gltf" || e.path().extension() == ".glb")) files.push_back(e.path());
+    if (e.is_regular_file() && (e.path().extension() == ".gltf" || e.path().extension() == ".glb"))
+      files.push_back(e.path());
   std::sort(files.begin(), files.end());
   int deforming = 0;
   for (const std::filesystem::path& file : files) {
@@ -184,7 +185,8 @@ TEST_F(PtReferenceCases, SampleAssetsAgreeWithinNoise) {
     const float fov = 0.7f, radius = 0.5f * posed.diagonal();
     const float distance = 1.05f * radius / std::sin(0.5f * fov), elevation = 0.35f;
     const glm::vec3 target = posed.centre();
-    scene.add_view({"front", scenes::Camera::look_at(target + distance * glm::vec3(0.0f, std::sin(elevation), std::cos(elevation)), target, {0, 1, 0}, fov), -1});
+    const glm::vec3 eye = target + distance * glm::vec3(0.0f, std::sin(elevation), std::cos(elevation));
+    scene.add_view({"front", scenes::Camera::look_at(eye, target, {0, 1, 0}, fov), -1});
     const std::string what = file.filename().string() + ", frame " + std::to_string(frame);
     expect_pt_agrees(*ctx, *compiler, scene, "front", 64, 32, what, frame, false);
 
