@@ -18,12 +18,16 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-json row(const std::string& scene, const std::string& technique, double flip, double relmse, json flicker) {
+// The indirect layer's numbers are the beauty's, but for its flicker when one is given.
+json row(const std::string& scene, const std::string& technique, double flip, double relmse, json flicker,
+         json indirect_flicker = nullptr) {
   const json layer = {{"flip_mean", flip}, {"relmse", relmse}, {"leak", nullptr}, {"leak_absolute", nullptr},
                       {"flicker", flicker}, {"lag90_frames", nullptr}};
+  json indirect = layer;
+  if (!indirect_flicker.is_null()) indirect["flicker"] = indirect_flicker;
   return {{"scene", scene},   {"technique", technique},
           {"device", "dev"},  {"gpu_ms", 1234.5},
-          {"beauty", layer},  {"indirect", layer},
+          {"beauty", layer},  {"indirect", indirect},
           {"gpu_memory_mb", {{"scene", 1.0}, {"technique", 96.125}}}};
 }
 
@@ -35,7 +39,7 @@ TEST(ResultsPage, NumbersAndComparisonsFromResultsJson) {
       {"settings", {{"size", 64}, {"reference_spp", 16}, {"sequence_reference_spp", 4}, {"static_frames", 2}}},
       {"rows",
        {row("box", "direct", 0.5, 0.08, 7e-10), row("box", "better", 0.25, 0.02, 2e-9),
-        row("box", "worse", 0.75, 0.1, 0.3)}}};
+        row("box", "worse", 0.75, 0.1, 0.3, 0.6)}}};
   // The GPU machine's timings of one row: the column names its device and resolution, and
   // its memory replaces the local one.
   results["rows"][1]["gpu"] = {{"device", "GPU X"},
@@ -48,11 +52,11 @@ TEST(ResultsPage, NumbersAndComparisonsFromResultsJson) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string page = giq::test::slurp(dir / "results.md");
   // Three significant digits, large values without decimals, memory from the row.
-  EXPECT_NE(page.find("| `direct` | 0.500 | 0.0800 | 0.500 | 0.0800 | – | – | 7.00e-10 | – | 1234 | – | 96.1 |"),
+  EXPECT_NE(page.find("| `direct` | 0.500 | 0.0800 | 0.500 | 0.0800 | – | – | 7.00e-10 | 7.00e-10 | – | 1234 | – | 96.1 |"),
             std::string::npos)
       << page;
   EXPECT_NE(page.find("| GPU ms (local) | GPU ms (GPU X, 1920×1080) | memory MB |"), std::string::npos) << page;
-  EXPECT_NE(page.find("| `better` | 0.250 | 0.0200 | 0.250 | 0.0200 | – | – | 2.00e-09 | – | 1234 | 0.500 | 12.5 |"),
+  EXPECT_NE(page.find("| `better` | 0.250 | 0.0200 | 0.250 | 0.0200 | – | – | 2.00e-09 | 2.00e-09 | – | 1234 | 0.500 | 12.5 |"),
             std::string::npos)
       << page;
   EXPECT_NE(page.find("- FLIP of the beauty: `better` is better than `direct` (0.250 vs 0.500, 2.00× better); "
@@ -65,10 +69,19 @@ TEST(ResultsPage, NumbersAndComparisonsFromResultsJson) {
             std::string::npos)
       << page;
   // Flicker below 1e-4 is float rounding: equal to direct's, which is below it too.
-  EXPECT_NE(page.find("- flicker: `better` equals `direct` (0.00); `worse` is worse than `direct` (0.300 vs 0.00)."),
+  EXPECT_NE(page.find("- flicker of the beauty: `better` equals `direct` (0.00); `worse` is worse than `direct` (0.300 vs "
+                      "0.00)."),
             std::string::npos)
       << page;
-  EXPECT_NE(page.find("- flicker, against the best other technique: `better` is the best (0.00); `worse` worse (0.300)."),
+  EXPECT_NE(page.find("- flicker of the beauty, against the best other technique: `better` is the best (0.00); `worse` "
+                      "worse (0.300)."),
+            std::string::npos)
+      << page;
+  // The indirect light's flicker has a column and sentences of its own.
+  EXPECT_NE(page.find("| `worse` | 0.750 | 0.100 | 0.750 | 0.100 | – | – | 0.300 | 0.600 | – |"), std::string::npos)
+      << page;
+  EXPECT_NE(page.find("- flicker of the indirect light: `better` equals `direct` (0.00); `worse` is worse than `direct` "
+                      "(0.600 vs 0.00)."),
             std::string::npos)
       << page;
   EXPECT_NE(page.find("Local device: dev"), std::string::npos);
@@ -118,6 +131,41 @@ TEST(ResultsPage, UpdateRendersOnlyTheGivenTechniqueAndKeepsTheOtherRows) {
       dir);
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("settings.size"), std::string::npos) << bad.err;
+  fs::remove_all(dir);
+}
+
+// The leak columns of a scene with declared leak regions: a view that shows some of a region
+// measures its leak (0 is a measurement), a view that shows none of it measures nothing ("–").
+TEST(ResultsPage, LeakIsUndefinedWhereTheViewShowsNoneOfTheRegion) {
+  const fs::path dir = fs::temp_directory_path() / ("giq_results_leak_" + std::to_string(::getpid()));
+  for (const int pixels : {0, 12}) {
+    fs::remove_all(dir);
+    fs::create_directories(dir / "scenes");
+    fs::create_directories(dir / "docs");
+    fs::copy_file(fs::path(GIQ_SCENES_DIR) / "cornell.gltf", dir / "scenes" / "box.gltf");
+    // Every score the fake giq writes (results' folders are not gate cases: behaviour "").
+    const json declared = {{"leak", {{"value", 0.0}}}, {"leak_absolute", {{"value", 0.0}}}, {"pixels", pixels}};
+    const json raw = {{"last_frame", {{"metrics", {{"leak", {{"declared", declared}}}}}}},
+                      {"sequence", {{"flicker", {{"value", 0.0}}}}}};
+    std::ofstream(dir / "behaviour.json") << json({{"", {{"raw", raw}}}}).dump();
+    const std::string cmd = "cd " + giq::test::shell_quote(dir.string()) + " && FAKE_GIQ_BEHAVIOUR=" +
+                            giq::test::shell_quote((dir / "behaviour.json").string()) + " " +
+                            giq::test::shell_quote(GIQ_BINARY) + " results --giq " + giq::test::shell_quote(FAKE_GIQ) +
+                            " --technique direct --scene box --size 8 --spp 1 --sequence-spp 1 --frames 1";
+    const auto r = giq::test::run_captured(cmd, dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream in(dir / "docs" / "results.json");
+    const json page = json::parse(in);
+    ASSERT_EQ(page["rows"].size(), 1u) << page.dump(1);
+    const json& beauty = page["rows"][0]["beauty"];
+    if (pixels == 0) {
+      EXPECT_TRUE(beauty["leak"].is_null()) << beauty.dump();
+      EXPECT_TRUE(beauty["leak_absolute"].is_null()) << beauty.dump();
+    } else {
+      EXPECT_EQ(beauty["leak"], 0.0) << beauty.dump();
+      EXPECT_EQ(beauty["leak_absolute"], 0.0) << beauty.dump();
+    }
+  }
   fs::remove_all(dir);
 }
 

@@ -71,8 +71,8 @@ json value(const json& m, std::initializer_list<const char*> path) {
 
 // The numbers the page shows, from one sequence's metrics.json: FLIP of the last frame, relMSE
 // averaged over the frames, leak in the scene's declared region (share of the image's
-// reference luminance, or absolute radiance per pixel where the reference region is black),
-// flicker and lag of the sequence.
+// reference luminance, or absolute radiance per pixel where the reference region is black;
+// undefined where the view shows none of it), flicker and lag of the sequence.
 ordered score_row(const json& metrics) {
   const json last = metrics.contains("last_frame") ? metrics["last_frame"].value("metrics", json::object()) : json::object();
   const json seq = metrics.value("sequence", json::object());
@@ -83,8 +83,11 @@ ordered score_row(const json& metrics) {
   ordered row;
   row["flip_mean"] = value(last, {"flip", "mean"});
   row["relmse"] = n > 0 ? json(sum / n) : value(last, {"relmse"});
-  row["leak"] = value(last, {"leak", "declared", "leak"});
-  row["leak_absolute"] = value(last, {"leak", "declared", "leak_absolute"});
+  // A view that shows none of the declared region measures no leak there: undefined, not 0.
+  const bool region_seen = value(last, {"leak", "declared", "pixels"}).is_number() &&
+                           value(last, {"leak", "declared", "pixels"}).get<double>() > 0.0;
+  row["leak"] = region_seen ? value(last, {"leak", "declared", "leak"}) : json(nullptr);
+  row["leak_absolute"] = region_seen ? value(last, {"leak", "declared", "leak_absolute"}) : json(nullptr);
   row["flicker"] = value(seq, {"flicker"});
   row["lag90_frames"] = value(seq, {"lag"});
   return row;
@@ -219,8 +222,9 @@ std::string page(const ordered& results) {
           " frames after 2 warm-up frames, animated scenes over every frame. Lower is better for every metric shown. "
           "FLIP is the mean HDR-FLIP of the last frame; relMSE is averaged over the frames; leak is light in the "
           "scene's declared leak region as a share of the reference image's luminance (– where the reference is "
-          "black there), leak (abs.) the same in radiance per pixel; flicker is the relative temporal noise of the "
-          "error (below 1e-4 it is float rounding of a deterministic technique and counts as 0 in the comparisons); "
+          "black there or the view shows none of the region), leak (abs.) the same in radiance per pixel; flicker is "
+          "the relative temporal noise of the error, of the beauty and of the indirect light (below 1e-4 it is float "
+          "rounding of a deterministic technique and counts as 0 in the comparisons); "
           "lag90 is in frames after the light's step change. GPU ms (local) is the median frame time on the device "
           "that rendered the images; " + gpu_column + " and memory MB (the technique's resident GPU memory, shared "
           "passes included) come from the run on the GPU machine with the same default parameters.",
@@ -234,8 +238,8 @@ std::string page(const ordered& results) {
     lines.insert(lines.end(), {"## " + scene, ""});
     lines.push_back(
         "| technique | FLIP (beauty) | relMSE (beauty) | FLIP (indirect) | relMSE (indirect) | leak | leak (abs.) | "
-        "flicker | lag90 (frames) | GPU ms (local) | " + gpu_column + " | memory MB |");
-    lines.push_back("|---|---|---|---|---|---|---|---|---|---|---|---|");
+        "flicker (beauty) | flicker (indirect) | lag90 (frames) | GPU ms (local) | " + gpu_column + " | memory MB |");
+    lines.push_back("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (const auto& r : rows) {
       if (r["scene"] != scene) continue;
       const ordered h = r.value("gpu", ordered::object());
@@ -246,7 +250,8 @@ std::string page(const ordered& results) {
                       join({"`" + r["technique"].get<std::string>() + "`", fmt(r["beauty"]["flip_mean"]),
                             fmt(r["beauty"]["relmse"]), fmt(r["indirect"]["flip_mean"]), fmt(r["indirect"]["relmse"]),
                             fmt(r["beauty"]["leak"]), fmt(r["beauty"]["leak_absolute"]), fmt(r["beauty"]["flicker"]),
-                            fmt(r["beauty"]["lag90_frames"]), fmt(r["gpu_ms"]), fmt(h.value("gpu_ms", ordered(nullptr))),
+                            fmt(r["indirect"]["flicker"]), fmt(r["beauty"]["lag90_frames"]), fmt(r["gpu_ms"]),
+                            fmt(h.value("gpu_ms", ordered(nullptr))),
                             fmt(memory.value("technique", ordered(nullptr)))},
                            " | ") +
                       " |");
@@ -255,8 +260,8 @@ std::string page(const ordered& results) {
     const std::vector<std::array<std::string, 3>> said_of = {
         {"beauty", "flip_mean", "FLIP of the beauty"},   {"beauty", "relmse", "relMSE of the beauty"},
         {"indirect", "relmse", "relMSE of the indirect light"}, {"beauty", "leak", "leak"},
-        {"beauty", "leak_absolute", "absolute leak"},    {"beauty", "flicker", "flicker"},
-        {"beauty", "lag90_frames", "lag"}};
+        {"beauty", "leak_absolute", "absolute leak"},    {"beauty", "flicker", "flicker of the beauty"},
+        {"indirect", "flicker", "flicker of the indirect light"}, {"beauty", "lag90_frames", "lag"}};
     for (const auto& [layer, name, label] : said_of) {
       const auto said = comparison(rows, scene, layer, name);
       if (!said.empty()) lines.push_back("- " + label + ": " + join(said, "; ") + ".");
