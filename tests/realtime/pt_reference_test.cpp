@@ -54,6 +54,17 @@ void expect_pt_agrees(Context& ctx, ShaderCompiler& compiler, const scenes::Scen
   test::expect_agreement(gpu, cpu, what, "", check_mean_z);
 }
 
+// The light of the deforming files, which bring none of their own: a sun from above and in
+// front, and a constant sky.
+void add_sun_and_sky(scenes::Scene& scene) {
+  scenes::Light sun;
+  sun.type = scenes::LightType::Directional;
+  sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.5f));
+  sun.intensity = 3.0f;
+  scene.add_light(sun, "sun");
+  scene.set_environment(glm::vec3(0.3f), "sky");
+}
+
 class PtReferenceTest : public test::VulkanTest, public ::testing::WithParamInterface<std::string> {};
 class PtReferenceCases : public test::VulkanTest {};
 
@@ -135,12 +146,7 @@ TEST_F(PtReferenceCases, EnvironmentMapAgreesWithinNoise) {
 TEST_F(PtReferenceCases, SkinnedFrameAgreesWithinNoise) {
   scenes::Scene scene = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "blender_figure.glb");
   ASSERT_TRUE(scene.features.skinning && scene.features.morph_targets);
-  scenes::Light sun;
-  sun.type = scenes::LightType::Directional;
-  sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.5f));
-  sun.intensity = 3.0f;
-  scene.add_light(sun, "sun");
-  scene.set_environment(glm::vec3(0.3f), "sky");
+  add_sun_and_sky(scene);
   const glm::vec3 eye = glm::vec3(glm::dvec3(2.2, 1.2, 2.2) - scene.origin), target = glm::vec3(glm::dvec3(0.0, 0.9, -0.3) - scene.origin);
   scene.add_view({"side", scenes::Camera::look_at(eye, target, {0, 1, 0}, 0.7f), -1});
   expect_pt_agrees(*ctx, *compiler, scene, "side", 64, 32, "blender_figure, frame 15", 15, false);
@@ -158,7 +164,7 @@ TEST_F(PtReferenceCases, ParticlesAgreeWithinNoise) {
 // Skinned and morphing glTF files that nobody here wrote (the Khronos sample models, say), from
 // the folder GIQ_SAMPLE_ASSETS names, searched recursively; skipped without it, since the suite
 // carries no third-party assets. Each file with a skin or morph targets is rendered at frame
-// min(45, last) under the skinned frame's sun and sky above, from the front of its posed
+// min(45, last) under the sun and sky of add_sun_and_sky, from the front of its posed
 // bounds (as `--camera auto` frames a scene): `pt` must agree with the reference within noise
 // and `direct` must give finite light. docs/realtime.md lists the files run and what they gave.
 TEST_F(PtReferenceCases, SampleAssetsAgreeWithinNoise) {
@@ -175,12 +181,7 @@ TEST_F(PtReferenceCases, SampleAssetsAgreeWithinNoise) {
     if (!scene.features.skinning && !scene.features.morph_targets) continue;
     ++deforming;
     const int frame = std::min(45, scene.sequence.frames - 1);
-    scenes::Light sun;
-    sun.type = scenes::LightType::Directional;
-    sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.5f));
-    sun.intensity = 3.0f;
-    scene.add_light(sun, "sun");
-    scene.set_environment(glm::vec3(0.3f), "sky");
+    add_sun_and_sky(scene);
     const scenes::Bounds posed = scene.at_frame(frame).bounds;
     const float fov = 0.7f, radius = 0.5f * posed.diagonal();
     const float distance = 1.05f * radius / std::sin(0.5f * fov), elevation = 0.35f;
