@@ -88,6 +88,15 @@ TEST(ResultsPage, NumbersAndComparisonsFromResultsJson) {
   fs::remove_all(dir);
 }
 
+// `giq results ARGS` run from `dir` (as from a repository root) with the fake giq doing the
+// rendering; `env` goes before the command ("NAME=value " or "").
+giq::test::Outcome run_results(const fs::path& dir, const std::string& args, const std::string& env = "") {
+  return giq::test::run_captured("cd " + giq::test::shell_quote(dir.string()) + " && " + env +
+                                     giq::test::shell_quote(GIQ_BINARY) + " results --giq " +
+                                     giq::test::shell_quote(FAKE_GIQ) + " " + args,
+                                 dir);
+}
+
 // The page of an earlier run: `direct` and `pt` on the scene `box`, `direct` on `zzz`.
 json earlier_page() {
   return {{"settings", {{"size", 8}, {"reference_spp", 1}, {"sequence_reference_spp", 1}, {"static_frames", 1}}},
@@ -105,11 +114,7 @@ TEST(ResultsPage, UpdateRendersOnlyTheGivenTechniqueAndKeepsTheOtherRows) {
   fs::create_directories(dir / "docs");
   fs::copy_file(fs::path(GIQ_SCENES_DIR) / "cornell.gltf", dir / "scenes" / "box.gltf");
   std::ofstream(dir / "docs" / "results.json") << earlier_page().dump(1);
-  // giq results runs from the repository root: here, the test's folder.
-  const std::string cmd = "cd " + giq::test::shell_quote(dir.string()) + " && " + giq::test::shell_quote(GIQ_BINARY) +
-                          " results --giq " + giq::test::shell_quote(FAKE_GIQ) +
-                          " --technique direct --scene box --update --size 8 --spp 1 --sequence-spp 1 --frames 1";
-  const auto r = giq::test::run_captured(cmd, dir);
+  const auto r = run_results(dir, "--technique direct --scene box --update --size 8 --spp 1 --sequence-spp 1 --frames 1");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::ifstream in(dir / "docs" / "results.json");
   const json page = json::parse(in);
@@ -125,10 +130,8 @@ TEST(ResultsPage, UpdateRendersOnlyTheGivenTechniqueAndKeepsTheOtherRows) {
   EXPECT_EQ(page["sweeps"], earlier_page()["sweeps"]);
 
   // Another size: the rows would not be comparable.
-  const auto bad = giq::test::run_captured(
-      "cd " + giq::test::shell_quote(dir.string()) + " && " + giq::test::shell_quote(GIQ_BINARY) + " results --giq " + giq::test::shell_quote(FAKE_GIQ) +
-          " --technique direct --scene box --update --size 16 --spp 1 --sequence-spp 1 --frames 1",
-      dir);
+  const auto bad =
+      run_results(dir, "--technique direct --scene box --update --size 16 --spp 1 --sequence-spp 1 --frames 1");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("settings.size"), std::string::npos) << bad.err;
   fs::remove_all(dir);
@@ -148,11 +151,8 @@ TEST(ResultsPage, LeakIsUndefinedWhereTheViewShowsNoneOfTheRegion) {
     const json raw = {{"last_frame", {{"metrics", {{"leak", {{"declared", declared}}}}}}},
                       {"sequence", {{"flicker", {{"value", 0.0}}}}}};
     std::ofstream(dir / "behaviour.json") << json({{"", {{"raw", raw}}}}).dump();
-    const std::string cmd = "cd " + giq::test::shell_quote(dir.string()) + " && FAKE_GIQ_BEHAVIOUR=" +
-                            giq::test::shell_quote((dir / "behaviour.json").string()) + " " +
-                            giq::test::shell_quote(GIQ_BINARY) + " results --giq " + giq::test::shell_quote(FAKE_GIQ) +
-                            " --technique direct --scene box --size 8 --spp 1 --sequence-spp 1 --frames 1";
-    const auto r = giq::test::run_captured(cmd, dir);
+    const auto r = run_results(dir, "--technique direct --scene box --size 8 --spp 1 --sequence-spp 1 --frames 1",
+                               "FAKE_GIQ_BEHAVIOUR=" + giq::test::shell_quote((dir / "behaviour.json").string()) + " ");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     std::ifstream in(dir / "docs" / "results.json");
     const json page = json::parse(in);

@@ -84,8 +84,8 @@ ordered score_row(const json& metrics) {
   row["flip_mean"] = value(last, {"flip", "mean"});
   row["relmse"] = n > 0 ? json(sum / n) : value(last, {"relmse"});
   // A view that shows none of the declared region measures no leak there: undefined, not 0.
-  const bool region_seen = value(last, {"leak", "declared", "pixels"}).is_number() &&
-                           value(last, {"leak", "declared", "pixels"}).get<double>() > 0.0;
+  const json region_pixels = value(last, {"leak", "declared", "pixels"});
+  const bool region_seen = region_pixels.is_number() && region_pixels.get<double>() > 0.0;
   row["leak"] = region_seen ? value(last, {"leak", "declared", "leak"}) : json(nullptr);
   row["leak_absolute"] = region_seen ? value(last, {"leak", "declared", "leak_absolute"}) : json(nullptr);
   row["flicker"] = value(seq, {"flicker"});
