@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "giq/base/error.h"
+#include "giq/base/frames.h"
 
 namespace giq::scenes::gltf {
 namespace {
@@ -71,7 +72,21 @@ void parse_views(const Reader& r, const json& a, Extras& out) {
 
 void parse_sequence(const Reader& r, const json& o, const SceneSource& src, Extras& out, bool& frames_given) {
   const std::string base = "extras.giq.sequence";
-  r.only_keys(o, base, {"frames", "fps", "animation"});
+  r.only_keys(o, base, {"frames", "fps", "animation", "step_frame", "flicker_frames", "lag_frames"});
+  // Checked against the frame count once it is known (check_windows).
+  if (o.contains("step_frame")) {
+    const json& f = o["step_frame"];
+    if (!f.is_number_integer() || f.get<long long>() < 1 || f.get<long long>() > 1000000)
+      r.fail(base + ".step_frame", "is " + f.dump() + "; expected the integer frame of the step change, at least 1");
+    out.sequence.step_frame = int(f.get<long long>());
+  }
+  for (const char* key : {"flicker_frames", "lag_frames"}) {
+    if (!o.contains(key)) continue;
+    const json& w = o[key];
+    const auto range = w.is_string() ? parse_frame_range(w.get<std::string>()) : std::nullopt;
+    if (!range) r.fail(base + "." + key, "is " + w.dump().substr(0, 80) + "; expected \"A:B\", the first and last frame");
+    (std::string_view(key) == "flicker_frames" ? out.sequence.flicker_frames : out.sequence.lag_frames) = range;
+  }
   if (o.contains("frames")) {
     const json& f = o["frames"];
     if (!f.is_number_integer() || f.get<long long>() < 1 || f.get<long long>() > 1000000)
@@ -98,6 +113,34 @@ void parse_sequence(const Reader& r, const json& o, const SceneSource& src, Extr
     } else {
       r.fail(base + ".animation", "is " + a.dump() + "; expected an animation name or index");
     }
+  }
+}
+
+// The declared windows against the sequence: inside it, flicker's before or after the step
+// (flicker across a step would measure the response to it), lag's around it.
+void check_windows(const Reader& r, const Sequence& s) {
+  const std::string base = "extras.giq.sequence";
+  const int last = s.frames - 1;
+  if (s.step_frame && *s.step_frame > last)
+    r.fail(base + ".step_frame", "is " + std::to_string(*s.step_frame) + "; expected a frame from 1 to " + std::to_string(last) +
+                                     " (the sequence has " + std::to_string(s.frames) + " frames)");
+  auto inside = [&](const std::pair<int, int>& w, const std::string& key) {
+    if (w.second > last)
+      r.fail(base + "." + key, "is \"" + frame_range(w.first, w.second) + "\"; the sequence's frames are 0 to " + std::to_string(last));
+  };
+  if (const auto& w = s.flicker_frames) {
+    inside(*w, "flicker_frames");
+    if (w->second == w->first) r.fail(base + ".flicker_frames", "is \"" + frame_range(w->first, w->second) + "\"; expected at least two frames");
+    if (s.step_frame && w->first < *s.step_frame && *s.step_frame <= w->second)
+      r.fail(base + ".flicker_frames", "is \"" + frame_range(w->first, w->second) + "\", which contains the step change at frame " +
+                                           std::to_string(*s.step_frame) + "; expected frames before it or from it on");
+  }
+  if (const auto& w = s.lag_frames) {
+    inside(*w, "lag_frames");
+    if (!s.step_frame) r.fail(base + ".lag_frames", "is declared without step_frame; expected the frame of the step change too");
+    if (!(w->first < *s.step_frame && *s.step_frame <= w->second))
+      r.fail(base + ".lag_frames", "is \"" + frame_range(w->first, w->second) + "\"; expected A:B with A < step_frame (" +
+                                       std::to_string(*s.step_frame) + ") <= B, a frame before the step and the frames after it");
   }
 }
 
@@ -266,6 +309,7 @@ Extras parse_extras(const Document& doc, const SceneSource& src) {
   // Without an explicit frame count the whole clip plays, both ends included.
   if (!frames_given && out.sequence.animation >= 0)
     out.sequence.frames = 1 + int(std::lround(std::min(src.animations[size_t(out.sequence.animation)].end * out.sequence.fps, 1e6)));
+  check_windows(r, out.sequence);
   return out;
 }
 

@@ -13,6 +13,15 @@
 #include "scene_source.h"
 
 namespace giq::scenes {
+
+Framing frame_bounds(const Bounds& b, double yfov) {
+  const glm::dvec3 centre(b.centre());
+  const double radius = 0.5 * double(b.diagonal());
+  const double distance = 1.05 * radius / std::sin(0.5 * yfov);
+  const double elevation = 20.0 * std::numbers::pi / 180.0;
+  return {centre + distance * glm::dvec3(0.0, std::sin(elevation), std::cos(elevation)), centre};
+}
+
 namespace {
 
 // Rec. ITU-R BT.709 relative luminance of linear RGB.

@@ -159,6 +159,11 @@ TEST(MovingLightScene, LightFollowsThePath) {
   EXPECT_EQ(s.sequence.frames, 60);
   EXPECT_EQ(s.sequence.fps, 30.0);
   EXPECT_EQ(s.sequence.animation, 0);
+  // The step the metrics measure is the jump below; lag over every frame after it (nothing
+  // moves then), flicker while the light circles.
+  EXPECT_EQ(s.sequence.step_frame, 30);
+  EXPECT_EQ(s.sequence.flicker_frames, std::pair(12, 27));
+  EXPECT_EQ(s.sequence.lag_frames, std::pair(28, 59));
   EXPECT_NEAR(s.duration(), 1.0, 1e-6);  // last key: the circle closes at frame 30
   // Circle of radius 0.15 m around (0.278, 0.45, 0.2796) m, angle 2 pi f / 30 from +x; the
   // light jumps to (0.47, 0.12, 0.15) m between frames 29 and 30 and stays.
@@ -232,6 +237,10 @@ TEST(DynamicScene, WalkerGoesRoundTheCircleOnTheFloor) {
 TEST(DynamicScene, LampJumpsAtFrame30AndTheFountainGlows) {
   const Scene s = load("dynamic");
   ASSERT_EQ(s.emitters.size(), 1u);
+  // The declared step is the lamp's jump; lag over 13 frames after it, flicker before it.
+  EXPECT_EQ(s.sequence.step_frame, 30);
+  EXPECT_EQ(s.sequence.flicker_frames, std::pair(12, 27));
+  EXPECT_EQ(s.sequence.lag_frames, std::pair(28, 43));
   for (const auto& [frame, where] : {std::pair{0, glm::dvec3(3.6, 2.4, 3.0)}, {29, {3.6, 2.4, 3.0}}, {30, {5.4, 2.4, 2.4}},
                                      {119, {5.4, 2.4, 2.4}}}) {
     const Scene posed = s.at_frame(frame);

@@ -9,7 +9,9 @@
 //   FAKE_GIQ_BEHAVIOUR  JSON file {"<case>": {"realtime": "ok"|"crash"|"no-frames",
 //                                             "score": "ok"|"crash", "metrics": {...}}}
 //                       where metrics.json is {"metrics": <metrics>} (a sequence case's
-//                       "metrics" may hold "sequence"/"last_frame" itself: give "raw": {...})
+//                       "metrics" may hold "sequence"/"last_frame" itself: give "raw": {...};
+//                       "echo_frames": true makes a score's sequence flicker its first frame
+//                       and its lag its last, to show which frames a caller scored)
 //   FAKE_GIQ_DEVICE     device name in timings.json (default "llvmpipe (LLVM 15.0.6, 256 bits)")
 //   FAKE_GIQ_GPU_MS     frame_gpu_ms.median in timings.json (default 2.5)
 //   FAKE_GIQ_REAL       a real giq binary: `score` of a case without fake metrics runs its
@@ -26,6 +28,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -119,13 +122,15 @@ int main(int argc, char** argv) {
     int a = 0, b = 0;
     std::sscanf(one(o, "--frames", "0:0").c_str(), "%d:%d", &a, &b);
     const std::string pattern = one(o, "--out");
-    const size_t hash = pattern.find("####");
+    // '#'s stand for the frame number, zero-padded to their count, as giq reference's --out.
+    const size_t hash = pattern.find('#');
+    const size_t digits = hash == std::string::npos ? 0 : std::min(pattern.find_first_not_of('#', hash), pattern.size()) - hash;
     for (int f = a; f <= b; ++f) {
       char num[16];
-      std::snprintf(num, sizeof num, "%04d", f);
+      std::snprintf(num, sizeof num, "%0*d", int(digits), f);
       write_frame(
           hash == std::string::npos ? pattern
-                                    : pattern.substr(0, hash) + num + pattern.substr(hash + 4),
+                                    : pattern.substr(0, hash) + num + pattern.substr(hash + digits),
           w, h,
           {{"giq.spp", one(o, "--spp", "77")},
            {"giq.version", "fake-reference"},
@@ -212,6 +217,12 @@ int main(int argc, char** argv) {
     if (test.metadata.count("giq.spp"))
       dflt["rmse"] = {{"value", 0.5 / std::sqrt(std::atof(test.metadata.at("giq.spp").c_str()))}};
     json m = b.contains("raw") ? b["raw"] : json{{"metrics", b.value("metrics", dflt)}};
+    if (b.value("echo_frames", false)) {
+      int a = 0, e = 0;
+      std::sscanf(one(o, "--frames").c_str(), "%d:%d", &a, &e);
+      m["sequence"]["flicker"] = {{"value", a}};
+      m["sequence"]["lag"] = {{"value_frames", e}};
+    }
     m["inputs"] = {{"reference", one(o, "--ref")},
                    {"test", one(o, "--test")},
                    {"layer", one(o, "--layer", "beauty")}};

@@ -169,4 +169,32 @@ TEST(ResultsPage, LeakIsUndefinedWhereTheViewShowsNoneOfTheRegion) {
   fs::remove_all(dir);
 }
 
+// An animated scene that declares where flicker and lag are measured (extras.giq.sequence):
+// its rows take flicker from a score over the flicker window and lag from one over the lag
+// window, the rest from every frame, and the page says which frames.
+TEST(ResultsPage, FlickerAndLagOverTheFramesTheSceneDeclares) {
+  const fs::path dir = fs::temp_directory_path() / ("giq_results_windows_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "scenes");
+  fs::create_directories(dir / "docs");
+  fs::copy_file(fs::path(GIQ_SCENES_DIR) / "movinglight.gltf", dir / "scenes" / "moving.gltf");
+  std::ofstream(dir / "behaviour.json") << json({{"", {{"echo_frames", true}}}}).dump();
+  const auto r = run_results(dir, "--technique direct --scene moving --size 8 --spp 1 --sequence-spp 1 --frames 1",
+                             "FAKE_GIQ_BEHAVIOUR=" + giq::test::shell_quote((dir / "behaviour.json").string()) + " ");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(dir / "docs" / "results.json");
+  const json page = json::parse(in);
+  ASSERT_EQ(page["rows"].size(), 1u) << page.dump(1);
+  const json& row = page["rows"][0];
+  // movinglight declares flicker over frames 12-27 and lag over 28-59 (of 0-59).
+  EXPECT_EQ(row["beauty"]["flicker"], 12) << row.dump();
+  EXPECT_EQ(row["indirect"]["flicker"], 12) << row.dump();
+  EXPECT_EQ(row["beauty"]["lag90_frames"], 59) << row.dump();
+  EXPECT_EQ(row["flicker_frames"], "12:27");
+  EXPECT_EQ(row["lag_frames"], "28:59");
+  const std::string text = giq::test::slurp(dir / "docs" / "results.md");
+  EXPECT_NE(text.find("flicker over frames 12–27, lag over frames 28–59, as the scene declares"), std::string::npos) << text;
+  fs::remove_all(dir);
+}
+
 }  // namespace

@@ -177,11 +177,10 @@ TEST(ScoreCli, BadInputExitsTwoWithOneLine) {
   EXPECT_EQ(test::slurp(d / "o" / "abs_error.exr"), clobber_before);
 }
 
-TEST(ScoreCli, SequenceBiasFlickerAndLag) {
-  const fs::path d = fresh_dir("sequence");
-  // A light switches on at frame 3 over the left half (Y 0.1 -> 1.0); the technique follows
-  // with its error halving every frame: r_t = 0.9 * 2^-(t-3).
-  const int frames = 12, t0 = 3;
+// A light switches on at frame t0 over the left half (Y 0.1 -> 1.0); the technique follows
+// with its error halving every frame: r_t = 0.9 * 2^-(t-t0). ref_%04d.exr and tech_%04d.exr,
+// frames 0 to frames - 1, in `d`.
+void write_step_sequence(const fs::path& d, int frames, int t0) {
   char name[64];
   for (int t = 0; t < frames; ++t) {
     auto lit = [&](int x) { return x < W / 2 && t >= t0; };
@@ -194,6 +193,13 @@ TEST(ScoreCli, SequenceBiasFlickerAndLag) {
     std::snprintf(name, sizeof name, "tech_%04d.exr", t);
     image::write_exr(tech, d / name);
   }
+}
+
+TEST(ScoreCli, SequenceBiasFlickerAndLag) {
+  const fs::path d = fresh_dir("sequence");
+  const int frames = 12, t0 = 3;
+  write_step_sequence(d, frames, t0);
+  char name[64];
   std::ofstream(d / "timings.json") << R"({"frame_ms": {"median": 10.0, "mean": 11.0}})";
   const CliRun r = giq_run("score --ref '" + (d / "ref_%04d.exr").string() + "' --test '" +
                             (d / "tech_%04d.exr").string() + "' --frames 0:11 --timings " +
@@ -236,6 +242,35 @@ TEST(ScoreCli, SequenceBiasFlickerAndLag) {
   EXPECT_NEAR(js["sequence"]["flicker"]["value"].get<double>(), 0.1, 1e-6);
   EXPECT_GT(js["sequence"]["temporal_flip"]["value"].get<double>(), 0.0);
   EXPECT_TRUE(js["sequence"]["lag"]["value_frames"].is_null());
+}
+
+// A step frame the scene declares (extras.giq.sequence.step_frame) is lag's t0 where the scored
+// frames hold it, though the reference changes most at another frame; a given --step-frame
+// comes first, and frames without the declared step detect theirs.
+TEST(ScoreCli, LagTakesTheStepTheSceneDeclares) {
+  const fs::path d = fresh_dir("declared_step");
+  write_step_sequence(d, 12, 3);
+  json scene = json::parse(test::slurp(fs::path(GIQ_SCENES_DIR) / "movinglight.gltf"));
+  scene["extras"]["giq"]["sequence"]["step_frame"] = 2;
+  scene["extras"]["giq"]["sequence"]["lag_frames"] = "1:11";
+  scene["extras"]["giq"]["sequence"]["flicker_frames"] = "0:1";
+  std::ofstream(d / "scene.gltf") << scene.dump();
+  auto lag = [&](const std::string& extra, const std::string& out) {
+    const CliRun r = giq_run("score --ref '" + (d / "ref_%04d.exr").string() + "' --test '" + (d / "tech_%04d.exr").string() +
+                                 "' --scene " + (d / "scene.gltf").string() + " " + extra + " --out " + (d / out).string() +
+                                 " --json",
+                             d);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return r.code == 0 ? json::parse(r.out)["sequence"]["lag"] : json();
+  };
+  const json declared = lag("--frames 0:11", "declared");
+  EXPECT_EQ(declared["step_frame"], 2);
+  EXPECT_NE(declared["step_frame_source"].get<std::string>().find("declared by the scene"), std::string::npos);
+  const json given = lag("--frames 0:11 --step-frame 3", "given");
+  EXPECT_EQ(given["step_frame"], 3);
+  EXPECT_EQ(given["step_frame_source"], "given");
+  const json detected = lag("--frames 2:11", "detected");  // a step at frame 2 has no frame before it here
+  EXPECT_EQ(detected["step_frame_source"].get<std::string>().rfind("detected", 0), 0u);
 }
 
 TEST(ScoreCli, DeclaredLeakRegionsFromTheScene) {

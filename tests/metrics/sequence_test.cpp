@@ -112,15 +112,39 @@ TEST(Lag, NoResponseAndImmediateResponse) {
   // Error grows after the step: r_inf = (4 + 5) / 2, threshold 4.5 + 0.1 (1 - 4.5) = 4.15 >= r_t0.
   std::vector<double> rising{0, 0, 0, 1, 2, 3, 4, 5};
   EXPECT_EQ(*metrics::lag90(rising, 3).lag_frames, 0);
-  // Last 25% of 8 frames = 2 frames (9 and 1): r_inf = 5, threshold 5 + 0.1 (9 - 5) = 5.4,
-  // first reached at t = 7.
-  std::vector<double> slow{0, 9, 9, 9, 9, 9, 9, 1};
+  // Last 25% of 8 frames = 2 frames (5.05 and 4.95): r_inf = 5, s = 0.0707, threshold
+  // 5 + max(0.1 (9 - 5), 2 s) = 5.4, first reached at t = 6.
+  std::vector<double> slow{0, 9, 9, 9, 9, 9, 5.05, 4.95};
   const auto s = metrics::lag90(slow, 1);
   EXPECT_DOUBLE_EQ(s.r_inf, 5.0);
+  EXPECT_NEAR(s.r_inf_stddev, 0.05 * std::sqrt(2.0), 1e-12);
   EXPECT_DOUBLE_EQ(s.threshold, 5.4);
-  EXPECT_EQ(*s.lag_frames, 6);
+  EXPECT_EQ(*s.lag_frames, 5);
   EXPECT_FALSE(s.lag_ms.has_value());  // no frame time given
   EXPECT_THROW(metrics::lag90(slow, 8), std::invalid_argument);
+}
+
+// Other content moving after the step: the settled error fluctuates by +-0.1 frame to frame.
+TEST(Lag, FluctuatingSettledError) {
+  const int frames = 16, t0 = 2;
+  auto sequence = [&](double response) {
+    std::vector<double> r(frames, 0.0);
+    for (int t = t0; t < frames; ++t) r[size_t(t)] = 1.0 + response * std::pow(0.5, t - t0) + ((t - t0) % 2 ? -0.1 : 0.1);
+    return r;
+  };
+  // No response beyond the fluctuation: r_t0 = 1.1 against r_inf = 1.0000 and s = 0.1155
+  // (the last 4 frames: 1.1, 0.9, 1.1, 0.9). 10 % of the excess would put the
+  // threshold at 1.01 and read the first dip, a frame later, as a lag of 1; within 2 s of
+  // r_inf the step frame is already settled.
+  const auto none = metrics::lag90(sequence(0.0), t0);
+  EXPECT_NEAR(none.r_inf_stddev, 0.1 * std::sqrt(4.0 / 3.0), 1e-3);
+  EXPECT_EQ(*none.lag_frames, 0);
+  // A response of 2, halving every frame, on the same fluctuation: r_t = 3.1, 1.9, 1.6, 1.15, ...;
+  // r_inf = 1.0009, s = 0.1158, threshold 1.0009 + max(0.21, 0.2316) = 1.2326, first reached
+  // 3 frames after the step.
+  const auto halving = metrics::lag90(sequence(2.0), t0);
+  EXPECT_NEAR(halving.threshold, 1.2326, 1e-4);
+  EXPECT_EQ(*halving.lag_frames, 3);
 }
 
 TEST(Lag, ChangedRegion) {

@@ -182,12 +182,9 @@ TEST_F(PtReferenceCases, SampleAssetsAgreeWithinNoise) {
     ++deforming;
     const int frame = std::min(45, scene.sequence.frames - 1);
     add_sun_and_sky(scene);
-    const scenes::Bounds posed = scene.at_frame(frame).bounds;
-    const float fov = 0.7f, radius = 0.5f * posed.diagonal();
-    const float distance = 1.05f * radius / std::sin(0.5f * fov), elevation = 0.35f;
-    const glm::vec3 target = posed.centre();
-    const glm::vec3 eye = target + distance * glm::vec3(0.0f, std::sin(elevation), std::cos(elevation));
-    scene.add_view({"front", scenes::Camera::look_at(eye, target, {0, 1, 0}, fov), -1});
+    const float fov = 0.7f;
+    const scenes::Framing view = scenes::frame_bounds(scene.at_frame(frame).bounds, fov);
+    scene.add_view({"front", scenes::Camera::look_at(glm::vec3(view.eye), glm::vec3(view.target), {0, 1, 0}, fov), -1});
     const std::string what = file.filename().string() + ", frame " + std::to_string(frame);
     expect_pt_agrees(*ctx, *compiler, scene, "front", 64, 32, what, frame, false);
 

@@ -41,7 +41,9 @@
 #include "command.h"
 #include "giq/base/atomic_file.h"
 #include "giq/base/error.h"
+#include "giq/base/frames.h"
 #include "giq/base/json.h"
+#include "giq/scenes/scene.h"
 #include "subprocess.h"
 #include "technique_listing.h"
 
@@ -100,14 +102,33 @@ struct PlannedCase {
   std::string scene() const { return fs::path(json["scene"].get<std::string>()).stem().string(); }
 };
 
+// A case template's frames as gate.json holds them: as written (N or "A:B"), or for "flicker"
+// and "lag" the window the scene declares for that metric (scenes::Sequence), so that the gate
+// measures over the same frames as every other command.
+ordered case_frames(const fs::path& plan_path, const ordered& scene, const ordered& frames, const std::string& field) {
+  if (!frames.is_string() || (frames != "flicker" && frames != "lag")) return frames;
+  const std::string text = frames.get<std::string>();
+  const fs::path file = plan_path.parent_path() / scene.at("scene").get<std::string>();
+  const scenes::Sequence sq = scenes::load(file).sequence;
+  const auto& w = text == "flicker" ? sq.flicker_frames : sq.lag_frames;
+  if (!w) throw InputError(plan_path.string(), field, "\"" + text + "\", but " + file.string() + " declares no extras.giq.sequence." + text + "_frames");
+  return frame_range(w->first, w->second);
+}
+
 // The cases the plan asks for, in a stable order: scene by scene, technique by technique.
-std::vector<PlannedCase> planned_cases(const ordered& plan, const std::vector<std::string>& techniques) {
+std::vector<PlannedCase> planned_cases(const fs::path& plan_path, const ordered& plan, const std::vector<std::string>& techniques) {
   std::vector<PlannedCase> cases;
   const ordered no_indirect = plan.value("no_indirect_light", ordered::array());
   for (const auto& scene : plan.at("scenes")) {
     const std::string stem = fs::path(scene.at("scene").get<std::string>()).stem().string();
+    std::vector<ordered> frames;
+    for (size_t i = 0; i < scene.at("cases").size(); ++i) {
+      const ordered& t = scene["cases"][i];
+      frames.push_back(t.contains("frames") ? case_frames(plan_path, scene, t["frames"], "scenes[" + stem + "].cases[" + std::to_string(i) + "].frames") : ordered());
+    }
     for (const std::string& tech : techniques)
-      for (const auto& t : scene.at("cases")) {
+      for (size_t i = 0; i < scene.at("cases").size(); ++i) {
+        const ordered& t = scene["cases"][i];
         if (t.value("needs_indirect", false) &&
             std::find(no_indirect.begin(), no_indirect.end(), tech) != no_indirect.end())
           continue;
@@ -120,7 +141,7 @@ std::vector<PlannedCase> planned_cases(const ordered& plan, const std::vector<st
         if (scene.contains("view")) c.json["view"] = scene["view"];
         // Parameters in name order (a json object's order), as the gate writes them back.
         if (const ordered* params = walk(plan, "technique_parameters." + tech)) c.json["parameters"] = json(*params);
-        if (t.contains("frames")) c.json["frames"] = t["frames"];
+        if (!frames[i].is_null()) c.json["frames"] = frames[i];
         if (t.value("layer", std::string("beauty")) != "beauty") c.json["layer"] = t["layer"];
         ordered golden = scene.value("golden", ordered::object());
         const ordered case_golden = t.value("golden", ordered::object());
@@ -278,7 +299,7 @@ int run_calibrate(const CalibrateArgs& a) {
   const auto declared = registered(giq, a.out);
   std::vector<std::string> names;
   for (const auto& [n, p] : declared) names.push_back(n);
-  const auto cases = planned_cases(plan, names);
+  const auto cases = planned_cases(plan_path, plan, names);
   const json existing = fs::exists(config_path) ? read_json(config_path) : json{{"cases", json::array()}};
 
   // Every built-in scene has its cases.

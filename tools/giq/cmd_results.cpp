@@ -6,7 +6,8 @@
 // --frames measured frames after 2 warm-up frames; animated scenes: every frame of the
 // animation), and `giq score` of the beauty and of the indirect layer against the reference.
 // Static scenes are scored as sequences against their single reference, which is what flicker
-// measures; animated ones frame by frame, which is what lag measures.
+// measures; animated ones frame by frame, which is what lag measures, and again over the
+// frames the scene declares for flicker and lag (scenes::Sequence).
 //
 // --gpu DIR adds GPU time and memory at 1920x1080 measured on a GPU machine
 // (DIR/results/<scene>/<technique>/timings.json) and its speed-for-accuracy sweeps
@@ -219,13 +220,14 @@ std::string page(const ordered& results) {
           " spp per frame of an animated scene; the metrics are noise-corrected, docs/metrics.md), static scenes "
           "scored over " +
           s["static_frames"].dump() +
-          " frames after 2 warm-up frames, animated scenes over every frame. Lower is better for every metric shown. "
+          " frames after 2 warm-up frames, animated scenes over every frame (flicker and lag over the frames the scene "
+          "declares for them, where it does). Lower is better for every metric shown. "
           "FLIP is the mean HDR-FLIP of the last frame; relMSE is averaged over the frames; leak is light in the "
           "scene's declared leak region as a share of the reference image's luminance (– where the reference is "
           "black there or the view shows none of the region), leak (abs.) the same in radiance per pixel; flicker is "
           "the relative temporal noise of the error, of the beauty and of the indirect light (below 1e-4 it is float "
           "rounding of a deterministic technique and counts as 0 in the comparisons); "
-          "lag90 is in frames after the light's step change. GPU ms (local) is the median frame time on the device "
+          "lag90 is in frames after the scene's step change. GPU ms (local) is the median frame time on the device "
           "that rendered the images; " + gpu_column + " and memory MB (the technique's resident GPU memory, shared "
           "passes included) come from the run on the GPU machine with the same default parameters.",
       ""};
@@ -236,6 +238,17 @@ std::string page(const ordered& results) {
   lines.push_back("");
   for (const std::string& scene : scenes) {
     lines.insert(lines.end(), {"## " + scene, ""});
+    const auto first_row = std::find_if(rows.begin(), rows.end(), [&](const ordered& r) { return r["scene"] == scene; });
+    std::vector<std::string> windows;
+    for (const auto& [key, metric] : {std::pair{"flicker_frames", "flicker"}, std::pair{"lag_frames", "lag"}})
+      if (first_row->contains(key)) {
+        const ordered& w = (*first_row)[key];
+        const auto range = w.is_string() ? parse_frame_range(w.get<std::string>()) : std::nullopt;
+        if (!range) throw InputError("results.json", std::string("rows[].") + key, w.dump() + "; expected \"A:B\"");
+        windows.push_back(std::string(metric) + " over frames " + std::to_string(range->first) + "–" + std::to_string(range->second));
+      }
+    if (!windows.empty())
+      lines.insert(lines.end(), {join(windows, ", ") + ", as the scene declares (`extras.giq.sequence`).", ""});
     lines.push_back(
         "| technique | FLIP (beauty) | relMSE (beauty) | FLIP (indirect) | relMSE (indirect) | leak | leak (abs.) | "
         "flicker (beauty) | flicker (indirect) | lag90 (frames) | GPU ms (local) | " + gpu_column + " | memory MB |");
@@ -445,15 +458,26 @@ int run_results(const ResultsArgs& a) {
       row["device"] = t.device;
       row["gpu_ms"] = *t.gpu_ms;
       row["gpu_memory_mb"] = timings.value("gpu_memory_mb", json(nullptr));
-      for (const char* layer : {"beauty", "indirect"}) {
-        const fs::path sdir = tdir / (std::string("score-") + layer);
+      auto score = [&](const std::string& layer, std::pair<int, int> frames, const std::string& name) {
+        const fs::path sdir = tdir / name;
         run_step({giq.string(), "score", "--ref", (ref_dir / (animated ? "frame_%d.exr" : frame_file(0))).string(),
-                  "--test", (tdir / "frames" / kFramePattern).string(), "--frames", frame_range(first, last), "--layer",
-                  layer, "--scene", scene.string(), "--timings", (tdir / "frames" / "timings.json").string(), "--out",
-                  sdir.string()},
+                  "--test", (tdir / "frames" / kFramePattern).string(), "--frames", frame_range(frames.first, frames.second),
+                  "--layer", layer, "--scene", scene.string(), "--timings", (tdir / "frames" / "timings.json").string(),
+                  "--out", sdir.string()},
                  sdir, giq_hash, a.rerender);
-        row[layer] = score_row(read_json(sdir / "metrics.json"));
+        return score_row(read_json(sdir / "metrics.json"));
+      };
+      // Flicker and lag over the frames the scene declares for them, the rest over every
+      // frame; lag of the beauty only (the page shows no other).
+      const scenes::Sequence& sq = loaded.sequence;
+      for (const std::string layer : {"beauty", "indirect"}) {
+        row[layer] = score(layer, {first, last}, "score-" + layer);
+        if (animated && sq.flicker_frames) row[layer]["flicker"] = score(layer, *sq.flicker_frames, "score-" + layer + "-flicker")["flicker"];
+        if (animated && sq.lag_frames && layer == "beauty")
+          row[layer]["lag90_frames"] = score(layer, *sq.lag_frames, "score-" + layer + "-lag")["lag90_frames"];
       }
+      if (animated && sq.flicker_frames) row["flicker_frames"] = frame_range(sq.flicker_frames->first, sq.flicker_frames->second);
+      if (animated && sq.lag_frames) row["lag_frames"] = frame_range(sq.lag_frames->first, sq.lag_frames->second);
       if (!a.gpu.empty()) {
         const fs::path h = fs::path(a.gpu) / "results" / stem / tech / "timings.json";
         if (fs::exists(h)) {

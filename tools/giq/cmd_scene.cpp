@@ -62,6 +62,11 @@ void print_table(const json& j) {
   std::snprintf(b, sizeof b, "%d frames at %.3g fps (animation %d, %.3g s)", sq["frames"].get<int>(),
                 sq["fps"].get<double>(), sq["animation"].get<int>(), sq["duration_s"].get<double>());
   row("sequence", b);
+  if (!sq["step_frame"].is_null()) row("  step change", "frame " + sq["step_frame"].dump());
+  for (const char* w : {"flicker_frames", "lag_frames"})
+    if (!sq[w].is_null())
+      row(std::string("  ") + (w[0] == 'f' ? "flicker" : "lag") + " measured over",
+          "frames " + sq[w][0].dump() + " to " + sq[w][1].dump());
   std::string leaks;
   for (const auto& l : j["leak_regions"]) leaks += (leaks.empty() ? "" : ", ") + l.get<std::string>();
   row("leak regions", leaks.empty() ? "(none)" : leaks);

@@ -110,6 +110,12 @@ int run_score(const ScoreArgs& a) {
     const scenes::Scene scene = scenes::load(a.scene);
     req.scene = a.scene;
     req.leak_object_ids = scene.leak_object_ids;
+    // The step the scene declares, where the scored frames hold it, unless one is given.
+    const auto& step = scene.sequence.step_frame;
+    if (!req.step_frame && step && req.frames && req.frames->first < *step && *step <= req.frames->second) {
+      req.step_frame = *step;
+      req.step_frame_source = "declared by the scene (extras.giq.sequence.step_frame)";
+    }
   }
   if (!a.timings.empty()) {
     const gate::FrameTime t = gate::read_timings(a.timings);
@@ -175,11 +181,11 @@ void add_score_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--crop", args->crop, "Score only the region x,y,width,height (pixels from the top left) of both images");
   cmd->add_option("--fail", args->fail, "Exit 1 unless METRIC<=V (or >=V) holds; repeatable, any metric of docs/metrics.md");
   cmd->add_option("--warn", args->warn, "Mark METRIC<=V (or >=V) when it does not hold; repeatable");
-  cmd->add_option("--scene", args->scene, "Scene (.gltf/.glb) whose leak regions are scored");
+  cmd->add_option("--scene", args->scene, "Scene (.gltf/.glb) whose leak regions are scored and whose declared step frame lag takes");
   cmd->add_option("--out", args->out, "Output folder for metrics.json and the maps")->required();
   cmd->add_option("--frames", args->frames, "First and last frame A:B for patterns");
   cmd->add_option("--timings", args->timings, "timings.json of the technique (frame time for lag in ms)");
-  cmd->add_option("--step-frame", args->step_frame, "Frame of the step change for lag (default: detected)")
+  cmd->add_option("--step-frame", args->step_frame, "Frame of the step change for lag (default: the scene's declared step_frame, else detected)")
       ->check(integer_in(0.0L, 2147483647.0L));
   cmd->add_flag("--json", args->json_output, "Print metrics.json on stdout instead of a table");
   cmd->footer(

@@ -88,6 +88,11 @@ json describe_scene(const sc::Scene& s) {
                    {"fps", s.sequence.fps},
                    {"animation", s.sequence.animation},
                    {"duration_s", s.duration()}};
+  // The declared measurement windows, null where the scene declares none.
+  auto window = [](const std::optional<std::pair<int, int>>& w) { return w ? json::array({w->first, w->second}) : json(nullptr); };
+  j["sequence"]["step_frame"] = s.sequence.step_frame ? json(*s.sequence.step_frame) : json(nullptr);
+  j["sequence"]["flicker_frames"] = window(s.sequence.flicker_frames);
+  j["sequence"]["lag_frames"] = window(s.sequence.lag_frames);
   json emitters = json::array();
   for (const scenes::Emitter& e : s.emitters)
     emitters.push_back({{"name", e.name},

@@ -113,11 +113,9 @@ sc::Camera auto_camera(const std::vector<std::string>& args, const sc::Scene& sc
     fov = parse_fov("fov", kv.value);
   }
   if (scene.bounds.empty()) throw InputError(scene.path.string(), "--camera", "auto needs geometry to frame; the scene has none");
-  const glm::dvec3 centre = scene.origin + glm::dvec3(scene.bounds.centre());
-  const double radius = 0.5 * double(scene.bounds.diagonal());
-  const double distance = 1.05 * radius / std::sin(0.5 * fov * std::numbers::pi / 180.0);
-  const double elevation = 20.0 * std::numbers::pi / 180.0;
-  const glm::dvec3 eye = centre + distance * glm::dvec3(0.0, std::sin(elevation), std::cos(elevation));
+  // The bounds are in the scene's local frame; the camera is given in the world's.
+  const sc::Framing f = sc::frame_bounds(scene.bounds, fov * std::numbers::pi / 180.0);
+  const glm::dvec3 eye = scene.origin + f.eye, centre = scene.origin + f.target;
   std::fprintf(stderr, "giq: --camera auto: eye=%.6g,%.6g,%.6g target=%.6g,%.6g,%.6g fov=%.6g\n", eye.x, eye.y, eye.z, centre.x,
                centre.y, centre.z, fov);
   return look_at(eye, centre, glm::dvec3(0.0, 1.0, 0.0), fov, scene);

@@ -70,9 +70,14 @@ std::string scene_section(const BuiltinScene& s) {
   for (const ViewSpec& v : g.camera_views()) out += view_row(v, "camera node");
   for (const ViewSpec& v : g.extra_views()) out += view_row(v, "extras.giq.views");
 
-  if (g.sequence_frames() > 1)
-    out += "\nSequence: " + std::to_string(g.sequence_frames()) + " frames at " +
-           num(g.sequence_fps()) + " fps (`extras.giq.sequence`).\n";
+  if (g.sequence_frames() > 1) {
+    out += "\nSequence: " + std::to_string(g.sequence_frames()) + " frames at " + num(g.sequence_fps()) + " fps";
+    if (const auto& w = g.sequence_windows())
+      out += "; the step change at frame " + std::to_string(w->step_frame) + ", flicker measured over frames " +
+             std::to_string(w->flicker_frames.first) + "-" + std::to_string(w->flicker_frames.second) + " and lag over frames " +
+             std::to_string(w->lag_frames.first) + "-" + std::to_string(w->lag_frames.second);
+    out += " (`extras.giq.sequence`).\n";
+  }
   if (!g.emitters().empty()) {
     out +=
         "\nParticle emitters (`extras.giq.emitters`, docs/scene-format.md):\n\n"
@@ -116,7 +121,8 @@ std::string documentation(const std::vector<BuiltinScene>& scenes) {
       "specularFactor 0 (glTF's default dielectric would add a 4 % specular layer).\n"
       "- Views: glTF camera nodes (named by their node) come first and the first is the default; "
       "more views are in `extras.giq.views` as {name, eye, target, up, yfov_deg}. Animated "
-      "scenes name their sequence in `extras.giq.sequence` {frames, fps, animation}; leak "
+      "scenes name their sequence in `extras.giq.sequence` {frames, fps, animation, and the step "
+      "frame and the flicker and lag windows where the scene measures them}; leak "
       "regions are in `extras.giq.leak_regions`.\n\n";
   out +=
       "| scene | surfaces | triangles | punctual lights | views | frames |\n"

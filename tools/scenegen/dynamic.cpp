@@ -101,7 +101,12 @@ BuiltinScene make_dynamic() {
   std::vector<TranslationTrack> translations = walker.translations;
   translations.push_back(jump);
   const int animation = g.add_animation("dynamic", translations, walker.rotations);
-  g.set_sequence(kFrames, kFps, animation);
+  // Flicker from frame 12, after the histories' warm-up, to the frame before the step's
+  // window; lag from two frames before the step to 13 after it. Not longer: the walker and the
+  // particles keep moving, so the error once settled keeps drifting (by about as much as
+  // `ddgi`'s whole response to the step), and over every later frame lag90 would measure the
+  // drift (docs/metrics.md, "Lag").
+  g.set_sequence(kFrames, kFps, animation, GltfWriter::MeasurementWindows{kStepFrame, {12, kStepFrame - 3}, {kStepFrame - 2, kStepFrame + 13}});
 
   const double aspect = 16.0 / 9.0;
   // From the wall opposite the fountain, pitched down so that the lamp and, after the step, its

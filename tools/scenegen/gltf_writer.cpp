@@ -10,6 +10,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <zlib.h>
 
+#include "giq/base/frames.h"
+
 namespace giq::scenegen {
 namespace {
 
@@ -465,12 +467,18 @@ void GltfWriter::add_view(const ViewSpec& view) {
   extra_views_.push_back(view);
 }
 
-void GltfWriter::set_sequence(int frames, double fps, int animation) {
+void GltfWriter::set_sequence(int frames, double fps, int animation, std::optional<MeasurementWindows> windows) {
   Json s;
   s["frames"] = frames;
   s["fps"] = clean(fps);
   s["animation"] = animation;
+  if (windows) {
+    s["step_frame"] = windows->step_frame;
+    s["flicker_frames"] = frame_range(windows->flicker_frames.first, windows->flicker_frames.second);
+    s["lag_frames"] = frame_range(windows->lag_frames.first, windows->lag_frames.second);
+  }
   sequence_ = std::move(s);
+  windows_ = windows;
 }
 
 void GltfWriter::add_leak_region(const std::string& node_name) {

@@ -18,6 +18,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry.h"
@@ -152,7 +153,13 @@ class GltfWriter {
 
   // extras.giq
   void add_view(const ViewSpec& view);
-  void set_sequence(int frames, double fps, int animation);
+  // The windows, where given, are extras.giq.sequence's step_frame, flicker_frames and
+  // lag_frames (docs/scene-format.md).
+  struct MeasurementWindows {
+    int step_frame = 0;
+    std::pair<int, int> flicker_frames, lag_frames;
+  };
+  void set_sequence(int frames, double fps, int animation, std::optional<MeasurementWindows> windows = std::nullopt);
   void add_leak_region(const std::string& node_name);
   void add_emitter(const EmitterSpec& emitter);
 
@@ -170,6 +177,7 @@ class GltfWriter {
   const std::vector<EmitterSpec>& emitters() const { return emitters_; }
   int sequence_frames() const { return sequence_ ? (*sequence_)["frames"].get<int>() : 1; }
   double sequence_fps() const { return sequence_ ? (*sequence_)["fps"].get<double>() : 0.0; }
+  const std::optional<MeasurementWindows>& sequence_windows() const { return windows_; }
 
  private:
   // Appends bytes to the buffer as one 4-byte aligned bufferView; returns its index.
@@ -197,6 +205,7 @@ class GltfWriter {
   std::vector<std::string> leak_regions_;
   std::vector<EmitterSpec> emitters_;
   std::optional<Json> sequence_;
+  std::optional<MeasurementWindows> windows_;
 };
 
 // Quaternion turning glTF's camera frame (looking along -Z, up +Y) to look from eye to target.

@@ -35,9 +35,10 @@ BuiltinScene make_movinglight() {
   s.name = "movinglight";
   s.purpose =
       "The Cornell box lit by a moving point light instead of its ceiling light, played as a "
-      "60-frame sequence at 30 fps: frames 0-29 measure flicker while the light moves, the "
+      "60-frame sequence at 30 fps: frames 12-27 measure flicker while the light moves, the "
       "jump at frame 30 is the step change whose response measures lag (METRICS.md \"Lag\", "
-      "t0 = 30), and frames 30-59 are static so the response can settle.";
+      "t0 = 30), and frames 30-59 are static so the response can settle (lag over frames "
+      "28-59).";
   cornell::add_box(s.gltf, false);
 
   // Same total power as the `cornell` ceiling light: a one-sided Lambertian emitter of area A
@@ -62,7 +63,11 @@ BuiltinScene make_movinglight() {
   }
   TranslationTrack step{rig, Interpolation::Step, {0.0, kJumpTime}, {glm::dvec3(0.0), jump}};
   const int animation = s.gltf.add_animation("light_path", {circle, step});
-  s.gltf.set_sequence(kFrames, kFps, animation);
+  // Flicker while the light circles, after the histories' warm-up (frames 12-27); lag from
+  // two frames before the jump to the last frame: nothing moves after it, so every later frame
+  // is the settled state the response is measured against.
+  s.gltf.set_sequence(kFrames, kFps, animation,
+                      GltfWriter::MeasurementWindows{kLoopFrames, {12, kLoopFrames - 3}, {kLoopFrames - 2, kFrames - 1}});
 
   s.notes = {
       "Geometry, materials and views: those of `cornell` (same code), without the ceiling "

@@ -1,5 +1,6 @@
 #include "giq/metrics/lag.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -62,7 +63,16 @@ LagResult lag90(const std::vector<double>& r, int t0, std::optional<double> fram
   for (int t = frames - tail; t < frames; ++t)
     if (std::isfinite(r[size_t(t)])) sum += r[size_t(t)], ++n;
   out.r_inf = n ? sum / n : std::numeric_limits<double>::quiet_NaN();
-  out.threshold = out.r_inf + 0.1 * (out.r_t0 - out.r_inf);
+  // The settled error's own frame-to-frame spread over the same frames. Where other content
+  // keeps moving after the step the error fluctuates, and 10 % of a step no larger than that
+  // fluctuation would time the fluctuation, not the response: a frame within 2 s of r_inf is
+  // as settled as the settled frames are, so the threshold is never inside that band (and a
+  // step within it is no measurable lag).
+  double squares = 0.0;
+  for (int t = frames - tail; t < frames; ++t)
+    if (std::isfinite(r[size_t(t)])) squares += (r[size_t(t)] - out.r_inf) * (r[size_t(t)] - out.r_inf);
+  out.r_inf_stddev = n > 1 ? std::sqrt(squares / (n - 1)) : 0.0;
+  out.threshold = out.r_inf + std::max(0.1 * (out.r_t0 - out.r_inf), 2.0 * out.r_inf_stddev);
   for (int t = t0; t < frames; ++t) {
     if (std::isfinite(r[size_t(t)]) && r[size_t(t)] <= out.threshold) {
       out.lag_frames = t - t0;

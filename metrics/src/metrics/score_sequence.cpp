@@ -56,7 +56,7 @@ json score_sequence(const Frames& in, const ScoreRequest& req, std::vector<Map>*
                          std::to_string(*req.step_frame) + " must lie in " + std::to_string(first + 1) + ".." +
                              std::to_string(last) + " (a frame with a previous frame)");
       t0 = *req.step_frame - first;
-      lag["step_frame_source"] = "given";
+      lag["step_frame_source"] = req.step_frame_source;
     } else {
       // The step is where the reference changes most between consecutive frames.
       double best = -1.0;
@@ -163,6 +163,7 @@ json score_sequence(const Frames& in, const ScoreRequest& req, std::vector<Map>*
     if (!lr.lag_frames) lag["reason"] = "r_t never fell below the 90% threshold";
     lag["r_t0"] = number(lr.r_t0);
     lag["r_inf"] = number(lr.r_inf);
+    lag["r_inf_stddev"] = number(lr.r_inf_stddev);
     lag["threshold"] = number(lr.threshold);
     lag["region_pixels"] = region_pixels;
     json rs = json::array();

@@ -817,6 +817,14 @@ def hostile():
     case("extras_bad_eye.gltf", "extras.giq.views[0].eye", minimal(a=extras({"views": [dict(view, eye=[0, 0])]})))
     case("extras_unknown_leak_region.gltf", "extras.giq.leak_regions[0]", minimal(a=extras({"leak_regions": ["nowhere"]})))
     case("extras_unknown_animation.gltf", "extras.giq.sequence.animation", minimal(a=extras({"sequence": {"animation": "walk"}})))
+    seq = {"frames": 60, "step_frame": 30, "flicker_frames": "12:27", "lag_frames": "28:43"}
+    case("extras_late_step.gltf", "extras.giq.sequence.step_frame", minimal(a=extras({"sequence": dict(seq, step_frame=60)})))
+    case("extras_bad_window.gltf", "extras.giq.sequence.flicker_frames", minimal(a=extras({"sequence": dict(seq, flicker_frames=[12, 27])})))
+    case("extras_window_past_end.gltf", "extras.giq.sequence.lag_frames", minimal(a=extras({"sequence": dict(seq, lag_frames="28:60")})))
+    case("extras_flicker_across_step.gltf", "extras.giq.sequence.flicker_frames", minimal(a=extras({"sequence": dict(seq, flicker_frames="12:30")})))
+    case("extras_lag_without_step.gltf", "extras.giq.sequence.lag_frames",
+         minimal(a=extras({"sequence": {"frames": 60, "lag_frames": "28:43"}})))
+    case("extras_lag_after_step.gltf", "extras.giq.sequence.lag_frames", minimal(a=extras({"sequence": dict(seq, lag_frames="30:43")})))
     emitter = {"name": "e", "node": "tri", "rate": 10, "lifetime": 1}
     case("emitter_unknown_node.gltf", "extras.giq.emitters[0].node", minimal(a=extras({"emitters": [dict(emitter, node="nozzle")]})))
     case("emitter_no_rate.gltf", "extras.giq.emitters[0].rate", minimal(a=extras({"emitters": [{"name": "e", "node": "tri"}]})))

@@ -2,8 +2,9 @@
 // Response to a change (docs/metrics.md, "Lag"). A sequence has a step at frame t0 (a light
 // switched or moved, an object moved). The changed region is where the reference changed by
 // more than 3 sigma between t0 - 1 and the last frame; r_t is the mean |e_t| = |Y_T,t - Y_R,t|
-// over that region; r_inf the mean r_t over the last 25% of the frames (at least one);
-//   lag90 = first t >= t0 with r_t <= r_inf + 0.1 (r_t0 - r_inf), minus t0
+// over that region; r_inf the mean r_t over the last 25% of the frames (at least one) and s
+// their sample standard deviation (0 for one frame);
+//   lag90 = first t >= t0 with r_t <= r_inf + max(0.1 (r_t0 - r_inf), 2 s), minus t0
 // in frames, and in milliseconds at the technique's measured frame time.
 
 #include <cstdint>
@@ -28,7 +29,7 @@ double mean_luminance_change(const RgbLayer& previous, const RgbLayer& current);
 
 struct LagResult {
   int t0 = 0;                      // index into r (0 = first frame of the sequence)
-  double r_t0 = 0.0, r_inf = 0.0, threshold = 0.0;
+  double r_t0 = 0.0, r_inf = 0.0, r_inf_stddev = 0.0, threshold = 0.0;
   std::optional<int> lag_frames;   // empty when r never reaches the threshold
   std::optional<double> lag_ms;    // with a frame time
 };

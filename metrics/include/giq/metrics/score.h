@@ -52,6 +52,7 @@ struct ScoreRequest {
   std::optional<double> frame_ms;  // technique frame time (timings.json frame_ms.median)
   std::string timings;             // the timings file it came from
   std::optional<int> step_frame;   // lag: the frame of the step change (default: detected)
+  std::string step_frame_source = "given";  // where step_frame came from, for metrics.json
   bool write_maps = true;
   // Sequences: only the sequence metrics (bias/variance, flicker, lag, per-frame errors),
   // without temporal FLIP and the full score of the last frame (giq.flicker, giq.lag).

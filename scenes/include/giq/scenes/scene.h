@@ -11,8 +11,10 @@
 #include <glm/glm.hpp>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "giq/scenes/camera.h"
@@ -42,11 +44,26 @@ struct Bounds {
   }
 };
 
+// A view of all of a box: the eye in front of it (+z) and 20 degrees above its centre, far
+// enough that its bounding sphere fits a vertical field of view of `yfov` radians with 5 % to
+// spare. How `--camera auto` frames a scene nobody gave a view for.
+struct Framing {
+  glm::dvec3 eye{0.0}, target{0.0};
+};
+Framing frame_bounds(const Bounds& b, double yfov);
+
 // Frames of a sequence: frame f shows the scene at time f / fps.
 struct Sequence {
   int frames = 1;
   double fps = 30.0;
   int animation = -1;  // glTF animation that plays; -1 = none
+  // What the scene declares for the temporal metrics (docs/metrics.md), so that every command
+  // measures them over the same frames: the frame of its step change (lag's t0), and the
+  // frames, first and last, over which flicker and lag are measured. The scene's author knows
+  // what else moves: in a scene whose other content keeps moving after the step, a lag window
+  // over every frame would measure that motion's drift rather than the response to the step.
+  std::optional<int> step_frame;
+  std::optional<std::pair<int, int>> flicker_frames, lag_frames;
 };
 
 // An emissive triangle as an area light; the reference picks these by power.
