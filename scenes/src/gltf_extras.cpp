@@ -80,12 +80,11 @@ void parse_sequence(const Reader& r, const json& o, const SceneSource& src, Extr
       r.fail(base + ".step_frame", "is " + f.dump() + "; expected the integer frame of the step change, at least 1");
     out.sequence.step_frame = int(f.get<long long>());
   }
-  for (const char* key : {"flicker_frames", "lag_frames"}) {
+  for (auto [key, window] : {std::pair{"flicker_frames", &out.sequence.flicker_frames}, {"lag_frames", &out.sequence.lag_frames}}) {
     if (!o.contains(key)) continue;
     const json& w = o[key];
-    const auto range = w.is_string() ? parse_frame_range(w.get<std::string>()) : std::nullopt;
-    if (!range) r.fail(base + "." + key, "is " + w.dump().substr(0, 80) + "; expected \"A:B\", the first and last frame");
-    (std::string_view(key) == "flicker_frames" ? out.sequence.flicker_frames : out.sequence.lag_frames) = range;
+    *window = w.is_string() ? parse_frame_range(w.get<std::string>()) : std::nullopt;
+    if (!*window) r.fail(base + "." + key, "is " + w.dump().substr(0, 80) + "; expected \"A:B\", the first and last frame");
   }
   if (o.contains("frames")) {
     const json& f = o["frames"];

@@ -137,25 +137,33 @@ TEST(ResultsPage, UpdateRendersOnlyTheGivenTechniqueAndKeepsTheOtherRows) {
   fs::remove_all(dir);
 }
 
+// giq results in `dir` on one built-in scene, `scene_file` copied as scenes/<name>.gltf, with
+// `direct` only, the fake giq behaving as `behaviour` in results' folders (which are not gate
+// cases: behaviour key ""): the page's JSON (null when results failed).
+json one_scene_page(const fs::path& dir, const std::string& scene_file, const std::string& name, const json& behaviour) {
+  fs::remove_all(dir);
+  fs::create_directories(dir / "scenes");
+  fs::create_directories(dir / "docs");
+  fs::copy_file(fs::path(GIQ_SCENES_DIR) / scene_file, dir / "scenes" / (name + ".gltf"));
+  std::ofstream(dir / "behaviour.json") << json({{"", behaviour}}).dump();
+  const auto r = run_results(dir, "--technique direct --scene " + name + " --size 8 --spp 1 --sequence-spp 1 --frames 1",
+                             "FAKE_GIQ_BEHAVIOUR=" + giq::test::shell_quote((dir / "behaviour.json").string()) + " ");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  if (r.exit_code != 0) return json();
+  std::ifstream in(dir / "docs" / "results.json");
+  return json::parse(in);
+}
+
 // The leak columns of a scene with declared leak regions: a view that shows some of a region
 // measures its leak (0 is a measurement), a view that shows none of it measures nothing ("–").
 TEST(ResultsPage, LeakIsUndefinedWhereTheViewShowsNoneOfTheRegion) {
   const fs::path dir = fs::temp_directory_path() / ("giq_results_leak_" + std::to_string(::getpid()));
   for (const int pixels : {0, 12}) {
-    fs::remove_all(dir);
-    fs::create_directories(dir / "scenes");
-    fs::create_directories(dir / "docs");
-    fs::copy_file(fs::path(GIQ_SCENES_DIR) / "cornell.gltf", dir / "scenes" / "box.gltf");
-    // Every score the fake giq writes (results' folders are not gate cases: behaviour "").
+    // Every score the fake giq writes.
     const json declared = {{"leak", {{"value", 0.0}}}, {"leak_absolute", {{"value", 0.0}}}, {"pixels", pixels}};
     const json raw = {{"last_frame", {{"metrics", {{"leak", {{"declared", declared}}}}}}},
                       {"sequence", {{"flicker", {{"value", 0.0}}}}}};
-    std::ofstream(dir / "behaviour.json") << json({{"", {{"raw", raw}}}}).dump();
-    const auto r = run_results(dir, "--technique direct --scene box --size 8 --spp 1 --sequence-spp 1 --frames 1",
-                               "FAKE_GIQ_BEHAVIOUR=" + giq::test::shell_quote((dir / "behaviour.json").string()) + " ");
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    std::ifstream in(dir / "docs" / "results.json");
-    const json page = json::parse(in);
+    const json page = one_scene_page(dir, "cornell.gltf", "box", {{"raw", raw}});
     ASSERT_EQ(page["rows"].size(), 1u) << page.dump(1);
     const json& beauty = page["rows"][0]["beauty"];
     if (pixels == 0) {
@@ -174,16 +182,7 @@ TEST(ResultsPage, LeakIsUndefinedWhereTheViewShowsNoneOfTheRegion) {
 // window, the rest from every frame, and the page says which frames.
 TEST(ResultsPage, FlickerAndLagOverTheFramesTheSceneDeclares) {
   const fs::path dir = fs::temp_directory_path() / ("giq_results_windows_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir / "scenes");
-  fs::create_directories(dir / "docs");
-  fs::copy_file(fs::path(GIQ_SCENES_DIR) / "movinglight.gltf", dir / "scenes" / "moving.gltf");
-  std::ofstream(dir / "behaviour.json") << json({{"", {{"echo_frames", true}}}}).dump();
-  const auto r = run_results(dir, "--technique direct --scene moving --size 8 --spp 1 --sequence-spp 1 --frames 1",
-                             "FAKE_GIQ_BEHAVIOUR=" + giq::test::shell_quote((dir / "behaviour.json").string()) + " ");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  std::ifstream in(dir / "docs" / "results.json");
-  const json page = json::parse(in);
+  const json page = one_scene_page(dir, "movinglight.gltf", "moving", {{"echo_frames", true}});
   ASSERT_EQ(page["rows"].size(), 1u) << page.dump(1);
   const json& row = page["rows"][0];
   // movinglight declares flicker over frames 12-27 and lag over 28-59 (of 0-59).

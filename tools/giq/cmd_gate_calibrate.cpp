@@ -104,13 +104,15 @@ struct PlannedCase {
 
 // A case template's frames as gate.json holds them: as written (N or "A:B"), or for "flicker"
 // and "lag" the window the scene declares for that metric (scenes::Sequence), so that the gate
-// measures over the same frames as every other command.
-ordered case_frames(const fs::path& plan_path, const ordered& scene, const ordered& frames, const std::string& field) {
+// measures over the same frames as every other command. `sequence`: the scene's, loaded by the
+// first template that names a window.
+ordered case_frames(const fs::path& plan_path, const ordered& scene, const ordered& frames, const std::string& field,
+                    std::optional<scenes::Sequence>& sequence) {
   if (!frames.is_string() || (frames != "flicker" && frames != "lag")) return frames;
   const std::string text = frames.get<std::string>();
   const fs::path file = plan_path.parent_path() / scene.at("scene").get<std::string>();
-  const scenes::Sequence sq = scenes::load(file).sequence;
-  const auto& w = text == "flicker" ? sq.flicker_frames : sq.lag_frames;
+  if (!sequence) sequence = scenes::load(file).sequence;
+  const auto& w = text == "flicker" ? sequence->flicker_frames : sequence->lag_frames;
   if (!w) throw InputError(plan_path.string(), field, "\"" + text + "\", but " + file.string() + " declares no extras.giq.sequence." + text + "_frames");
   return frame_range(w->first, w->second);
 }
@@ -122,9 +124,11 @@ std::vector<PlannedCase> planned_cases(const fs::path& plan_path, const ordered&
   for (const auto& scene : plan.at("scenes")) {
     const std::string stem = fs::path(scene.at("scene").get<std::string>()).stem().string();
     std::vector<ordered> frames;
+    std::optional<scenes::Sequence> sequence;
     for (size_t i = 0; i < scene.at("cases").size(); ++i) {
       const ordered& t = scene["cases"][i];
-      frames.push_back(t.contains("frames") ? case_frames(plan_path, scene, t["frames"], "scenes[" + stem + "].cases[" + std::to_string(i) + "].frames") : ordered());
+      const std::string field = "scenes[" + stem + "].cases[" + std::to_string(i) + "].frames";
+      frames.push_back(t.contains("frames") ? case_frames(plan_path, scene, t["frames"], field, sequence) : ordered());
     }
     for (const std::string& tech : techniques)
       for (size_t i = 0; i < scene.at("cases").size(); ++i) {

@@ -63,10 +63,8 @@ void print_table(const json& j) {
                 sq["fps"].get<double>(), sq["animation"].get<int>(), sq["duration_s"].get<double>());
   row("sequence", b);
   if (!sq["step_frame"].is_null()) row("  step change", "frame " + sq["step_frame"].dump());
-  for (const char* w : {"flicker_frames", "lag_frames"})
-    if (!sq[w].is_null())
-      row(std::string("  ") + (w[0] == 'f' ? "flicker" : "lag") + " measured over",
-          "frames " + sq[w][0].dump() + " to " + sq[w][1].dump());
+  for (const auto& [key, label] : {std::pair{"flicker_frames", "  flicker measured over"}, {"lag_frames", "  lag measured over"}})
+    if (!sq[key].is_null()) row(label, "frames " + sq[key][0].dump() + " to " + sq[key][1].dump());
   std::string leaks;
   for (const auto& l : j["leak_regions"]) leaks += (leaks.empty() ? "" : ", ") + l.get<std::string>();
   row("leak regions", leaks.empty() ? "(none)" : leaks);
