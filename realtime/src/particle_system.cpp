@@ -16,12 +16,16 @@ constexpr uint32_t kBindings = 10;
 }
 
 ParticleSystem::ParticleSystem(Context& ctx, ShaderCompiler& compiler, const scenes::Emitter& emitter)
-    : ctx_(&ctx), emitter_(&emitter), capacity_(std::max<uint32_t>(1, emitter.max_particles)) {
+    : ctx_(&ctx), emitter_(emitter), capacity_(std::max<uint32_t>(1, emitter.max_particles)) {
   using namespace gpu;
   const std::vector<VkDescriptorType> bindings(kBindings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   count_ = Pipeline::compute(ctx, compiler.compile("shaders/particles_count.comp"), bindings, sizeof(uint32_t));
   simulate_ = Pipeline::compute(ctx, compiler.compile("shaders/particles_simulate.comp"), bindings, 0);
   emit_ = Pipeline::compute(ctx, compiler.compile("shaders/particles_emit.comp"), bindings, 0);
+  std::vector<VkDescriptorType> vertex_bindings = bindings;
+  vertex_bindings.resize(kBindings + 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  vertices_ = Pipeline::compute(ctx, compiler.compile("shaders/particles_vertices.comp"), vertex_bindings, sizeof(float));
+  stages_ = Buffer(ctx, uint64_t(std::max(1, emitter.stages)) * sizeof(glm::uvec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
   particles_ = Buffer(ctx, uint64_t(capacity_) * sizeof(GpuParticle), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   dead_ = Buffer(ctx, uint64_t(capacity_) * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -56,7 +60,7 @@ void ParticleSystem::reset() {
 void ParticleSystem::prepare(double t) {
   if (t < last_t_) reset();
   last_t_ = t;
-  const scenes::Emitter& e = *emitter_;
+  const scenes::Emitter& e = emitter_;
   const scenes::AliveRange alive = scenes::alive_range(e, t);
   gpu::GpuParticleFrame f{};
   // The ids born since the last frame and still alive; those born and dead in between are
@@ -68,6 +72,11 @@ void ParticleSystem::prepare(double t) {
   for (size_t s = 0; s < starts.size(); ++s) f.starts[s / 4][int(s % 4)] = uint32_t(std::min<uint64_t>(starts[s], 0xffffffffu));
   emitted_end_ = std::max(emitted_end_, alive.end);
   frame_.upload(&f, sizeof(f));
+  // Stage s holds the alive ids below starts[s - 1] and at or above starts[s] (stage_starts).
+  alive_count_ = alive.count();
+  stage_lowest_id_.assign(size_t(e.stages), uint32_t(alive.first));
+  for (size_t s = 0; s < starts.size() && s < stage_lowest_id_.size(); ++s)
+    stage_lowest_id_[s] = uint32_t(std::max<uint64_t>(alive.first, std::min<uint64_t>(starts[s], 0xffffffffu)));
 }
 
 void ParticleSystem::record(VkCommandBuffer cmd, GpuTimer* timer) {
@@ -98,6 +107,25 @@ void ParticleSystem::record(VkCommandBuffer cmd, GpuTimer* timer) {
   count(2);
   if (timer) timer->end(cmd);
   out_ = in;  // this frame's output is the next frame's input
+}
+
+void ParticleSystem::record_vertices(VkCommandBuffer cmd, const Buffer& vertices, const Buffer& previous,
+                                     const std::vector<uint32_t>& stage_first_vertex, double frame_seconds) {
+  if (alive_count_ == 0) return;
+  std::vector<glm::uvec4> stages(stage_lowest_id_.size());
+  for (size_t s = 0; s < stages.size() && s < stage_first_vertex.size(); ++s) stages[s] = glm::uvec4(stage_first_vertex[s], stage_lowest_id_[s], 0, 0);
+  stages_.upload(stages.data(), stages.size() * sizeof(glm::uvec4));
+  // record() made the list it wrote the next frame's input.
+  const std::vector<Descriptor> d = {Descriptor::storage(particles_), Descriptor::storage(dead_),     Descriptor::storage(alive_[out_]),
+                                     Descriptor::storage(alive_[1 - out_]), Descriptor::storage(counters_), Descriptor::storage(indirect_),
+                                     Descriptor::storage(emitter_buffer_), Descriptor::storage(frame_),  Descriptor::storage(surface_),
+                                     Descriptor::storage(choice_),    Descriptor::storage(vertices),  Descriptor::storage(previous),
+                                     Descriptor::storage(stages_)};
+  vertices_.bind(cmd);
+  vertices_.push_descriptors(cmd, d);
+  vertices_.push_constants(cmd, float(frame_seconds));
+  vkCmdDispatch(cmd, uint32_t((alive_count_ + GIQ_PARTICLES_GROUP - 1) / GIQ_PARTICLES_GROUP), 1, 1);
+  full_barrier(cmd);
 }
 
 ParticleSystem::Counts ParticleSystem::counts() const {

@@ -95,7 +95,17 @@ SceneGpu::SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& 
   upload_geometry(scene, flatten(scene));
   previous_vertices_ = Buffer::storage(ctx, previous_rows(scene, geometry_));
   make_deformer(scene);
-  if (deformer_) ctx.submit_and_wait([&](VkCommandBuffer cmd) { record_deformation(cmd, false, true); });
+  for (const scenes::Emitter& e : scene.emitters) particles_.push_back(std::make_unique<ParticleSystem>(ctx, compiler, e));
+  if (!particles_.empty() && !refitter_) {
+    refitter_ = std::make_unique<BvhRefitter>(ctx, compiler);
+    refitter_->set_tree(bvh_);
+  }
+  prepare_particles(scene);
+  if (deformer_ || !particles_.empty())
+    ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+      record_particles(cmd);
+      record_deformation(cmd, false, true);
+    });
   upload_lights(scene);
   make_mips(compiler, scene, levels);
 }
@@ -142,9 +152,14 @@ SceneChange SceneGpu::update(const scenes::Scene& posed) {
   if (deformer_) {
     if (!keep_deformed) make_deformer(posed);
     deformer_->set_pose(posed);
-    // Every frame, moved or not, so that the previous vertices become the current ones.
-    ctx_->submit_and_wait([&](VkCommandBuffer cmd) { record_deformation(cmd, keep_deformed, moved); });
   }
+  prepare_particles(posed);
+  // Every frame, moved or not, so that the previous vertices become the current ones.
+  if (deformer_ || !particles_.empty())
+    ctx_->submit_and_wait([&](VkCommandBuffer cmd) {
+      record_particles(cmd);
+      record_deformation(cmd, keep_deformed, moved);
+    });
   if (upload_lights(posed) && change == SceneChange::None) change = SceneChange::Lights;
   return change;
 }
@@ -203,12 +218,36 @@ void SceneGpu::make_deformer(const scenes::Scene& scene) {
   }
 }
 
+void SceneGpu::prepare_particles(const scenes::Scene& posed) {
+  if (particles_.empty()) return;
+  frame_seconds_ = 1.0 / posed.sequence.fps;
+  particle_vertices_ = 0;
+  stage_first_vertex_.assign(particles_.size(), {});
+  for (size_t m = 0; m < posed.meshes.size(); ++m) {
+    const int e = posed.meshes[m].emitter;
+    if (e < 0 || size_t(e) >= particles_.size()) continue;
+    // scenes::Scene::at appends an emitter's stage meshes in stage order.
+    stage_first_vertex_[size_t(e)].push_back(geometry_.mesh_first_vertex[m]);
+    particle_vertices_ += uint32_t(posed.meshes[m].positions.size());
+  }
+  for (const auto& p : particles_) p->prepare(posed.time);
+}
+
+void SceneGpu::record_particles(VkCommandBuffer cmd) {
+  for (size_t e = 0; e < particles_.size(); ++e) {
+    particles_[e]->record(cmd);
+    particles_[e]->record_vertices(cmd, vertices_, previous_vertices_, stage_first_vertex_[e], frame_seconds_);
+  }
+}
+
 void SceneGpu::record_deformation(VkCommandBuffer cmd, bool save_previous, bool refit, GpuTimer* timer) const {
-  if (!deformer_) return;
-  if (timer) timer->begin(cmd, "deform");
-  deformer_->record(cmd, vertices_, previous_vertices_, vertex_extra_, save_previous);
-  if (timer) timer->end(cmd);
-  full_barrier(cmd);
+  if (!deformer_ && particles_.empty()) return;
+  if (deformer_) {
+    if (timer) timer->begin(cmd, "deform");
+    deformer_->record(cmd, vertices_, previous_vertices_, vertex_extra_, save_previous);
+    if (timer) timer->end(cmd);
+    full_barrier(cmd);
+  }
   if (!refit) return;
   if (timer) timer->begin(cmd, "bvh refit");
   refitter_->record(cmd, vertices_, triangles_, nodes_, prims_);

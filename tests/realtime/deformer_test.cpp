@@ -22,9 +22,9 @@
 #include <cstring>
 #include <filesystem>
 
-#include "giq/realtime/bvh.h"
 #include "giq/realtime/bvh_refitter.h"
 #include "giq/realtime/scene_gpu.h"
+#include "refit_check.h"
 #include "shaders/scene_shared.h"
 #include "test_scenes.h"
 
@@ -140,32 +140,15 @@ void expect_vertices_agree(const SceneGpu& gpu, const scenes::Scene& posed, cons
   ::testing::Test::RecordProperty(what + " worst normal error / bound", std::to_string(worst_normal));
 }
 
-// The nodes the GPU refitted: the bounds refit_bvh makes over the same (GPU) vertices, exactly.
-void expect_refit_exact(const SceneGpu& gpu, const std::string& what) {
-  const std::vector<uint8_t> vb = gpu.vertices().download(), nb = gpu.bvh_nodes().download();
-  std::vector<glm::vec3> positions(vb.size() / sizeof(gpu::GpuVertex));
-  for (size_t i = 0; i < positions.size(); ++i) std::memcpy(&positions[i], vb.data() + i * sizeof(gpu::GpuVertex), sizeof(glm::vec3));
-  Bvh expected = gpu.bvh();
-  refit_bvh(expected, positions, gpu.geometry().triangles);
-  ASSERT_GE(nb.size(), expected.nodes.size() * sizeof(BvhNode)) << what;
-  for (size_t i = 0; i < expected.nodes.size(); ++i) {
-    BvhNode n;
-    std::memcpy(&n, nb.data() + i * sizeof(BvhNode), sizeof(BvhNode));
-    ASSERT_TRUE(n.lo == expected.nodes[i].lo && n.hi == expected.nodes[i].hi && n.index == expected.nodes[i].index &&
-                n.count == expected.nodes[i].count)
-        << what << ", node " << i;
-  }
-}
-
 void check_sequence(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& scene, const std::vector<int>& frames, const std::string& name) {
   SceneGpu gpu(ctx, compiler, scene.at_frame(frames[0]));
   expect_vertices_agree(gpu, scene.at_frame(frames[0]), name + " frame " + std::to_string(frames[0]));
-  expect_refit_exact(gpu, name + " frame " + std::to_string(frames[0]));
+  test::expect_refit_exact(gpu, name + " frame " + std::to_string(frames[0]));
   for (size_t k = 1; k < frames.size(); ++k) {
     const scenes::Scene posed = scene.at_frame(frames[k]);
     gpu.update(posed);
     expect_vertices_agree(gpu, posed, name + " frame " + std::to_string(frames[k]));
-    expect_refit_exact(gpu, name + " frame " + std::to_string(frames[k]));
+    test::expect_refit_exact(gpu, name + " frame " + std::to_string(frames[k]));
   }
 }
 

@@ -38,6 +38,13 @@ class ParticleSystem {
   // timed by `timer` when given as "particle simulation" (the first two) and "particle
   // emission" (the rest).
   void record(VkCommandBuffer cmd, GpuTimer* timer = nullptr);
+  // After record(): writes this frame's alive particles as the scene library's octahedra into
+  // `vertices` (gpu::GpuVertex), and where each was `frame_seconds` earlier into `previous`
+  // (shaders/particles_vertices.comp). Stage s's particles go to the vertices from
+  // stage_first_vertex[s] on, ids ascending, as scenes::Scene::at places them in its stage's
+  // mesh.
+  void record_vertices(VkCommandBuffer cmd, const Buffer& vertices, const Buffer& previous,
+                       const std::vector<uint32_t>& stage_first_vertex, double frame_seconds);
 
   struct Counts {
     uint32_t alive = 0, dead = 0, emitted = 0;
@@ -58,10 +65,12 @@ class ParticleSystem {
   void reset();
 
   Context* ctx_;
-  const scenes::Emitter* emitter_;
+  scenes::Emitter emitter_;  // a copy: posed scenes come and go
   uint32_t capacity_;
-  Pipeline count_, simulate_, emit_;
-  Buffer particles_, dead_, alive_[2], counters_, indirect_, emitter_buffer_, frame_, surface_, choice_;
+  Pipeline count_, simulate_, emit_, vertices_;
+  Buffer particles_, dead_, alive_[2], counters_, indirect_, emitter_buffer_, frame_, surface_, choice_, stages_;
+  uint64_t alive_count_ = 0;               // alive at the prepared time
+  std::vector<uint32_t> stage_lowest_id_;  // the lowest id of each stage then (when it has any)
   int out_ = 1;  // the alive list written this frame
   double last_t_ = -1.0;
   uint64_t emitted_end_ = 0;  // ids below were emitted (or skipped, dead before their frame)

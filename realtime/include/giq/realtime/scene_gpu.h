@@ -6,8 +6,10 @@
 // then updated per frame with the posed scene: what moved is re-uploaded (and the BVH refitted
 // or rebuilt when geometry moved), so pipelines must take descriptors() when they record,
 // never keep them across frames. Skinned and morphing meshes are deformed on the GPU
-// (Deformer) from their rest pose each frame, and the BVH's bounds refitted there after it
-// (BvhRefitter).
+// (Deformer) from their rest pose each frame; each emitter's particles are simulated on the GPU
+// (ParticleSystem) and written there as the octahedra every pass draws and traces; the BVH's
+// bounds are refitted there after both (BvhRefitter). The CPU still poses the particles too,
+// for the tree's topology and the emissive triangles' list.
 //
 // All meshes are concatenated in Scene::meshes order; a triangle's global index (reported by
 // ray queries) is its mesh's offset plus its index in the mesh.
@@ -19,6 +21,7 @@
 #include "giq/realtime/bvh.h"
 #include "giq/realtime/bvh_refitter.h"
 #include "giq/realtime/deformer.h"
+#include "giq/realtime/particle_system.h"
 #include "giq/realtime/pipeline.h"
 #include "giq/realtime/resources.h"
 #include "giq/realtime/technique.h"
@@ -104,8 +107,10 @@ class SceneGpu {
   // Records what update() runs for deforming meshes: the deformation pass at the pose of the
   // last update (`save_previous`: copying each vertex to the previous vertices first), then,
   // when `refit`, the BVH refit, each between timestamps of `timer` when given ("deform",
-  // "bvh refit"). Nothing without deforming meshes.
+  // "bvh refit"). Nothing without deforming meshes or particles.
   void record_deformation(VkCommandBuffer cmd, bool save_previous, bool refit, GpuTimer* timer = nullptr) const;
+  // Particles written by the GPU's simulation each update (0 without emitters).
+  uint32_t particle_vertex_count() const { return particle_vertices_; }
   const FlatGeometry& geometry() const { return geometry_; }
   const scenes::Bounds& bounds() const { return bounds_; }  // of the geometry now uploaded
   // The FeatureSet the scene was uploaded for; passes compile their shaders with its defines.
@@ -134,11 +139,19 @@ class SceneGpu {
   // Grows a vertex buffer to hold `bytes`, keeping its deformed vertices.
   void reserve(Buffer& buffer, uint64_t bytes);
   bool upload_lights(const scenes::Scene& scene);  // false when nothing changed
+  // Brings each emitter's GPU particles to `posed`'s time and records their vertices over the
+  // ones the CPU uploaded (the same particles, to float rounding).
+  void prepare_particles(const scenes::Scene& posed);
+  void record_particles(VkCommandBuffer cmd);
 
   Context* ctx_;
   ShaderCompiler* compiler_;
   std::unique_ptr<Deformer> deformer_;
   std::unique_ptr<BvhRefitter> refitter_;
+  std::vector<std::unique_ptr<ParticleSystem>> particles_;  // one per emitter
+  std::vector<std::vector<uint32_t>> stage_first_vertex_;   // per emitter, of each stage's mesh
+  double frame_seconds_ = 0.0;
+  uint32_t particle_vertices_ = 0;
   std::vector<VkBufferCopy> rigid_ranges_;  // bytes of the GpuVertex array that no deformation writes
   FlatGeometry geometry_;
   scenes::Bounds bounds_;
