@@ -79,12 +79,16 @@ void ParticleSystem::prepare(double t) {
     stage_lowest_id_[s] = uint32_t(std::max<uint64_t>(alive.first, std::min<uint64_t>(starts[s], 0xffffffffu)));
 }
 
+std::vector<Descriptor> ParticleSystem::descriptors(int in, int out) const {
+  return {Descriptor::storage(particles_),      Descriptor::storage(dead_),  Descriptor::storage(alive_[in]),
+          Descriptor::storage(alive_[out]),     Descriptor::storage(counters_), Descriptor::storage(indirect_),
+          Descriptor::storage(emitter_buffer_), Descriptor::storage(frame_), Descriptor::storage(surface_),
+          Descriptor::storage(choice_)};
+}
+
 void ParticleSystem::record(VkCommandBuffer cmd, GpuTimer* timer) {
   const int in = 1 - out_;
-  const std::vector<Descriptor> d = {Descriptor::storage(particles_), Descriptor::storage(dead_),     Descriptor::storage(alive_[in]),
-                                     Descriptor::storage(alive_[out_]), Descriptor::storage(counters_), Descriptor::storage(indirect_),
-                                     Descriptor::storage(emitter_buffer_), Descriptor::storage(frame_),  Descriptor::storage(surface_),
-                                     Descriptor::storage(choice_)};
+  const std::vector<Descriptor> d = descriptors(in, out_);
   auto count = [&](uint32_t phase) {
     count_.bind(cmd);
     count_.push_descriptors(cmd, d);
@@ -115,12 +119,9 @@ void ParticleSystem::record_vertices(VkCommandBuffer cmd, const Buffer& vertices
   std::vector<glm::uvec4> stages(stage_lowest_id_.size());
   for (size_t s = 0; s < stages.size() && s < stage_first_vertex.size(); ++s) stages[s] = glm::uvec4(stage_first_vertex[s], stage_lowest_id_[s], 0, 0);
   stages_.upload(stages.data(), stages.size() * sizeof(glm::uvec4));
-  // record() made the list it wrote the next frame's input.
-  const std::vector<Descriptor> d = {Descriptor::storage(particles_), Descriptor::storage(dead_),     Descriptor::storage(alive_[out_]),
-                                     Descriptor::storage(alive_[1 - out_]), Descriptor::storage(counters_), Descriptor::storage(indirect_),
-                                     Descriptor::storage(emitter_buffer_), Descriptor::storage(frame_),  Descriptor::storage(surface_),
-                                     Descriptor::storage(choice_),    Descriptor::storage(vertices),  Descriptor::storage(previous),
-                                     Descriptor::storage(stages_)};
+  // record() made the list it wrote (alive_out here) the next frame's input.
+  std::vector<Descriptor> d = descriptors(out_, 1 - out_);
+  d.insert(d.end(), {Descriptor::storage(vertices), Descriptor::storage(previous), Descriptor::storage(stages_)});
   vertices_.bind(cmd);
   vertices_.push_descriptors(cmd, d);
   vertices_.push_constants(cmd, float(frame_seconds));

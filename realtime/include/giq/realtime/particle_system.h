@@ -63,6 +63,9 @@ class ParticleSystem {
 
  private:
   void reset();
+  // The bindings every pass shares (shaders/particles_bindings.glsl), with alive lists `in` and
+  // `out`.
+  std::vector<Descriptor> descriptors(int in, int out) const;
 
   Context* ctx_;
   scenes::Emitter emitter_;  // a copy: posed scenes come and go
