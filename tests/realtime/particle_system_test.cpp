@@ -110,7 +110,8 @@ TEST_F(ParticleSystemTest, TheSceneOnTheGpuDrawsTheSystemsParticles) {
   SceneGpu gpu(*ctx, *compiler, scene.at_frame(0));
   size_t compared = 0, own = 0;
   double worst = 0.0;
-  for (int frame : {0, 20, 45, 46, 90, 119}) {
+  // Filling, full, consecutive frames, a jump, and back in time (the system starts over).
+  for (int frame : {0, 20, 45, 46, 90, 119, 30}) {
     const scenes::Scene posed = scene.at_frame(frame);
     if (frame > 0) gpu.update(posed);
     const std::vector<gpu::GpuVertex> now = rows_of(gpu.vertices()), was = rows_of(gpu.previous_vertices());
