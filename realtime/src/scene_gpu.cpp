@@ -96,10 +96,7 @@ SceneGpu::SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& 
   previous_vertices_ = Buffer::storage(ctx, previous_rows(scene, geometry_));
   make_deformer(scene);
   for (const scenes::Emitter& e : scene.emitters) particles_.push_back(std::make_unique<ParticleSystem>(ctx, compiler, e));
-  if (!particles_.empty() && !refitter_) {
-    refitter_ = std::make_unique<BvhRefitter>(ctx, compiler);
-    refitter_->set_tree(bvh_);
-  }
+  if (!particles_.empty()) make_refitter();
   prepare_particles(scene);
   if (deformer_ || !particles_.empty())
     ctx.submit_and_wait([&](VkCommandBuffer cmd) {
@@ -212,10 +209,13 @@ void SceneGpu::make_deformer(const scenes::Scene& scene) {
   if (std::none_of(scene.meshes.begin(), scene.meshes.end(), [](const scenes::Mesh& m) { return m.deformation.has_value(); })) return;
   rigid_ranges_ = rigid_ranges(scene, geometry_);
   deformer_ = std::make_unique<Deformer>(*ctx_, *compiler_, scene, geometry_, needs_textures(scene.features));
-  if (!refitter_) {
-    refitter_ = std::make_unique<BvhRefitter>(*ctx_, *compiler_);
-    refitter_->set_tree(bvh_);
-  }
+  make_refitter();
+}
+
+void SceneGpu::make_refitter() {
+  if (refitter_) return;
+  refitter_ = std::make_unique<BvhRefitter>(*ctx_, *compiler_);
+  refitter_->set_tree(bvh_);
 }
 
 void SceneGpu::prepare_particles(const scenes::Scene& posed) {

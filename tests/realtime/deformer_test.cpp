@@ -24,7 +24,7 @@
 
 #include "giq/realtime/bvh_refitter.h"
 #include "giq/realtime/scene_gpu.h"
-#include "refit_check.h"
+#include "scene_gpu_checks.h"
 #include "shaders/scene_shared.h"
 #include "test_scenes.h"
 
@@ -93,9 +93,7 @@ VertexBound bound(const scenes::Deformation& d, uint32_t v, const glm::vec3& cpu
 
 // Every deformed vertex of `posed` as the GPU holds it against the CPU's.
 void expect_vertices_agree(const SceneGpu& gpu, const scenes::Scene& posed, const std::string& what) {
-  const std::vector<uint8_t> bytes = gpu.vertices().download();
-  std::vector<gpu::GpuVertex> vertices(bytes.size() / sizeof(gpu::GpuVertex));
-  std::memcpy(vertices.data(), bytes.data(), vertices.size() * sizeof(gpu::GpuVertex));
+  const std::vector<gpu::GpuVertex> vertices = test::vertex_rows(gpu.vertices());
   const FlatGeometry& g = gpu.geometry();
   size_t checked = 0;
   double worst_position = 0.0, worst_normal = 0.0;  // error / bound

@@ -15,14 +15,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <set>
 
 #include "giq/realtime/context.h"
 #include "giq/realtime/particle_system.h"
 #include "giq/realtime/scene_gpu.h"
-#include "refit_check.h"
+#include "scene_gpu_checks.h"
 #include "shaders/scene_shared.h"
 #include "test_scenes.h"
 
@@ -91,19 +90,6 @@ TEST_F(ParticleSystemTest, GoingBackInTimeStartsOver) {
   }
 }
 
-}  // namespace
-}  // namespace giq::realtime
-
-namespace giq::realtime {
-namespace {
-
-std::vector<gpu::GpuVertex> rows_of(const Buffer& b) {
-  const std::vector<uint8_t> bytes = b.download();
-  std::vector<gpu::GpuVertex> v(bytes.size() / sizeof(gpu::GpuVertex));
-  std::memcpy(v.data(), bytes.data(), v.size() * sizeof(gpu::GpuVertex));
-  return v;
-}
-
 TEST_F(ParticleSystemTest, TheSceneOnTheGpuDrawsTheSystemsParticles) {
   const scenes::Scene scene = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "fountain.gltf");
   const scenes::Emitter& e = scene.emitters.at(0);
@@ -114,7 +100,7 @@ TEST_F(ParticleSystemTest, TheSceneOnTheGpuDrawsTheSystemsParticles) {
   for (int frame : {0, 20, 45, 46, 90, 119, 30}) {
     const scenes::Scene posed = scene.at_frame(frame);
     if (frame > 0) gpu.update(posed);
-    const std::vector<gpu::GpuVertex> now = rows_of(gpu.vertices()), was = rows_of(gpu.previous_vertices());
+    const std::vector<gpu::GpuVertex> now = test::vertex_rows(gpu.vertices()), was = test::vertex_rows(gpu.previous_vertices());
     // The scene library's order: ids ascending within each stage's mesh.
     const double t = posed.time, dt = 1.0 / posed.sequence.fps;
     const scenes::AliveRange range = scenes::alive_range(e, t);

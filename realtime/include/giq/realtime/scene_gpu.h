@@ -130,6 +130,8 @@ class SceneGpu {
   // The deformer for `scene`'s deforming meshes (none without), and the vertex ranges of the
   // other meshes.
   void make_deformer(const scenes::Scene& scene);
+  // The GPU refit of the BVH, once, for deforming meshes or particles.
+  void make_refitter();
   // GpuVertex rows of `g`; the bytes of its vertex array that no deformation writes.
   static std::vector<glm::vec4> vertex_rows(const FlatGeometry& g);
   // The same with the particles' vertices where they were a frame earlier
