@@ -7,6 +7,9 @@
 // the system and are not timed. GPU times are timestamp pairs around the passes (GpuTimer:
 // simulation and emission apart, and the frame), the median over the timed frames of every run. At the last frame a sample of particles is compared
 // with the scene library's double-precision particles (scenes::particle_at), as the tests do.
+// After the system's passes, as in the scene on the GPU, the particles are written as their
+// octahedra (ParticleSystem::record_vertices) and a tree is built over them (LinearBvh), each
+// timed apart from the system's frame.
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -14,10 +17,13 @@
 #include <cstdio>
 #include <vector>
 
+#include "giq/realtime/bvh.h"
 #include "giq/realtime/context.h"
+#include "giq/realtime/linear_bvh.h"
 #include "giq/realtime/particle_system.h"
 #include "giq/realtime/shader.h"
 #include "giq/realtime/timer.h"
+#include "shaders/scene_shared.h"
 
 using namespace giq;
 
@@ -48,7 +54,30 @@ int main(int argc, char** argv) {
     std::printf("# GPU particle system: %.0f particles a second, %.3g s each (%u alive at most)\n\n", rate, lifetime, e.max_particles);
     std::printf("GPU: %s; %d frames at 30 fps, the first %d not timed; %d runs\n\n", ctx.properties().deviceName, frames, int(lifetime * 30.0), reps);
     realtime::GpuTimer timer(ctx);
-    std::vector<double> ms, simulate_ms, emit_ms;
+    std::vector<double> ms, simulate_ms, emit_ms, vertices_ms, tree_ms, keys_ms, sort_ms, nodes_ms;
+
+    // The particles' place in a scene: octahedron p at vertices 6p.. and triangles 8p..; the
+    // tree at node 2 under a root at node 0 whose other child (node 1) is an empty leaf, as
+    // SceneGpu lays it out for a scene of particles alone.
+    const uint32_t capacity = e.max_particles;
+    const realtime::Buffer vertices(ctx, uint64_t(capacity) * scenes::kParticleVertices * sizeof(realtime::gpu::GpuVertex),
+                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const realtime::Buffer previous(ctx, vertices.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    std::vector<realtime::gpu::GpuTriangle> triangles;
+    triangles.reserve(uint64_t(capacity) * scenes::kParticleTriangles);
+    for (uint32_t p = 0; p < capacity; ++p)
+      for (const glm::uvec3& f : scenes::kParticleFaces)
+        triangles.push_back({glm::uvec4(f + glm::uvec3(p * scenes::kParticleVertices), 0u), glm::uvec4(0u)});
+    const realtime::Buffer triangle_buffer = realtime::Buffer::storage(ctx, triangles);
+    triangles = {};
+    realtime::LinearBvh tree(ctx, compiler, capacity, scenes::kParticleTriangles);
+    const glm::vec3 inf(INFINITY);
+    std::vector<realtime::BvhNode> nodes(2 + tree.node_count());
+    nodes[0] = {inf, 2u, -inf, 0u};
+    nodes[1] = {inf, tree.prim_count(), -inf, 1u};
+    const realtime::Buffer node_buffer = realtime::Buffer::storage(ctx, nodes);
+    const realtime::Buffer prim_buffer = realtime::Buffer::storage(ctx, std::vector<uint32_t>(tree.prim_count() + 1, 0u));
+    nodes = {};
     uint32_t alive = 0;
     double worst = 0.0;
     for (int r = 0; r < reps; ++r) {
@@ -56,13 +85,33 @@ int main(int argc, char** argv) {
       for (int f = 0; f < frames; ++f) {
         const double t = f / 30.0;
         system.prepare(t);
+        // Each stage's first vertex: stages in order, each holding its ids in [lowest, the
+        // previous stage's lowest), as scenes::Scene::at places them.
+        const scenes::AliveRange alive = scenes::alive_range(e, t);
+        const std::vector<uint64_t> starts = scenes::stage_starts(e, t);
+        std::vector<uint32_t> stage_first(size_t(e.stages));
+        uint64_t upper = alive.end, vertex = 0;
+        for (size_t st = 0; st < stage_first.size(); ++st) {
+          const uint64_t lowest = st < starts.size() ? std::clamp(starts[st], alive.first, alive.end) : alive.first;
+          stage_first[st] = uint32_t(vertex);
+          vertex += scenes::kParticleVertices * (upper - lowest);
+          upper = lowest;
+        }
         ctx.submit_and_wait([&](VkCommandBuffer cmd) {
           timer.reset(cmd);
           system.record(cmd, &timer);
+          timer.begin(cmd, "particle vertices");
+          system.record_vertices(cmd, vertices, previous, stage_first, 1.0 / 30.0);
+          timer.end(cmd);
+          tree.record(cmd, vertices, triangle_buffer, node_buffer, prim_buffer, 0, uint32_t(alive.count()), 2, 0, &timer);
         });
         if (t >= lifetime) {
           const auto passes = timer.resolve();
-          ms.push_back(timer.frame_ms()), simulate_ms.push_back(passes.at(0).second), emit_ms.push_back(passes.at(1).second);
+          simulate_ms.push_back(passes.at(0).second), emit_ms.push_back(passes.at(1).second);
+          ms.push_back(simulate_ms.back() + emit_ms.back());
+          vertices_ms.push_back(passes.at(2).second);
+          keys_ms.push_back(passes.at(3).second), sort_ms.push_back(passes.at(4).second), nodes_ms.push_back(passes.at(5).second);
+          tree_ms.push_back(keys_ms.back() + sort_ms.back() + nodes_ms.back());
         }
       }
       // A sample of the last frame's particles against the CPU's: |gpu - cpu| / |cpu's scale|.
@@ -82,6 +131,11 @@ int main(int argc, char** argv) {
     std::printf("| of which emission (%.0f a frame, bookkeeping and emit pass) | %.4f |\n", rate / 30.0, realtime::percentile(emit_ms, 0.5));
     std::printf("| min | %.4f |\n| max | %.4f |\n", *std::min_element(ms.begin(), ms.end()), *std::max_element(ms.begin(), ms.end()));
     std::printf("| worst position error against the CPU, relative to 1 m + |v| a + g a^2 (1 in 997 particles) | %.2e |\n", worst);
+    std::printf("| the particles' octahedra written (ms, median) | %.4f |\n", realtime::percentile(vertices_ms, 0.5));
+    std::printf("| their tree built (LinearBvh, ms, median) | %.4f |\n", realtime::percentile(tree_ms, 0.5));
+    std::printf("| of which leaf boxes and Morton codes | %.4f |\n", realtime::percentile(keys_ms, 0.5));
+    std::printf("| of which the bitonic sort | %.4f |\n", realtime::percentile(sort_ms, 0.5));
+    std::printf("| of which the nodes (hierarchy, boxes, depth-first layout) | %.4f |\n", realtime::percentile(nodes_ms, 0.5));
     return 0;
   } catch (const std::exception& ex) {
     std::fprintf(stderr, "giq-bench-particles: %s\n", ex.what());

@@ -33,7 +33,15 @@ BvhRefitter::BvhRefitter(Context& ctx, ShaderCompiler& compiler)
       pipeline_(Pipeline::compute(ctx, compiler.compile("shaders/bvh_refit.comp"),
                                   std::vector<VkDescriptorType>(5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER), 2 * sizeof(uint32_t))) {}
 
-void BvhRefitter::set_tree(const Bvh& bvh) { order_ = Buffer::storage(*ctx_, refit_order(bvh, levels_)); }
+void BvhRefitter::set_tree(const Bvh& bvh, uint32_t offset) {
+  std::vector<uint32_t> order = refit_order(bvh, levels_);
+  if (offset > 0) {
+    for (uint32_t& n : order) n += offset;
+    levels_.emplace_back(uint32_t(order.size()), 1u);
+    order.push_back(0u);
+  }
+  order_ = Buffer::storage(*ctx_, order);
+}
 
 void BvhRefitter::record(VkCommandBuffer cmd, const Buffer& vertices, const Buffer& triangles, const Buffer& nodes,
                          const Buffer& prims) const {

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "giq/base/error.h"
 #include "giq/realtime/context.h"
@@ -92,11 +93,15 @@ SceneGpu::SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& 
     : ctx_(&ctx), compiler_(&compiler), features_(scene.features) {
   std::vector<uint32_t> levels;
   upload_materials(scene, levels);
+  uint32_t most_particles = 0;
+  for (const scenes::Emitter& e : scene.emitters) {
+    particles_.push_back(std::make_unique<ParticleSystem>(ctx, compiler, e));
+    most_particles += particles_.back()->capacity();
+  }
+  if (!particles_.empty()) particle_bvh_ = std::make_unique<LinearBvh>(ctx, compiler, most_particles, scenes::kParticleTriangles);
   upload_geometry(scene, flatten(scene));
   previous_vertices_ = Buffer::storage(ctx, previous_rows(scene, geometry_));
   make_deformer(scene);
-  for (const scenes::Emitter& e : scene.emitters) particles_.push_back(std::make_unique<ParticleSystem>(ctx, compiler, e));
-  if (!particles_.empty()) make_refitter();
   prepare_particles(scene);
   if (deformer_ || !particles_.empty())
     ctx.submit_and_wait([&](VkCommandBuffer cmd) {
@@ -142,7 +147,10 @@ SceneChange SceneGpu::update(const scenes::Scene& posed) {
   }
 
   if (moved) {
-    const bool same_triangles = g.triangles == geometry_.triangles && g.positions.size() == geometry_.positions.size();
+    // The CPU's tree holds every triangle but the particles' (which come last).
+    const uint32_t fixed = fixed_triangle_count(posed, g), fixed_vertices = fixed_vertex_count(posed, g);
+    const bool same_triangles = fixed == fixed_triangles_ && fixed_vertices == fixed_vertex_count(posed, geometry_) &&
+                                std::equal(g.triangles.begin(), g.triangles.begin() + fixed, geometry_.triangles.begin());
     upload_geometry(posed, std::move(g), same_triangles, keep_deformed);
     change = SceneChange::Geometry;
   }
@@ -209,13 +217,22 @@ void SceneGpu::make_deformer(const scenes::Scene& scene) {
   if (std::none_of(scene.meshes.begin(), scene.meshes.end(), [](const scenes::Mesh& m) { return m.deformation.has_value(); })) return;
   rigid_ranges_ = rigid_ranges(scene, geometry_);
   deformer_ = std::make_unique<Deformer>(*ctx_, *compiler_, scene, geometry_, needs_textures(scene.features));
-  make_refitter();
-}
-
-void SceneGpu::make_refitter() {
   if (refitter_) return;
   refitter_ = std::make_unique<BvhRefitter>(*ctx_, *compiler_);
-  refitter_->set_tree(bvh_);
+  refitter_->set_tree(bvh_, particle_bvh_ ? 1 : 0);
+}
+
+// Scene::at puts the particle meshes after every mesh of the file.
+uint32_t SceneGpu::fixed_triangle_count(const scenes::Scene& scene, const FlatGeometry& g) {
+  for (size_t m = 0; m < scene.meshes.size() && m < g.mesh_first_triangle.size(); ++m)
+    if (scene.meshes[m].emitter >= 0) return g.mesh_first_triangle[m];
+  return uint32_t(g.triangles.size());
+}
+
+uint32_t SceneGpu::fixed_vertex_count(const scenes::Scene& scene, const FlatGeometry& g) {
+  for (size_t m = 0; m < scene.meshes.size() && m < g.mesh_first_vertex.size(); ++m)
+    if (scene.meshes[m].emitter >= 0) return g.mesh_first_vertex[m];
+  return uint32_t(g.positions.size());
 }
 
 void SceneGpu::prepare_particles(const scenes::Scene& posed) {
@@ -234,20 +251,21 @@ void SceneGpu::prepare_particles(const scenes::Scene& posed) {
 }
 
 void SceneGpu::record_particles(VkCommandBuffer cmd) {
+  if (particles_.empty()) return;
   for (size_t e = 0; e < particles_.size(); ++e) {
     particles_[e]->record(cmd);
     particles_[e]->record_vertices(cmd, vertices_, previous_vertices_, stage_first_vertex_[e], frame_seconds_);
   }
+  particle_bvh_->record(cmd, vertices_, triangles_, nodes_, prims_, fixed_triangles_,
+                        (triangle_count_ - fixed_triangles_) / scenes::kParticleTriangles, particle_node_base_, particle_prim_base_);
 }
 
 void SceneGpu::record_deformation(VkCommandBuffer cmd, bool save_previous, bool refit, GpuTimer* timer) const {
-  if (!deformer_ && particles_.empty()) return;
-  if (deformer_) {
-    if (timer) timer->begin(cmd, "deform");
-    deformer_->record(cmd, vertices_, previous_vertices_, vertex_extra_, save_previous);
-    if (timer) timer->end(cmd);
-    full_barrier(cmd);
-  }
+  if (!deformer_) return;
+  if (timer) timer->begin(cmd, "deform");
+  deformer_->record(cmd, vertices_, previous_vertices_, vertex_extra_, save_previous);
+  if (timer) timer->end(cmd);
+  full_barrier(cmd);
   if (!refit) return;
   if (timer) timer->begin(cmd, "bvh refit");
   refitter_->record(cmd, vertices_, triangles_, nodes_, prims_);
@@ -260,6 +278,7 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
   geometry_ = std::move(flat);
   bounds_ = scene.bounds;
   triangle_count_ = uint32_t(geometry_.triangles.size());
+  fixed_triangles_ = fixed_triangle_count(scene, geometry_);
   // Moved triangles keep the tree and refit its bounds, until the motion has made it
   // kMaxRefitCost times as costly to traverse as a fresh build (bench/results: refit against
   // build in time and in cost).
@@ -269,9 +288,11 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
     if (sah_cost(bvh_) <= kMaxRefitCost * built_cost_) last_bvh_update_ = BvhUpdate::Refitted;
   }
   if (last_bvh_update_ == BvhUpdate::Built) {
-    bvh_ = build_bvh(geometry_.positions, geometry_.triangles);
+    bvh_ = fixed_triangles_ == triangle_count_
+               ? build_bvh(geometry_.positions, geometry_.triangles)
+               : build_bvh(geometry_.positions, std::vector<glm::uvec3>(geometry_.triangles.begin(), geometry_.triangles.begin() + fixed_triangles_));
     built_cost_ = sah_cost(bvh_);
-    if (refitter_) refitter_->set_tree(bvh_);
+    if (refitter_) refitter_->set_tree(bvh_, particle_bvh_ ? 1 : 0);
   }
 
   vertices_host_ = vertex_rows(geometry_);
@@ -329,9 +350,12 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
         vertex_extra.push_back(e);
       }
 
-  std::vector<GpuBvhNode> nodes(bvh_.nodes.size());
+  std::vector<BvhNode> tree = bvh_.nodes;
+  std::vector<uint32_t> prims = bvh_.prims;
+  if (particle_bvh_) compose_trees(tree, prims);
+  std::vector<GpuBvhNode> nodes(tree.size());
   static_assert(sizeof(GpuBvhNode) == sizeof(BvhNode));
-  std::memcpy(nodes.data(), bvh_.nodes.data(), nodes.size() * sizeof(GpuBvhNode));
+  std::memcpy(nodes.data(), tree.data(), nodes.size() * sizeof(GpuBvhNode));
 
   if (keep_deformed) {
     reserve(vertices_, vertices_host_.size() * sizeof(glm::vec4));
@@ -341,10 +365,28 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
   }
   triangles_ = Buffer::storage(ctx, triangles);
   nodes_ = Buffer::storage(ctx, nodes);
-  prims_ = Buffer::storage(ctx, bvh_.prims);
+  prims_ = Buffer::storage(ctx, prims);
   emissive_ = Buffer::storage(ctx, emissive);
   indices_ = Buffer::storage(ctx, indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
   vertex_extra_ = Buffer::storage(ctx, vertex_extra);
+}
+
+// With particles, node 0 is a root over two trees: the CPU's (node 1 on) and the particles'
+// (LinearBvh, built on the GPU each frame after it). Either is a one-prim leaf with an empty
+// box while it has no triangle; the prim is triangle 0, which no ray finds closer than itself.
+void SceneGpu::compose_trees(std::vector<BvhNode>& nodes, std::vector<uint32_t>& prims) {
+  const glm::vec3 inf(std::numeric_limits<float>::infinity());
+  const uint32_t spare_prim = uint32_t(prims.size() + particle_bvh_->prim_count());
+  const BvhNode empty{inf, spare_prim, -inf, 1};
+  std::vector<BvhNode> fixed = nodes.empty() ? std::vector<BvhNode>{empty} : std::move(nodes);
+  for (BvhNode& n : fixed)
+    if (n.count == 0) ++n.index;
+  particle_node_base_ = 1 + uint32_t(fixed.size());
+  particle_prim_base_ = uint32_t(prims.size());
+  nodes.assign(1, BvhNode{fixed[0].lo, particle_node_base_, fixed[0].hi, 0});
+  nodes.insert(nodes.end(), fixed.begin(), fixed.end());
+  nodes.resize(particle_node_base_ + particle_bvh_->node_count(), empty);
+  prims.resize(spare_prim + 1, 0u);
 }
 
 // Materials and textures do not move: uploaded once.

@@ -50,17 +50,10 @@ void complete_emitter(Emitter& e, const std::vector<Mesh>& meshes, std::vector<M
   }
 }
 
-namespace {
-// The octahedron: six vertices on the axes, normals pointing out along them (a small sphere's),
-// eight faces counter-clockwise from outside.
-const glm::dvec3 kAxes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-const glm::uvec3 kFaces[8] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-}  // namespace
-
 std::vector<glm::vec3> particle_centres(const Mesh& m) {
   std::vector<glm::vec3> centres;
   // Vertices 0 and 1 of each particle are its +x and -x corners.
-  for (size_t v = 0; v + 1 < m.positions.size(); v += std::size(kAxes)) centres.push_back(0.5f * (m.positions[v] + m.positions[v + 1]));
+  for (size_t v = 0; v + 1 < m.positions.size(); v += std::size(kParticleAxes)) centres.push_back(0.5f * (m.positions[v] + m.positions[v + 1]));
   return centres;
 }
 
@@ -81,12 +74,12 @@ void add_particle_meshes(const std::vector<Emitter>& emitters, double t, double 
       const glm::dvec3 was = particle_at(e, uint32_t(id), birth, t - frame, {}).position;
       Mesh& m = stage[size_t(p.stage)];
       const uint32_t base = uint32_t(m.positions.size());
-      for (const glm::dvec3& axis : kAxes) {
+      for (const glm::dvec3& axis : kParticleAxes) {
         m.positions.push_back(glm::vec3(p.position + e.size * axis));
         m.previous_positions.push_back(glm::vec3(was + e.size * axis));
         m.normals.push_back(glm::vec3(axis));
       }
-      for (const glm::uvec3& f : kFaces) m.triangles.push_back(f + glm::uvec3(base));
+      for (const glm::uvec3& f : kParticleFaces) m.triangles.push_back(f + glm::uvec3(base));
     }
     // Every stage, with particles or none, so that the scene's meshes and lights are the same
     // set in every frame.

@@ -25,8 +25,10 @@ std::vector<uint32_t> refit_order(const Bvh& bvh, std::vector<std::pair<uint32_t
 class BvhRefitter {
  public:
   BvhRefitter(Context& ctx, ShaderCompiler& compiler);
-  // The tree whose bounds record() refits (after each build).
-  void set_tree(const Bvh& bvh);
+  // The tree whose bounds record() refits (after each build). With `offset` 1 the tree sits at
+  // nodes 1 on, its interior nodes' right children moved along, under a root at node 0 whose
+  // other child is another tree (SceneGpu's particles'): that root is refitted last.
+  void set_tree(const Bvh& bvh, uint32_t offset = 0);
   // Refits `nodes` (GpuBvhNode) over `vertices` (GpuVertex), `triangles` (GpuTriangle) and
   // `prims`, with a barrier after each level.
   void record(VkCommandBuffer cmd, const Buffer& vertices, const Buffer& triangles, const Buffer& nodes, const Buffer& prims) const;

@@ -7,9 +7,10 @@
 // or rebuilt when geometry moved), so pipelines must take descriptors() when they record,
 // never keep them across frames. Skinned and morphing meshes are deformed on the GPU
 // (Deformer) from their rest pose each frame; each emitter's particles are simulated on the GPU
-// (ParticleSystem) and written there as the octahedra every pass draws and traces; the BVH's
-// bounds are refitted there after both (BvhRefitter). The CPU still poses the particles too,
-// for the tree's topology and the emissive triangles' list.
+// (ParticleSystem) and written there as the octahedra every pass draws and traces, with a tree
+// of their own built there each frame (LinearBvh) beside the CPU's tree of the other triangles,
+// whose bounds are refitted there after the deformation (BvhRefitter). The CPU still poses the
+// particles too, for their triangles' places and the emissive triangles' list.
 //
 // All meshes are concatenated in Scene::meshes order; a triangle's global index (reported by
 // ray queries) is its mesh's offset plus its index in the mesh.
@@ -21,6 +22,7 @@
 #include "giq/realtime/bvh.h"
 #include "giq/realtime/bvh_refitter.h"
 #include "giq/realtime/deformer.h"
+#include "giq/realtime/linear_bvh.h"
 #include "giq/realtime/particle_system.h"
 #include "giq/realtime/pipeline.h"
 #include "giq/realtime/resources.h"
@@ -84,8 +86,9 @@ class SceneGpu {
   uint32_t triangle_count() const { return triangle_count_; }
   uint32_t light_count() const { return light_count_; }
   uint32_t emissive_count() const { return emissive_count_; }
-  // The tree as built or refitted on the CPU; with deforming meshes, the GPU's copy has the
-  // same topology and bounds refitted to the vertices the GPU deformed.
+  // The tree as built or refitted on the CPU over every triangle but the particles'; with
+  // deforming meshes, the GPU's copy has the same topology and bounds refitted to the vertices
+  // the GPU deformed.
   const Bvh& bvh() const { return bvh_; }
   // How the last geometry change reached the BVH: built anew, or refitted (the same triangles
   // moved: skinning, morph targets, rigid animation) while the refitted tree's SAH cost stays
@@ -97,17 +100,21 @@ class SceneGpu {
   // GpuVertex array of the frame before the last update() (the current one before any), for
   // motion vectors.
   const Buffer& previous_vertices() const { return previous_vertices_; }
-  // The GpuVertex array, the GpuVertexExtra array (textured scenes) and the BVH's nodes as the
-  // GPU holds them (tests compare deformed vertices and refitted bounds with the CPU's).
+  // The GpuVertex array, the GpuVertexExtra array (textured scenes) and the BVH's nodes and
+  // prims as the GPU holds them (tests compare deformed vertices and the trees' bounds with
+  // the CPU's). With particles, node 0 is a root over the CPU's tree, from node
+  // cpu_tree_offset() = 1 on, and the particles' tree, built on the GPU (LinearBvh).
   const Buffer& vertices() const { return vertices_; }
   const Buffer& vertex_extra() const { return vertex_extra_; }
   const Buffer& bvh_nodes() const { return nodes_; }
+  const Buffer& bvh_prims() const { return prims_; }
+  uint32_t cpu_tree_offset() const { return particle_bvh_ ? 1 : 0; }
   // Vertices deformed on the GPU each frame (0 without skins and morph targets).
   uint32_t deformed_vertex_count() const { return deformer_ ? deformer_->vertex_count() : 0; }
   // Records what update() runs for deforming meshes: the deformation pass at the pose of the
   // last update (`save_previous`: copying each vertex to the previous vertices first), then,
   // when `refit`, the BVH refit, each between timestamps of `timer` when given ("deform",
-  // "bvh refit"). Nothing without deforming meshes or particles.
+  // "bvh refit"). Nothing without deforming meshes.
   void record_deformation(VkCommandBuffer cmd, bool save_previous, bool refit, GpuTimer* timer = nullptr) const;
   // Particles written by the GPU's simulation each update (0 without emitters).
   uint32_t particle_vertex_count() const { return particle_vertices_; }
@@ -127,11 +134,15 @@ class SceneGpu {
   // the deforming meshes' vertices stay where they are in the buffers (the deformation pass
   // writes them), only the others are uploaded.
   void upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bool may_refit = false, bool keep_deformed = false);
-  // The deformer for `scene`'s deforming meshes (none without), and the vertex ranges of the
-  // other meshes.
+  // The deformer for `scene`'s deforming meshes (none without), the vertex ranges of the
+  // other meshes, and the GPU refit of the BVH (made once).
   void make_deformer(const scenes::Scene& scene);
-  // The GPU refit of the BVH, once, for deforming meshes or particles.
-  void make_refitter();
+  // The triangles and vertices of `g` before the particles' (all without).
+  static uint32_t fixed_triangle_count(const scenes::Scene& scene, const FlatGeometry& g);
+  static uint32_t fixed_vertex_count(const scenes::Scene& scene, const FlatGeometry& g);
+  // The node and prim arrays of the CPU's tree made into the GPU's, with room for the
+  // particles' tree (particle_node_base_, particle_prim_base_).
+  void compose_trees(std::vector<BvhNode>& nodes, std::vector<uint32_t>& prims);
   // GpuVertex rows of `g`; the bytes of its vertex array that no deformation writes.
   static std::vector<glm::vec4> vertex_rows(const FlatGeometry& g);
   // The same with the particles' vertices where they were a frame earlier
@@ -144,6 +155,7 @@ class SceneGpu {
   // Brings each emitter's GPU particles to `posed`'s time and records their vertices over the
   // ones the CPU uploaded (the same particles, to float rounding).
   void prepare_particles(const scenes::Scene& posed);
+  // The particle passes, then their tree (LinearBvh).
   void record_particles(VkCommandBuffer cmd);
 
   Context* ctx_;
@@ -151,6 +163,9 @@ class SceneGpu {
   std::unique_ptr<Deformer> deformer_;
   std::unique_ptr<BvhRefitter> refitter_;
   std::vector<std::unique_ptr<ParticleSystem>> particles_;  // one per emitter
+  std::unique_ptr<LinearBvh> particle_bvh_;                 // with emitters
+  uint32_t fixed_triangles_ = 0;  // the triangles before the particles', in the CPU's tree
+  uint32_t particle_node_base_ = 0, particle_prim_base_ = 0;
   std::vector<std::vector<uint32_t>> stage_first_vertex_;   // per emitter, of each stage's mesh
   double frame_seconds_ = 0.0;
   uint32_t particle_vertices_ = 0;

@@ -28,6 +28,14 @@ struct StrengthKey {
   double strength = 1.0;
 };
 
+// A particle's octahedron: six vertices on the axes, normals pointing out along them (a small
+// sphere's), eight faces counter-clockwise from outside (shaders/particles_vertices.comp
+// writes the same vertices).
+inline constexpr uint32_t kParticleVertices = 6, kParticleTriangles = 8;
+inline const glm::dvec3 kParticleAxes[kParticleVertices] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+inline const glm::uvec3 kParticleFaces[kParticleTriangles] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                                               {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+
 // The most particles one emitter may have alive at once: with eight triangles each, the most
 // triangles a scene may hold.
 inline constexpr uint32_t kMaxParticles = 1u << 22;

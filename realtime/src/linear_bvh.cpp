@@ -1,0 +1,102 @@
+#include "giq/realtime/linear_bvh.h"
+
+#include <algorithm>
+#include <bit>
+#include <string>
+
+#include "giq/realtime/context.h"
+#include "giq/realtime/shader.h"
+#include "giq/realtime/timer.h"
+
+namespace giq::realtime {
+
+namespace {
+
+constexpr uint32_t kBindings = 10;
+
+// shaders/linear_bvh.comp's push constants.
+struct Push {
+  uint32_t first_triangle, count, per_leaf, node_base, prim_base, padded, k, j;
+};
+
+// Invocations per workgroup. Pass 5 (bounds, leaf to root) runs one per workgroup: where a
+// workgroup's invocations run as the lanes of one SIMD loop (lavapipe), two lanes reaching a
+// node in different iterations were both seen to get 0 back from its visit count, and the
+// node's box was never made. Across workgroups the atomics hold on every device.
+// Pass 7 sorts blocks of twice its group's keys in shared memory.
+constexpr uint32_t group(int pass) { return pass == 5 ? 1 : pass == 7 ? 512 : 64; }
+constexpr uint32_t kLocal = 2 * group(7);  // the shader's kLocal
+constexpr int kPasses = 7;
+
+// std430 sizes of the shader's LeafBox and Inner.
+constexpr uint64_t kLeafBoxBytes = 32, kInnerBytes = 64;
+
+}  // namespace
+
+LinearBvh::LinearBvh(Context& ctx, ShaderCompiler& compiler, uint32_t max_leaves, uint32_t per_leaf)
+    : ctx_(&ctx), max_leaves_(max_leaves), per_leaf_(per_leaf) {
+  const std::vector<VkDescriptorType> bindings(kBindings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  for (int p = 0; p < kPasses; ++p)
+    passes_[p] = Pipeline::compute(ctx, compiler.compile("shaders/linear_bvh.comp", {{"GIQ_LBVH_PASS", std::to_string(p + 1)},
+                                                                                  {"GIQ_LBVH_GROUP", std::to_string(group(p + 1))}}),
+                                   bindings, sizeof(Push));
+  const uint64_t n = std::max<uint32_t>(max_leaves, 1);
+  constexpr VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  keys_ = Buffer(ctx, std::bit_ceil(n) * 2 * sizeof(uint32_t), usage);
+  leaves_ = Buffer(ctx, n * kLeafBoxBytes, usage);
+  inner_ = Buffer(ctx, n * kInnerBytes, usage);
+  parents_ = Buffer(ctx, 2 * n * sizeof(uint32_t), usage);
+  centres_ = Buffer(ctx, 6 * sizeof(uint32_t), usage);
+  visits_ = Buffer(ctx, n * sizeof(uint32_t), usage);
+}
+
+void LinearBvh::record(VkCommandBuffer cmd, const Buffer& vertices, const Buffer& triangles, const Buffer& nodes,
+                       const Buffer& prims, uint32_t first_triangle, uint32_t leaves, uint32_t node_base, uint32_t prim_base,
+                       GpuTimer* timer) const {
+  leaves = std::min(leaves, max_leaves_);
+  const std::vector<Descriptor> d = {Descriptor::storage(vertices), Descriptor::storage(triangles), Descriptor::storage(nodes),
+                                     Descriptor::storage(prims),    Descriptor::storage(keys_),     Descriptor::storage(leaves_),
+                                     Descriptor::storage(inner_),   Descriptor::storage(parents_), Descriptor::storage(centres_),
+                                     Descriptor::storage(visits_)};
+  Push push{first_triangle, leaves, per_leaf_, node_base, prim_base, std::bit_ceil(std::max(leaves, 1u)), 0, 0};
+  auto run = [&](int pass, uint64_t threads) {
+    passes_[pass - 1].bind(cmd);
+    passes_[pass - 1].push_descriptors(cmd, d);
+    passes_[pass - 1].push_constants(cmd, push);
+    passes_[pass - 1].dispatch_1d(cmd, threads, group(pass));
+    full_barrier(cmd);
+  };
+  if (leaves > 0) {
+    if (timer) timer->begin(cmd, "particle bvh keys");
+    // The centres' box starts empty: lo at the largest ordered value, hi at the smallest.
+    vkCmdFillBuffer(cmd, centres_.handle(), 0, 3 * sizeof(uint32_t), 0xffffffffu);
+    vkCmdFillBuffer(cmd, centres_.handle(), 3 * sizeof(uint32_t), 3 * sizeof(uint32_t), 0u);
+    full_barrier(cmd);
+    run(1, leaves);
+    run(2, push.padded);
+    // Bitonic sort: the steps over blocks that fit a workgroup in shared memory (pass 7), the
+    // longer ones a dispatch each (pass 3).
+    if (timer) timer->end(cmd), timer->begin(cmd, "particle bvh sort");
+    const uint64_t local_threads = std::max<uint32_t>(push.padded, 2) / 2;
+    run(7, local_threads);
+    for (uint32_t k = 2 * kLocal; k <= push.padded; k *= 2) {
+      push.k = k;
+      for (uint32_t j = k / 2; j >= kLocal; j /= 2) {
+        push.j = j;
+        run(3, push.padded);
+      }
+      run(7, local_threads);
+    }
+    if (timer) timer->end(cmd), timer->begin(cmd, "particle bvh nodes");
+    run(4, leaves - 1);
+    vkCmdFillBuffer(cmd, visits_.handle(), 0, uint64_t(leaves) * sizeof(uint32_t), 0u);
+    full_barrier(cmd);
+    run(5, leaves);
+  } else if (timer) {
+    timer->begin(cmd, "particle bvh nodes");
+  }
+  run(6, leaves > 0 ? 2 * uint64_t(leaves) - 1 : 1);
+  if (timer) timer->end(cmd);
+}
+
+}  // namespace giq::realtime
