@@ -3,8 +3,8 @@
 // triangles, for geometry whose triangles fly too far for a refit: the particles. Karras 2012
 // ("Maximizing Parallelism in the Construction of BVHs, Octrees, and k-d Trees", HPG): leaves
 // sorted by the Morton code of their centres (bitonic sort, as Turánszki 2017 sorts particles),
-// every interior node found from the sorted keys alone (section 4), bounds bottom-up with one
-// atomic visit count per node (section 5). The result is then written in the depth-first
+// every interior node found from the sorted keys alone, bounds bottom-up with one atomic
+// visit count per node. The result is then written in the depth-first
 // layout of shaders/bvh.glsl (left child next, right child at `index`), so the one traversal
 // every technique uses walks it unchanged: a node covering sorted leaves [first, last] after L
 // left turns from the root sits at 2 first + L (the nodes before it in depth-first order are
@@ -76,7 +76,7 @@ uint ordered(float f) {
 }
 float unordered(uint u) { return uintBitsToFloat((u & 0x80000000u) != 0u ? u & 0x7fffffffu : ~u); }
 
-// 10 bits spread to every third bit (Karras 2012, section 4's Morton codes).
+// 10 bits spread to every third bit (Karras 2012's 30-bit Morton codes).
 uint spread(uint x) {
   x = (x * 0x00010001u) & 0xff0000ffu;
   x = (x * 0x00000101u) & 0x0f00f00fu;
@@ -166,7 +166,8 @@ void main() {
 #elif GIQ_LBVH_PASS == 4
   if (i + 1u >= pc.count) return;  // count - 1 interior nodes
   int n = int(i);
-  // Karras 2012, Figure 4: the direction of the node's range, its other end, then the split.
+  // Karras 2012's construction: the direction of the node's range, its other end, then the
+  // split.
   int d = delta(n, n + 1) > delta(n, n - 1) ? 1 : -1;
   int delta_min = delta(n, n - d);
   int lmax = 2;
