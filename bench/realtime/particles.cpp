@@ -17,7 +17,6 @@
 #include <cstdio>
 #include <vector>
 
-#include "giq/realtime/bvh.h"
 #include "giq/realtime/context.h"
 #include "giq/realtime/linear_bvh.h"
 #include "giq/realtime/particle_system.h"
@@ -56,9 +55,8 @@ int main(int argc, char** argv) {
     realtime::GpuTimer timer(ctx);
     std::vector<double> ms, simulate_ms, emit_ms, vertices_ms, tree_ms, keys_ms, sort_ms, nodes_ms;
 
-    // The particles' place in a scene: octahedron p at vertices 6p.. and triangles 8p..; the
-    // tree at node 2 under a root at node 0 whose other child (node 1) is an empty leaf, as
-    // SceneGpu lays it out for a scene of particles alone.
+    // The particles' place in a scene: octahedron p at vertices 6p.. and triangles 8p..; their
+    // tree beside an empty one, as SceneGpu lays it out for a scene of particles alone.
     const uint32_t capacity = e.max_particles;
     const realtime::Buffer vertices(ctx, uint64_t(capacity) * scenes::kParticleVertices * sizeof(realtime::gpu::GpuVertex),
                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -71,13 +69,11 @@ int main(int argc, char** argv) {
     const realtime::Buffer triangle_buffer = realtime::Buffer::storage(ctx, triangles);
     triangles = {};
     realtime::LinearBvh tree(ctx, compiler, capacity, scenes::kParticleTriangles);
-    const glm::vec3 inf(INFINITY);
-    std::vector<realtime::BvhNode> nodes(2 + tree.node_count());
-    nodes[0] = {inf, 2u, -inf, 0u};
-    nodes[1] = {inf, tree.prim_count(), -inf, 1u};
-    const realtime::Buffer node_buffer = realtime::Buffer::storage(ctx, nodes);
-    const realtime::Buffer prim_buffer = realtime::Buffer::storage(ctx, std::vector<uint32_t>(tree.prim_count() + 1, 0u));
-    nodes = {};
+    std::vector<realtime::BvhNode> nodes;
+    std::vector<uint32_t> prims;
+    tree.place_beside(nodes, prims);
+    const realtime::Buffer node_buffer = realtime::Buffer::storage(ctx, nodes), prim_buffer = realtime::Buffer::storage(ctx, prims);
+    nodes = {}, prims = {};
     uint32_t alive = 0;
     double worst = 0.0;
     for (int r = 0; r < reps; ++r) {
@@ -103,7 +99,7 @@ int main(int argc, char** argv) {
           timer.begin(cmd, "particle vertices");
           system.record_vertices(cmd, vertices, previous, stage_first, 1.0 / 30.0);
           timer.end(cmd);
-          tree.record(cmd, vertices, triangle_buffer, node_buffer, prim_buffer, 0, uint32_t(alive.count()), 2, 0, &timer);
+          tree.record(cmd, vertices, triangle_buffer, node_buffer, prim_buffer, 0, uint32_t(alive.count()), &timer);
         });
         if (t >= lifetime) {
           const auto passes = timer.resolve();

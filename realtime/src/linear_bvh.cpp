@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <limits>
 #include <string>
 
 #include "giq/realtime/context.h"
@@ -34,7 +35,7 @@ constexpr uint64_t kLeafBoxBytes = 32, kInnerBytes = 64;
 }  // namespace
 
 LinearBvh::LinearBvh(Context& ctx, ShaderCompiler& compiler, uint32_t max_leaves, uint32_t per_leaf)
-    : ctx_(&ctx), max_leaves_(max_leaves), per_leaf_(per_leaf) {
+    : max_leaves_(max_leaves), per_leaf_(per_leaf) {
   const std::vector<VkDescriptorType> bindings(kBindings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   for (int p = 0; p < kPasses; ++p)
     passes_[p] = Pipeline::compute(ctx, compiler.compile("shaders/linear_bvh.comp", {{"GIQ_LBVH_PASS", std::to_string(p + 1)},
@@ -50,15 +51,30 @@ LinearBvh::LinearBvh(Context& ctx, ShaderCompiler& compiler, uint32_t max_leaves
   visits_ = Buffer(ctx, n * sizeof(uint32_t), usage);
 }
 
+void LinearBvh::place_beside(std::vector<BvhNode>& nodes, std::vector<uint32_t>& prims) {
+  const glm::vec3 inf(std::numeric_limits<float>::infinity());
+  const uint32_t room_nodes = max_leaves_ > 0 ? 2 * max_leaves_ - 1 : 1, room_prims = max_leaves_ > 0 ? max_leaves_ * per_leaf_ : 1;
+  const uint32_t spare_prim = uint32_t(prims.size()) + room_prims;
+  const BvhNode empty{inf, spare_prim, -inf, 1};
+  std::vector<BvhNode> other = nodes.empty() ? std::vector<BvhNode>{empty} : std::move(nodes);
+  for (BvhNode& n : other)
+    if (n.count == 0) ++n.index;
+  node_base_ = 1 + uint32_t(other.size());
+  prim_base_ = uint32_t(prims.size());
+  nodes.assign(1, BvhNode{other[0].lo, node_base_, other[0].hi, 0});
+  nodes.insert(nodes.end(), other.begin(), other.end());
+  nodes.resize(node_base_ + room_nodes, empty);
+  prims.resize(spare_prim + 1, 0u);
+}
+
 void LinearBvh::record(VkCommandBuffer cmd, const Buffer& vertices, const Buffer& triangles, const Buffer& nodes,
-                       const Buffer& prims, uint32_t first_triangle, uint32_t leaves, uint32_t node_base, uint32_t prim_base,
-                       GpuTimer* timer) const {
+                       const Buffer& prims, uint32_t first_triangle, uint32_t leaves, GpuTimer* timer) const {
   leaves = std::min(leaves, max_leaves_);
   const std::vector<Descriptor> d = {Descriptor::storage(vertices), Descriptor::storage(triangles), Descriptor::storage(nodes),
                                      Descriptor::storage(prims),    Descriptor::storage(keys_),     Descriptor::storage(leaves_),
                                      Descriptor::storage(inner_),   Descriptor::storage(parents_), Descriptor::storage(centres_),
                                      Descriptor::storage(visits_)};
-  Push push{first_triangle, leaves, per_leaf_, node_base, prim_base, std::bit_ceil(std::max(leaves, 1u)), 0, 0};
+  Push push{first_triangle, leaves, per_leaf_, node_base_, prim_base_, std::bit_ceil(std::max(leaves, 1u)), 0, 0};
   auto run = [&](int pass, uint64_t threads) {
     passes_[pass - 1].bind(cmd);
     passes_[pass - 1].push_descriptors(cmd, d);

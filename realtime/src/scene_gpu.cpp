@@ -4,7 +4,6 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
-#include <limits>
 
 #include "giq/base/error.h"
 #include "giq/realtime/context.h"
@@ -148,9 +147,11 @@ SceneChange SceneGpu::update(const scenes::Scene& posed) {
 
   if (moved) {
     // The CPU's tree holds every triangle but the particles' (which come last).
-    const uint32_t fixed = fixed_triangle_count(posed, g), fixed_vertices = fixed_vertex_count(posed, g);
-    const bool same_triangles = fixed == fixed_triangles_ && fixed_vertices == fixed_vertex_count(posed, geometry_) &&
-                                std::equal(g.triangles.begin(), g.triangles.begin() + fixed, geometry_.triangles.begin());
+    const size_t m = first_particle_mesh(posed);
+    auto fixed_vertices = [&](const FlatGeometry& f) { return m < f.mesh_first_vertex.size() ? f.mesh_first_vertex[m] : f.positions.size(); };
+    const size_t fixed = m < g.mesh_first_triangle.size() ? g.mesh_first_triangle[m] : g.triangles.size();
+    const bool same_triangles = fixed == fixed_triangles_ && fixed_vertices(g) == fixed_vertices(geometry_) &&
+                                std::equal(g.triangles.begin(), g.triangles.begin() + long(fixed), geometry_.triangles.begin());
     upload_geometry(posed, std::move(g), same_triangles, keep_deformed);
     change = SceneChange::Geometry;
   }
@@ -223,16 +224,10 @@ void SceneGpu::make_deformer(const scenes::Scene& scene) {
 }
 
 // Scene::at puts the particle meshes after every mesh of the file.
-uint32_t SceneGpu::fixed_triangle_count(const scenes::Scene& scene, const FlatGeometry& g) {
-  for (size_t m = 0; m < scene.meshes.size() && m < g.mesh_first_triangle.size(); ++m)
-    if (scene.meshes[m].emitter >= 0) return g.mesh_first_triangle[m];
-  return uint32_t(g.triangles.size());
-}
-
-uint32_t SceneGpu::fixed_vertex_count(const scenes::Scene& scene, const FlatGeometry& g) {
-  for (size_t m = 0; m < scene.meshes.size() && m < g.mesh_first_vertex.size(); ++m)
-    if (scene.meshes[m].emitter >= 0) return g.mesh_first_vertex[m];
-  return uint32_t(g.positions.size());
+size_t SceneGpu::first_particle_mesh(const scenes::Scene& scene) {
+  size_t m = 0;
+  while (m < scene.meshes.size() && scene.meshes[m].emitter < 0) ++m;
+  return m;
 }
 
 void SceneGpu::prepare_particles(const scenes::Scene& posed) {
@@ -257,7 +252,7 @@ void SceneGpu::record_particles(VkCommandBuffer cmd) {
     particles_[e]->record_vertices(cmd, vertices_, previous_vertices_, stage_first_vertex_[e], frame_seconds_);
   }
   particle_bvh_->record(cmd, vertices_, triangles_, nodes_, prims_, fixed_triangles_,
-                        (triangle_count_ - fixed_triangles_) / scenes::kParticleTriangles, particle_node_base_, particle_prim_base_);
+                        (triangle_count_ - fixed_triangles_) / scenes::kParticleTriangles);
 }
 
 void SceneGpu::record_deformation(VkCommandBuffer cmd, bool save_previous, bool refit, GpuTimer* timer) const {
@@ -278,7 +273,8 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
   geometry_ = std::move(flat);
   bounds_ = scene.bounds;
   triangle_count_ = uint32_t(geometry_.triangles.size());
-  fixed_triangles_ = fixed_triangle_count(scene, geometry_);
+  const size_t m = first_particle_mesh(scene);
+  fixed_triangles_ = m < geometry_.mesh_first_triangle.size() ? geometry_.mesh_first_triangle[m] : triangle_count_;
   // Moved triangles keep the tree and refit its bounds, until the motion has made it
   // kMaxRefitCost times as costly to traverse as a fresh build (bench/results: refit against
   // build in time and in cost).
@@ -352,7 +348,7 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
 
   std::vector<BvhNode> tree = bvh_.nodes;
   std::vector<uint32_t> prims = bvh_.prims;
-  if (particle_bvh_) compose_trees(tree, prims);
+  if (particle_bvh_) particle_bvh_->place_beside(tree, prims);
   std::vector<GpuBvhNode> nodes(tree.size());
   static_assert(sizeof(GpuBvhNode) == sizeof(BvhNode));
   std::memcpy(nodes.data(), tree.data(), nodes.size() * sizeof(GpuBvhNode));
@@ -369,24 +365,6 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
   emissive_ = Buffer::storage(ctx, emissive);
   indices_ = Buffer::storage(ctx, indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
   vertex_extra_ = Buffer::storage(ctx, vertex_extra);
-}
-
-// With particles, node 0 is a root over two trees: the CPU's (node 1 on) and the particles'
-// (LinearBvh, built on the GPU each frame after it). Either is a one-prim leaf with an empty
-// box while it has no triangle; the prim is triangle 0, which no ray finds closer than itself.
-void SceneGpu::compose_trees(std::vector<BvhNode>& nodes, std::vector<uint32_t>& prims) {
-  const glm::vec3 inf(std::numeric_limits<float>::infinity());
-  const uint32_t spare_prim = uint32_t(prims.size() + particle_bvh_->prim_count());
-  const BvhNode empty{inf, spare_prim, -inf, 1};
-  std::vector<BvhNode> fixed = nodes.empty() ? std::vector<BvhNode>{empty} : std::move(nodes);
-  for (BvhNode& n : fixed)
-    if (n.count == 0) ++n.index;
-  particle_node_base_ = 1 + uint32_t(fixed.size());
-  particle_prim_base_ = uint32_t(prims.size());
-  nodes.assign(1, BvhNode{fixed[0].lo, particle_node_base_, fixed[0].hi, 0});
-  nodes.insert(nodes.end(), fixed.begin(), fixed.end());
-  nodes.resize(particle_node_base_ + particle_bvh_->node_count(), empty);
-  prims.resize(spare_prim + 1, 0u);
 }
 
 // Materials and textures do not move: uploaded once.

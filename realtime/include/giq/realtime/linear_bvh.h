@@ -8,7 +8,9 @@
 // tree the CPU built over the other triangles; every traversal then sees one tree.
 
 #include <cstdint>
+#include <vector>
 
+#include "giq/realtime/bvh.h"
 #include "giq/realtime/pipeline.h"
 #include "giq/realtime/resources.h"
 
@@ -23,23 +25,24 @@ class LinearBvh {
   // Room for `max_leaves` leaves of `per_leaf` triangles each.
   LinearBvh(Context& ctx, ShaderCompiler& compiler, uint32_t max_leaves, uint32_t per_leaf);
 
-  // Nodes and prims the tree takes in the scene's buffers (at least one each: with no leaf the
-  // tree is an empty-boxed leaf).
-  static uint32_t node_count(uint32_t max_leaves) { return max_leaves > 0 ? 2 * max_leaves - 1 : 1; }
-  uint32_t node_count() const { return node_count(max_leaves_); }
-  uint32_t prim_count() const { return max_leaves_ > 0 ? max_leaves_ * per_leaf_ : 1; }
+  // Makes `nodes` and `prims` (a tree in shaders/bvh.glsl's layout, possibly empty) the
+  // arrays both trees live in: a root at node 0 over that tree, moved to node 1 on (its right
+  // children moved along), and room for this tree after it, where record() builds. Either
+  // tree without triangles is a one-prim leaf with an empty box; the prim is triangle 0, which
+  // no ray finds closer than itself.
+  void place_beside(std::vector<BvhNode>& nodes, std::vector<uint32_t>& prims);
 
   // Builds the tree over `leaves` leaves, leaf j being triangles first_triangle + per_leaf j
-  // onwards (GpuTriangle over GpuVertex), at nodes [node_base, node_base + 2 leaves - 1) and
-  // prims [prim_base, ...), and sets node 0's bounds to cover node 1's and the new root's.
-  // Barriers between the passes and after the last; timed when given a timer, as "particle bvh
-  // keys", "particle bvh sort" and "particle bvh nodes" (the last alone without leaves).
+  // onwards (GpuTriangle over GpuVertex), in the room place_beside() made, and sets node 0's
+  // bounds to cover node 1's and the new root's. Barriers between the passes and after the
+  // last; timed when given a timer, as "particle bvh keys", "particle bvh sort" and "particle
+  // bvh nodes" (the last alone without leaves).
   void record(VkCommandBuffer cmd, const Buffer& vertices, const Buffer& triangles, const Buffer& nodes, const Buffer& prims,
-              uint32_t first_triangle, uint32_t leaves, uint32_t node_base, uint32_t prim_base, GpuTimer* timer = nullptr) const;
+              uint32_t first_triangle, uint32_t leaves, GpuTimer* timer = nullptr) const;
 
  private:
-  Context* ctx_;
   uint32_t max_leaves_, per_leaf_;
+  uint32_t node_base_ = 0, prim_base_ = 0;  // where place_beside() left room
   Pipeline passes_[7];
   Buffer keys_, leaves_, inner_, parents_, centres_, visits_;
 };

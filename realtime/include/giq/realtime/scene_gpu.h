@@ -137,12 +137,8 @@ class SceneGpu {
   // The deformer for `scene`'s deforming meshes (none without), the vertex ranges of the
   // other meshes, and the GPU refit of the BVH (made once).
   void make_deformer(const scenes::Scene& scene);
-  // The triangles and vertices of `g` before the particles' (all without).
-  static uint32_t fixed_triangle_count(const scenes::Scene& scene, const FlatGeometry& g);
-  static uint32_t fixed_vertex_count(const scenes::Scene& scene, const FlatGeometry& g);
-  // The node and prim arrays of the CPU's tree made into the GPU's, with room for the
-  // particles' tree (particle_node_base_, particle_prim_base_).
-  void compose_trees(std::vector<BvhNode>& nodes, std::vector<uint32_t>& prims);
+  // The first of `scene`'s particle meshes (the mesh count without).
+  static size_t first_particle_mesh(const scenes::Scene& scene);
   // GpuVertex rows of `g`; the bytes of its vertex array that no deformation writes.
   static std::vector<glm::vec4> vertex_rows(const FlatGeometry& g);
   // The same with the particles' vertices where they were a frame earlier
@@ -165,7 +161,6 @@ class SceneGpu {
   std::vector<std::unique_ptr<ParticleSystem>> particles_;  // one per emitter
   std::unique_ptr<LinearBvh> particle_bvh_;                 // with emitters
   uint32_t fixed_triangles_ = 0;  // the triangles before the particles', in the CPU's tree
-  uint32_t particle_node_base_ = 0, particle_prim_base_ = 0;
   std::vector<std::vector<uint32_t>> stage_first_vertex_;   // per emitter, of each stage's mesh
   double frame_seconds_ = 0.0;
   uint32_t particle_vertices_ = 0;
