@@ -20,6 +20,7 @@
 #include "gltf_materials.h"
 #include "gltf_meshopt.h"
 #include "scene_source.h"
+#include "tangent_space.h"
 
 namespace giq::scenes {
 namespace gltf {
@@ -185,6 +186,29 @@ bool uses_extension(const Context& ctx, const char* name) {
   return std::find(used.begin(), used.end(), name) != used.end();
 }
 
+// A normal-mapped primitive with normals but no TANGENT gets MikkTSpace's tangents in its
+// rest pose (tangent_space.h), which skinning and morphing then carry as they carry a file's
+// own. Without normals the flat normals make every triangle its own tangent frame, which the
+// renderers take from the triangle's UVs.
+void give_tangents(const Material& m, PrimitiveSource& p, DeformationRest& deformation) {
+  const std::vector<glm::vec2>& uvs = m.uv2_slots & kNormalSlot ? p.uvs2 : p.uvs;
+  if (m.normal_texture < 0 || !p.tangents.empty() || p.normals.empty() || uvs.empty()) return;
+  GeneratedTangents g = generate_tangents(p.positions, p.normals, uvs, p.triangles);
+  p.tangents = std::move(g.tangents);
+  p.triangles = std::move(g.triangles);
+  // Split vertices copy every attribute of the vertex they were split from.
+  const size_t n = p.positions.size();
+  auto extend = [&](auto& attribute) {
+    if (attribute.empty()) return;
+    attribute.resize(g.source.size());
+    for (size_t i = n; i < g.source.size(); ++i) attribute[i] = attribute[g.source[i]];
+  };
+  extend(p.positions), extend(p.normals), extend(p.uvs), extend(p.uvs2), extend(p.colors);
+  for (MorphTarget& t : deformation.targets) extend(t.positions), extend(t.normals), extend(t.tangents);
+  for (auto& set : deformation.joints) extend(set);
+  for (auto& set : deformation.weights) extend(set);
+}
+
 PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p, const std::string& w, std::vector<Material>& materials,
                                const std::vector<std::vector<UvMapping>>& uv_mappings, int& default_material) {
   PrimitiveSource out;
@@ -236,6 +260,8 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
     const AccessorData d = read_accessor(ctx, a->second, w + ".attributes.TANGENT", tangent_rule);
     same_count(d, "TANGENT");
     for (size_t i = 0; i < n; ++i) out.tangents.emplace_back(d.values[4 * i], d.values[4 * i + 1], d.values[4 * i + 2], d.values[4 * i + 3]);
+    // glTF 2.0, 3.7.2.1: without normals "the provided tangents (if present) MUST be ignored".
+    if (out.normals.empty()) out.tangents.clear();
   }
   // The UV sets the material's textures read, transformed (UvMapping): TEXCOORD_0 when they
   // say nothing.
@@ -290,6 +316,7 @@ PrimitiveSource load_primitive(const Context& ctx, const tinygltf::Primitive& p,
     out.collapsed_triangles += collapsed;
     return collapsed;
   });
+  if (!out.triangles.empty()) give_tangents(materials[size_t(out.material)], out, deformation);
   if (out.triangles.empty()) {
     out.positions.clear(), out.normals.clear(), out.tangents.clear(), out.uvs.clear(), out.uvs2.clear(), out.colors.clear();
   } else if (deforms) {

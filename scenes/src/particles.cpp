@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "orthonormal_basis.h"
+
 namespace giq::scenes {
 namespace {
 
@@ -22,15 +24,6 @@ uint64_t first_after(double x) { return x < 0.0 ? 0 : uint64_t(std::min(std::flo
 // closed forms would cancel.
 double phi1(double z) { return std::abs(z) < 1e-3 ? 1.0 + z * (0.5 + z * (1.0 / 6.0 + z / 24.0)) : std::expm1(z) / z; }
 double phi2(double z) { return std::abs(z) < 1e-3 ? 0.5 + z * (1.0 / 6.0 + z * (1.0 / 24.0 + z / 120.0)) : (std::expm1(z) - z) / (z * z); }
-
-// A tangent frame about unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited",
-// JCGT 6(1), listing 3).
-void basis(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z), c = n.x * n.y * a;
-  t = {1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x};
-  b = {c, sign + n.y * n.y * a, -n.y};
-}
 
 }  // namespace
 
@@ -77,7 +70,7 @@ ParticleBirth particle_birth(const Emitter& e, uint32_t id) {
   // Which way: uniform in the cone about the face's normal (3, 4).
   const glm::dvec3 n = glm::normalize(glm::cross(b - a, c - a));
   glm::dvec3 tx, ty;
-  basis(n, tx, ty);
+  orthonormal_basis(n, tx, ty);
   // sin from 1 - cos (x (2 - x) = 1 - cos^2), which does not cancel near the cone's axis.
   const double x = particle_unit(e.seed, id, 3) * (1.0 - std::cos(e.spread)), cos_theta = 1.0 - x, sin_theta = std::sqrt(x * (2.0 - x));
   const double phi = 2.0 * std::numbers::pi * particle_unit(e.seed, id, 4);

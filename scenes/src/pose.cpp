@@ -6,6 +6,7 @@
 #include <glm/matrix.hpp>
 
 #include "giq/base/error.h"
+#include "orthonormal_basis.h"
 #include "placement.h"
 #include "scene_source.h"
 
@@ -27,11 +28,6 @@ std::vector<int> preorder(const SceneSource& src) {
 }
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-glm::vec3 any_orthogonal(glm::vec3 n) {
-  const glm::vec3 a = std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-  return glm::normalize(glm::cross(n, a));
-}
 
 std::string node_label(const SceneSource& src, int i) {
   const auto& n = src.nodes[size_t(i)].name;
@@ -79,7 +75,7 @@ void emit_mesh(const PrimitiveSource& p, const PlacedVertices& placed, glm::dvec
     glm::vec3 xyz = glm::vec3(glm::dvec3(t));
     xyz -= normal * glm::dot(normal, xyz);  // keep it in the tangent plane after non-uniform scale
     const float len = glm::length(xyz);
-    xyz = len > 0.0f && std::isfinite(len) ? xyz / len : any_orthogonal(normal);
+    xyz = len > 0.0f && std::isfinite(len) ? xyz / len : glm::vec3(any_perpendicular(glm::dvec3(normal)));
     // The bitangent is cross(N, T) * w, w already in the placement's handedness.
     return glm::vec4(xyz, float(t.w));
   };
@@ -96,7 +92,6 @@ void emit_mesh(const PrimitiveSource& p, const PlacedVertices& placed, glm::dvec
         if (!p.uvs.empty()) m.uvs.push_back(p.uvs[v]);
         if (!p.uvs2.empty()) m.uvs2.push_back(p.uvs2[v]);
         if (!p.colors.empty()) m.colors.push_back(p.colors[v]);
-        if (!p.tangents.empty()) m.tangents.push_back(tangent(v, face[k]));
       }
       if (kept[k]) m.triangles.emplace_back(base, base + 1, base + 2);
     }

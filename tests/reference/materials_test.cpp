@@ -298,3 +298,48 @@ TEST(Materials, NonFiniteSamplesAreDiscardedAndCounted) {
 
 }  // namespace
 }  // namespace giq::reference
+
+namespace giq::reference {
+namespace {
+
+TEST(Materials, NormalMapsTiltTowardTheImagesRightAndUp) {
+  // glTF 2.0, 3.9.3: a normal texture's +X points to the image's right (+u) and its +Y up the
+  // image, which is -v since glTF's v runs down the image. A plane y = 0 seen from above
+  // (screen up -z) under a constant normal map tilted right and up: the first-hit normal must
+  // lean along +u and -v, with tangents from the UVs (no TANGENT) and with given ones (those
+  // MikkTSpace gives this plane, tests/scenes/tangent_space_test.cpp), for a mapping as seen
+  // and one mirrored in u.
+  const glm::vec3 tilt = glm::normalize(glm::vec3(0.5f, 0.3f, 1.0f));
+  scenes::Texture t;
+  t.assign(1, 1, {glm::vec4(0.5f * tilt + 0.5f, 1.0f)});
+  const scenes::Camera cam = scenes::Camera::look_at({0, 4, 0}, {0, 0, 0}, {0, 0, -1}, 0.9f);
+  for (const bool mirrored : {false, true})
+    for (const bool given : {false, true}) {
+      SCOPED_TRACE(std::string(mirrored ? "mirrored" : "as seen") + (given ? ", given tangents" : ", tangents from the UVs"));
+      scenes::Scene s;
+      s.textures.push_back(t);
+      scenes::Material m = test::diffuse(glm::vec3(0.5f));
+      m.normal_texture = 0;
+      test::add_quad(s, test::add_material(s, m), {-4, 0, 4}, {4, 0, 4}, {4, 0, -4}, {-4, 0, -4});
+      scenes::Mesh& quad = s.meshes.back();
+      for (size_t i = 0; i < 4; ++i) {
+        const glm::vec3 p = quad.positions[i];
+        quad.uvs[i] = {mirrored ? (4.0f - p.x) / 8.0f : (p.x + 4.0f) / 8.0f, (p.z + 4.0f) / 8.0f};  // v grows down the screen, +z
+      }
+      if (given) quad.tangents.assign(4, mirrored ? glm::vec4(-1, 0, 0, -1) : glm::vec4(1, 0, 0, 1));
+      s.lights.push_back(sun({0.0f, -1.0f, 0.0f}));
+      s.derive();
+      RenderSettings rs;
+      rs.width = rs.height = kSize;
+      Renderer r(s, cam, rs);
+      Film f = r.make_film();
+      r.render_aux(f);
+      const glm::vec3 right(mirrored ? -1.0f : 1.0f, 0.0f, 0.0f), up(0.0f, 0.0f, -1.0f), n(0.0f, 1.0f, 0.0f);
+      const glm::vec3 expected = glm::normalize(tilt.x * right + tilt.y * up + tilt.z * n);
+      for (const PixelAux& a : f.aux)
+        for (int k = 0; k < 3; ++k) ASSERT_NEAR(a.normal[k], expected[k], 1e-6f) << k;  // float rounding of unit vectors
+    }
+}
+
+}  // namespace
+}  // namespace giq::reference
