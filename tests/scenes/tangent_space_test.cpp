@@ -75,6 +75,33 @@ TEST(TangentSpace, TrianglesWithoutUvAreaAddNothing) {
   EXPECT_EQ(g.tangents[3].z, 0.0f);
 }
 
+TEST(TangentSpace, HostileGeometryGivesUnitTangents) {
+  // What a file can hold past the loader's checks: a zero normal, normals of huge magnitude,
+  // positions at the float range's edge (their differences overflow in float), UVs of 1e30, a non-manifold edge shared by three triangles, a triangle repeated, and one whose
+  // corners are one welded vertex twice. Every tangent comes out finite and unit length, in
+  // its normal's plane where the normal has a direction.
+  const float big = 3e38f;
+  const std::vector<glm::vec3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {big, 0, 0}, {-big, big, 0}, {1, 0, 0}, {2, 2, 2}};
+  const std::vector<glm::vec3> n{{0, 0, 0}, {0, 0, 1e30f}, {0, 0, 1}, {0, 1, 0}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1e30f}, {1, 0, 0}};
+  const std::vector<glm::vec2> uv{{0, 0}, {1, 0}, {0, 1}, {1e30f, -1e30f}, {0.5f, 0.5f}, {0, 2}, {1, 0}, {3, 3}};
+  const std::vector<glm::uvec3> tris{{0, 1, 2}, {1, 0, 3}, {0, 1, 7}, {0, 1, 2}, {4, 5, 2}, {1, 6, 2}, {5, 4, 7}};
+  const GeneratedTangents g = generate_tangents(p, n, uv, tris);
+  ASSERT_EQ(g.triangles.size(), tris.size());
+  ASSERT_EQ(g.source.size(), g.tangents.size());
+  for (size_t i = 0; i < g.tangents.size(); ++i) {
+    const glm::vec4 t = g.tangents[i];
+    ASSERT_TRUE(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z)) << i;
+    EXPECT_NEAR(glm::length(glm::vec3(t)), 1.0f, 1e-6f) << i;
+    EXPECT_TRUE(t.w == 1.0f || t.w == -1.0f) << i;
+    const glm::vec3 normal = n[g.source[i]];
+    if (glm::length(normal) > 0.0f) {
+      EXPECT_NEAR(glm::dot(glm::vec3(t), glm::normalize(normal)), 0.0f, 1e-6f) << i;
+    }
+  }
+  for (size_t f = 0; f < tris.size(); ++f)
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(g.source[g.triangles[f][c]], tris[f][c]);
+}
+
 // A copy of a .glb with every primitive's TANGENT attribute removed from its JSON chunk.
 fs::path without_tangents(const fs::path& glb) {
   std::ifstream in(glb, std::ios::binary);
