@@ -281,7 +281,7 @@ class Gi1 : public IndirectLight {
                          Descriptor::storage(frame.direct_light().area_triangle_buffer()),
                          Descriptor::storage(light_grid_)});
       light_grid_pass_.push_descriptors(cmd, d);
-      vkCmdDispatch(cmd, (f.grid_cells.x * f.grid_cells.y * f.grid_cells.z + 63) / 64, 1, 1);
+      vkCmdDispatch(cmd, f.grid_cells.x * f.grid_cells.y, f.grid_cells.z, 1);  // a workgroup a cell
       full_barrier(cmd);
       in.timer.end(cmd);
     }
