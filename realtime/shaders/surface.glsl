@@ -55,11 +55,11 @@ HitNormals hit_normals(uint tri, float b1, float b2, vec3 dir, float footprint) 
     ns = b0 * scene_vertices[t.v.x].normal.xyz + b1 * scene_vertices[t.v.y].normal.xyz + b2 * scene_vertices[t.v.z].normal.xyz;
 #ifdef GIQ_NORMAL_MAPS
   if (m.textures.w >= 0 && (t.extra.z & (reads_uv2(m, GIQ_SLOT_NORMAL) ? GIQ_TRIANGLE_HAS_UVS2 : GIQ_TRIANGLE_HAS_UVS)) != 0u) {
-    // Tangent frame: the mesh's tangents (the file's, else MikkTSpace's from the scene
-    // library), else, with flat normals, dp/du from the triangle's UVs (pbrt-v4, "Triangle
-    // Intersection"); the bitangent is sign * cross(n, t) (glTF 2.0, 3.7.2.1), with sign +1
-    // where the UV triangle winds clockwise, since glTF's v runs down the image and the normal
-    // map's +Y up it (reference/src/surface.h).
+    // Tangent frame: the mesh's tangents (the file's, else MikkTSpace's from the scene library),
+    // else (flat shaded, or built in code) dp/du from the triangle's UVs (pbrt-v4, "Triangle
+    // Intersection"); the bitangent is sign * cross(n, t) (glTF 2.0, 3.7.2.1), with sign +1 where
+    // the UV triangle winds clockwise, since glTF's v runs down the image and the normal map's +Y
+    // up it (reference/src/surface.h).
     vec3 tg;
     float sign = 1.0;
     if ((t.extra.z & GIQ_TRIANGLE_HAS_TANGENTS) != 0u) {

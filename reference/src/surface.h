@@ -72,11 +72,11 @@ Surface make_surface(const RenderContext& ctx, const Hit& hit, glm::vec3 dir) {
     if (m.specular_color_texture >= 0) specular_color *= glm::vec3(tex(m.specular_color_texture, scenes::kSpecularColorSlot));
     const std::vector<glm::vec2>& normal_uvs = m.uv2_slots & scenes::kNormalSlot ? mesh.uvs2 : mesh.uvs;
     if (m.normal_texture >= 0 && !normal_uvs.empty()) {
-      // Tangent frame: the mesh's tangents (the file's, else MikkTSpace's from the scene
-      // library), else, with flat normals, dp/du from the triangle's UVs (pbrt-v4, "Triangle
-      // Intersection": partial derivatives from the UV parameterisation). glTF's v runs down
-      // the image and the normal map's +Y up it, so the bitangent sign is +1 where the UV
-      // triangle winds clockwise (det < 0), as scenes/src/tangent_space.h has it.
+      // Tangent frame: the mesh's tangents (the file's, else MikkTSpace's from the scene library),
+      // else (flat shaded, or built in code) dp/du from the triangle's UVs (pbrt-v4, "Triangle
+      // Intersection": partial derivatives from the UV parameterisation). glTF's v runs down the
+      // image and the normal map's +Y up it, so the bitangent sign is +1 where the UV triangle
+      // winds clockwise (det < 0), as scenes/src/tangent_space.h has it.
       glm::vec3 t;
       float sign = 1.0f;
       if (!mesh.tangents.empty()) {

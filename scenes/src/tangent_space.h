@@ -2,11 +2,12 @@
 // Tangents for a normal-mapped primitive that has none. glTF 2.0 (3.7.2.1, "Meshes"): "When
 // tangents are not specified, client implementations SHOULD calculate tangents using default
 // MikkTSpace algorithms with the specified vertex positions, normals, and texture coordinates
-// associated with the normal texture." Every engine, baker and DCC tool whose normal maps a
-// user compares against does, so the reference and the real-time module must too: per-triangle
-// dp/du frames would shade a curved, normal-mapped surface differently from the engine that
-// baked or draws the map. The rules are MikkTSpace's (Mikkelsen 2008, "Simulation of Wrinkled
-// Surfaces Revisited", section 4.4; the defaults of its reference implementation):
+// associated with the normal texture." Blender, Unity and Unreal do by default, and normal
+// maps are baked in that space, so the reference and the real-time module must too: per-
+// triangle dp/du frames would shade a curved, normal-mapped surface differently from the tool
+// that baked the map and the engine that draws it. The rules are MikkTSpace's (Mikkelsen
+// 2008, "Simulation of Wrinkled Surfaces Revisited", and the defaults of its reference
+// implementation):
 // - vertices equal in position, normal and texture coordinate are one vertex;
 // - around each vertex, triangles form groups by walking across shared edges, only between
 //   triangles whose UV mapping has the same orientation (so a mirrored UV seam splits);

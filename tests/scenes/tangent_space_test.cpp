@@ -1,7 +1,8 @@
 // Tangents for normal maps where a glTF primitive has none (scenes/src/tangent_space.h):
 // glTF's sign convention on a plane in closed form, the split of a vertex on a mirrored seam,
-// and MikkTSpace as Blender's own exporter computes it on meshes with mirrored seams, poles and
-// sheared UVs (tests/data/scenes/blender_tangents.py), through the loader.
+// triangles without UV area, hostile geometry, MikkTSpace as Blender's own exporter computes it
+// on meshes with mirrored seams, poles and sheared UVs (tests/data/scenes/blender_tangents.py)
+// through the loader, and the loader's split of a skinned, morphing primitive.
 
 #include "tangent_space.h"
 
