@@ -88,6 +88,41 @@ TEST(ResultsPage, NumbersAndComparisonsFromResultsJson) {
   fs::remove_all(dir);
 }
 
+TEST(ResultsPage, PageOnlyWithGpuReadsTheGpuMachinesFiguresAgain) {
+  // A row the GPU machine measured again (its timings.json as bench/realtime/device-run
+  // writes it) takes the new figures; a row it did not measure keeps its own; the data beside
+  // the page records them.
+  const fs::path dir = fs::temp_directory_path() / ("giq_results_gpu_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "h200" / "results" / "box" / "better");
+  json results = {{"settings", {{"size", 64}, {"reference_spp", 16}, {"sequence_reference_spp", 4}, {"static_frames", 2}}},
+                  {"rows", {row("box", "direct", 0.5, 0.08, 0.0), row("box", "better", 0.25, 0.02, 0.0)}}};
+  results["rows"][0]["gpu"] = {{"device", "GPU X"}, {"resolution", {1920, 1080}}, {"gpu_ms", 3.0}};
+  results["rows"][1]["gpu"] = {{"device", "GPU X"}, {"resolution", {1920, 1080}}, {"gpu_ms", 2.0}};
+  std::ofstream(dir / "results.json") << results.dump(1);
+  const json timings = {{"device", {{"name", "GPU X"}}},
+                        {"resolution", {1920, 1080}},
+                        {"frame_gpu_ms", {{"median", 0.75}}},
+                        {"passes", {{{"name", "grid"}, {"gpu_ms", {{"median", 0.25}}}}}},
+                        {"gpu_memory_mb", {{"scene", 2.0}, {"technique", 12.5}}}};
+  std::ofstream(dir / "h200" / "results" / "box" / "better" / "timings.json") << timings.dump();
+  const auto r = giq::test::run_captured(giq::test::shell_quote(GIQ_BINARY) + " results --page-only --gpu " + (dir / "h200").string() +
+                                             " --doc " + (dir / "results.md").string(),
+                                         dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string page = giq::test::slurp(dir / "results.md");
+  EXPECT_NE(page.find("| `direct` | 0.500 | 0.0800 | 0.500 | 0.0800 | – | – | 0.00 | 0.00 | – | 1234 | 3.00 | 96.1 |"), std::string::npos)
+      << page;
+  EXPECT_NE(page.find("| `better` | 0.250 | 0.0200 | 0.250 | 0.0200 | – | – | 0.00 | 0.00 | – | 1234 | 0.750 | 12.5 |"), std::string::npos)
+      << page;
+  std::ifstream in(dir / "results.json");
+  const json data = json::parse(in);
+  EXPECT_EQ(data["rows"][1]["gpu"]["passes"]["grid"], 0.25);
+  EXPECT_EQ(data["rows"][0]["gpu"]["gpu_ms"], 3.0);
+  EXPECT_EQ(data["settings"]["gpu_dir"], (dir / "h200").string());
+  fs::remove_all(dir);
+}
+
 // `giq results ARGS` run from `dir` (as from a repository root) with the fake giq doing the
 // rendering; `env` goes before the command ("NAME=value " or "").
 giq::test::Outcome run_results(const fs::path& dir, const std::string& args, const std::string& env = "") {

@@ -392,10 +392,37 @@ void keep_other_rows(ordered& results, const fs::path& page_json, const fs::path
     results["settings"]["gpu_dir"] = old["settings"]["gpu_dir"];
 }
 
+// The GPU machine's figures of one row (bench/realtime/device-run's
+// DIR/results/<scene>/<technique>/timings.json); null when it measured none.
+ordered gpu_row(const fs::path& gpu, const std::string& scene, const std::string& technique) {
+  const fs::path h = gpu / "results" / scene / technique / "timings.json";
+  if (!fs::exists(h)) return nullptr;
+  const json ht = read_json(h);
+  ordered passes = ordered::object();
+  for (const auto& p : ht.at("passes")) passes[p.at("name").get<std::string>()] = p["gpu_ms"]["median"];
+  return {{"device", ht["device"]["name"]},
+          {"resolution", ht["resolution"]},
+          {"gpu_ms", ht["frame_gpu_ms"]["median"]},
+          {"passes", passes},
+          {"gpu_memory_mb", ht.value("gpu_memory_mb", json(nullptr))}};
+}
+
 int run_results(const ResultsArgs& a) {
   const fs::path out = fs::absolute(a.out), doc = a.doc;
   if (a.page_only) {
-    const ordered results = read_ordered_json(doc.parent_path() / (doc.stem().string() + ".json"));
+    const fs::path data = doc.parent_path() / (doc.stem().string() + ".json");
+    ordered results = read_ordered_json(data);
+    // With --gpu, the GPU machine's figures are read again (a new measurement there, the
+    // local renders unchanged): the rows it measured, and its sweeps where it has some.
+    if (!a.gpu.empty()) {
+      for (auto& row : results["rows"]) {
+        const ordered g = gpu_row(a.gpu, row.at("scene").get<std::string>(), row.at("technique").get<std::string>());
+        if (!g.is_null()) row["gpu"] = g;
+      }
+      if (fs::is_directory(fs::path(a.gpu) / "sweeps")) results["sweeps"] = sweep_rows(fs::path(a.gpu) / "sweeps");
+      results["settings"]["gpu_dir"] = a.gpu;
+      write_file_atomically(data, results.dump(1));
+    }
     write_file_atomically(doc, page(results));
     std::cout << "giq results: " << doc.string() << " from " << (doc.parent_path() / (doc.stem().string() + ".json")).string() << '\n';
     return 0;
@@ -478,19 +505,8 @@ int run_results(const ResultsArgs& a) {
       }
       if (animated && sq.flicker_frames) row["flicker_frames"] = frame_range(sq.flicker_frames->first, sq.flicker_frames->second);
       if (animated && sq.lag_frames) row["lag_frames"] = frame_range(sq.lag_frames->first, sq.lag_frames->second);
-      if (!a.gpu.empty()) {
-        const fs::path h = fs::path(a.gpu) / "results" / stem / tech / "timings.json";
-        if (fs::exists(h)) {
-          const json ht = read_json(h);
-          ordered passes = ordered::object();
-          for (const auto& p : ht.at("passes")) passes[p.at("name").get<std::string>()] = p["gpu_ms"]["median"];
-          row["gpu"] = {{"device", ht["device"]["name"]},
-                         {"resolution", ht["resolution"]},
-                         {"gpu_ms", ht["frame_gpu_ms"]["median"]},
-                         {"passes", passes},
-                         {"gpu_memory_mb", ht.value("gpu_memory_mb", json(nullptr))}};
-        }
-      }
+      if (!a.gpu.empty())
+        if (const ordered g = gpu_row(a.gpu, stem, tech); !g.is_null()) row["gpu"] = g;
       results["rows"].push_back(row);
     }
   }
@@ -524,7 +540,8 @@ void add_results_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--doc", a->doc, "The page written; its data goes beside it as .json")->capture_default_str();
   cmd->add_option("--giq", a->giq, "giq binary whose subcommands are run (default: this one)");
   cmd->add_flag("--references-only", a->references_only, "Render the references and stop");
-  cmd->add_flag("--page-only", a->page_only, "Regenerate the page from its .json beside it, rendering nothing");
+  cmd->add_flag("--page-only", a->page_only,
+                "Regenerate the page from its .json beside it, rendering nothing (with --gpu, its GPU figures read again)");
   cmd->add_flag("--rerender", a->rerender, "Render and score again even where outputs of an identical run exist");
   cmd->add_flag("--update", a->update,
                 "Keep the page's rows of the techniques and scenes not rendered in this run (same settings required)");
