@@ -63,6 +63,12 @@ glm::dvec3 unit_or_zero(const glm::dvec3& v) {
 
 glm::dvec3 in_plane(const glm::dvec3& v, const glm::dvec3& n) { return unit_or_zero(v - n * glm::dot(n, v)); }
 
+// The tangent of a vertex no triangle with UV area gives one: any unit vector in the plane of
+// its normal (unit or zero).
+glm::dvec3 tangent_without_uvs(const glm::dvec3& normal) {
+  return normal == glm::dvec3(0.0) ? glm::dvec3(1.0, 0.0, 0.0) : any_perpendicular(normal);
+}
+
 }  // namespace
 
 GeneratedTangents generate_tangents(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals,
@@ -180,7 +186,7 @@ GeneratedTangents generate_tangents(const std::vector<glm::vec3>& positions, con
         sum += angle * in_plane(faces[f].dpdu, normal);
       }
       glm::dvec3 t = unit_or_zero(sum);
-      if (t == glm::dvec3(0.0)) t = normal == glm::dvec3(0.0) ? glm::dvec3(1.0, 0.0, 0.0) : any_perpendicular(normal);
+      if (t == glm::dvec3(0.0)) t = tangent_without_uvs(normal);
       group_tangent.emplace_back(glm::vec3(t), sign);
     }
 
@@ -214,10 +220,7 @@ GeneratedTangents generate_tangents(const std::vector<glm::vec3>& positions, con
     }
   // Vertices no triangle uses still get a unit tangent in their normal's plane.
   for (size_t i = 0; i < n; ++i)
-    if (!set[i]) {
-      const glm::dvec3 normal = unit_or_zero(glm::dvec3(normals[i]));
-      out.tangents[i] = glm::vec4(glm::vec3(normal == glm::dvec3(0.0) ? glm::dvec3(1.0, 0.0, 0.0) : any_perpendicular(normal)), 1.0f);
-    }
+    if (!set[i]) out.tangents[i] = glm::vec4(glm::vec3(tangent_without_uvs(unit_or_zero(glm::dvec3(normals[i])))), 1.0f);
   return out;
 }
 

@@ -13,7 +13,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "giq/scenes/scene.h"
 #include "gltf_builder.h"
@@ -103,12 +102,9 @@ TEST(TangentSpace, HostileGeometryGivesUnitTangents) {
     for (int c = 0; c < 3; ++c) EXPECT_EQ(g.source[g.triangles[f][c]], tris[f][c]);
 }
 
-// A copy of a .glb with every primitive's TANGENT attribute removed from its JSON chunk.
-fs::path without_tangents(const fs::path& glb) {
-  std::ifstream in(glb, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string bytes = buffer.str();
+// A copy of a .glb in `dir` with every primitive's TANGENT attribute removed from its JSON chunk.
+fs::path without_tangents(const fs::path& glb, const fs::path& dir) {
+  const std::string bytes = giq::test::slurp(glb);
   uint32_t json_length = 0;
   std::memcpy(&json_length, bytes.data() + 12, 4);
   nlohmann::json doc = nlohmann::json::parse(bytes.substr(20, json_length));
@@ -121,7 +117,7 @@ fs::path without_tangents(const fs::path& glb) {
     const uint32_t x = uint32_t(v);
     return std::string(reinterpret_cast<const char*>(&x), 4);
   };
-  const fs::path out = fs::temp_directory_path() / ("giq_tangents_" + std::to_string(::getpid()) + ".glb");
+  const fs::path out = dir / glb.filename();
   std::ofstream(out, std::ios::binary) << bytes.substr(0, 8) << u32(20 + json.size() + rest.size()) << u32(json.size()) << "JSON" << json
                                        << rest;
   return out;
@@ -129,9 +125,8 @@ fs::path without_tangents(const fs::path& glb) {
 
 TEST(TangentSpace, TangentsAreBlendersMikkTSpace) {
   const Scene blender = load(test::data("blender_tangents.glb"));
-  const fs::path stripped = without_tangents(test::data("blender_tangents.glb"));
-  const Scene giq = load(stripped);
-  fs::remove(stripped);
+  const giq::test::ScratchDir dir("tangents_stripped");
+  const Scene giq = load(without_tangents(test::data("blender_tangents.glb"), dir.path));
   ASSERT_EQ(blender.meshes.size(), 3u);
   ASSERT_EQ(giq.meshes.size(), 3u);
   for (size_t m = 0; m < blender.meshes.size(); ++m) {
