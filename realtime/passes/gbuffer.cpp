@@ -10,20 +10,13 @@
 namespace giq::realtime {
 
 Parameter GBufferPass::ray_traced_parameter() {
-  return {"gbuffer_ray_traced", -1, -1, 1, true,
-          "G-buffer builder: 1 casts the camera rays through the BVH in compute, 0 rasterises (same contents); "
-          "-1 picks rays on GPUs and the rasteriser on CPU devices"};
-}
-
-GBufferBuilder GBufferPass::builder(const ParameterValues& parameters) {
-  const int v = parameters.get_int("gbuffer_ray_traced");
-  return v < 0 ? GBufferBuilder::Auto : v == 0 ? GBufferBuilder::Raster : GBufferBuilder::RayTraced;
+  return pass_builder_parameter("gbuffer_ray_traced", "G-buffer");
 }
 
 GBufferPass::GBufferPass(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene,
-                         const scenes::FeatureSet& features, uint32_t width, uint32_t height, GBufferBuilder builder)
+                         const scenes::FeatureSet& features, uint32_t width, uint32_t height, PassBuilder builder)
     : scene_(scene), width_(width), height_(height),
-      ray_traced_(builder == GBufferBuilder::RayTraced || (builder == GBufferBuilder::Auto && ctx.info().type != "cpu")),
+      ray_traced_(casts_rays(builder, ctx)),
       compiler_(compiler), ctx_(ctx) {
   const VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
   position_ = Image(ctx, {width, height, 1, VK_FORMAT_R32G32B32A32_SFLOAT, color});
@@ -47,7 +40,8 @@ GBufferPass::GBufferPass(Context& ctx, ShaderCompiler& compiler, const SceneGpu&
 }
 
 GBufferPass::GBufferPass(const TechniqueCreateInfo& ci)
-    : GBufferPass(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.features, ci.width, ci.height, builder(ci.parameters)) {}
+    : GBufferPass(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.features, ci.width, ci.height,
+                  pass_builder(ci.parameters, "gbuffer_ray_traced")) {}
 
 std::vector<VkDescriptorType> GBufferPass::receiver_bindings() {
   auto b = SceneGpu::binding_types();

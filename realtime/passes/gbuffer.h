@@ -28,6 +28,7 @@
 #include "giq/realtime/technique.h"
 #include "giq/scenes/camera.h"
 #include "giq/scenes/features.h"
+#include "passes/pass_builder.h"
 
 namespace giq::realtime {
 
@@ -36,22 +37,14 @@ class GpuTimer;
 class SceneGpu;
 class ShaderCompiler;
 
-// How the G-buffer is built: rasterised, or by casting the pixel-centre camera rays through
-// the BVH in a compute shader (gbuffer_rays.comp; same contents). Auto picks by device:
-// rays on GPUs, whose graphics units may be few (on an H100 the rasteriser path is more than
-// ten times slower: bench/results/realtime-h100.md), the rasteriser on CPU implementations
-// such as lavapipe, where tracing is the slower one.
-enum class GBufferBuilder { Raster, RayTraced, Auto };
-
 class GBufferPass {
  public:
-  // "gbuffer_ray_traced" (-1 auto, 0 raster, 1 rays; default auto), for techniques to list
-  // among their parameters, and its value as a builder.
+  // "gbuffer_ray_traced" (passes/pass_builder.h), for techniques to list among their
+  // parameters. The ray-traced builder is gbuffer_rays.comp.
   static Parameter ray_traced_parameter();
-  static GBufferBuilder builder(const ParameterValues& parameters);
 
   GBufferPass(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene, const scenes::FeatureSet& features,
-              uint32_t width, uint32_t height, GBufferBuilder builder = GBufferBuilder::Raster);
+              uint32_t width, uint32_t height, PassBuilder builder = PassBuilder::Raster);
   // At the technique's resolution, with the builder its "gbuffer_ray_traced" parameter names.
   explicit GBufferPass(const TechniqueCreateInfo& ci);
   bool ray_traced() const { return ray_traced_; }

@@ -10,6 +10,7 @@
 #include "giq/realtime/scene_gpu.h"
 #include "giq/realtime/shader.h"
 #include "giq/realtime/timer.h"
+#include "passes/pass_builder.h"
 #include "passes/shadow_maps.h"
 
 namespace giq::realtime {
@@ -39,7 +40,7 @@ void build(const scenes::Scene& scene, const FlatGeometry& geometry, uint32_t or
   auto add_cube = [&](glm::vec3 position, glm::vec3 intensity) {
     const float emitter = float(emitters.size());
     for (int f = 0; f < 6; ++f)
-      layers.push_back({ShadowMaps::cube_face_view_proj(position, b, f), glm::vec4(0.0f),
+      layers.push_back({ShadowMaps::cube_face_view_proj(position, b, f), glm::mat4(1.0f), glm::vec4(0.0f),
                         glm::vec4(GIQ_RSM_CUBE_FACE, float(cube_size), max3(intensity), emitter)});
   };
   for (size_t i = 0; i < scene.lights.size(); ++i) {
@@ -56,7 +57,7 @@ void build(const scenes::Scene& scene, const FlatGeometry& geometry, uint32_t or
       const glm::mat4 view = glm::lookAtRH(c0 - dir * (2.0f * r), c0, up);
       const glm::mat4 proj = glm::orthoRH_ZO(-r, r, -r, r, 0.0f, 4.0f * r);
       layers.push_back(
-          {proj * view, glm::vec4(dir, 2.0f * r),
+          {proj * view, glm::mat4(1.0f), glm::vec4(dir, 2.0f * r),
            glm::vec4(GIQ_RSM_ORTHO, float(ortho_size), max3(radiant), float(emitters.size()))});
       e.layers.y = 1;
     } else {
@@ -74,6 +75,9 @@ void build(const scenes::Scene& scene, const FlatGeometry& geometry, uint32_t or
     add_cube(a.representative, a.intensity);
     emitters.push_back(e);
   }
+  // The texel rays start on a layer's near plane: the matrix inverted in double, so that the
+  // rays of a light far from the origin keep float's precision.
+  for (gpu::GpuRsmLayer& l : layers) l.clip_to_world = glm::mat4(glm::inverse(glm::dmat4(l.view_proj)));
 }
 
 }  // namespace
@@ -82,13 +86,15 @@ std::vector<Parameter> ReflectiveShadowMaps::parameters() {
   return {{"rsm_size", 1024, 16, 8192, true,
            "RSM texels per side of a directional light's window over the scene"},
           {"rsm_cube_size", 512, 16, 4096, true,
-           "RSM texels per side of each cube face (point, spot and area lights)"}};
+           "RSM texels per side of each cube face (point, spot and area lights)"},
+          pass_builder_parameter("rsm_ray_traced", "Reflective shadow maps'")};
 }
 
 ReflectiveShadowMaps::ReflectiveShadowMaps(const TechniqueCreateInfo& ci)
     : scene_gpu_(ci.scene_gpu),
       ortho_size_(uint32_t(ci.parameters.get_int("rsm_size"))),
-      cube_size_(uint32_t(ci.parameters.get_int("rsm_cube_size"))) {
+      cube_size_(uint32_t(ci.parameters.get_int("rsm_cube_size"))),
+      ray_traced_(casts_rays(pass_builder(ci.parameters, "rsm_ray_traced"), ci.ctx)) {
   build(ci.scene, scene_gpu_.geometry(), ortho_size_, cube_size_, emitters_, layers_);
   extent_ = 1;
   for (const auto& l : layers_) extent_ = std::max(extent_, uint32_t(l.params.y));
@@ -96,9 +102,6 @@ ReflectiveShadowMaps::ReflectiveShadowMaps(const TechniqueCreateInfo& ci)
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
   surface_ = Image(ci.ctx, {extent_, extent_, n, VK_FORMAT_R32G32B32A32_UINT, usage, true});
   flux_ = Image(ci.ctx, {extent_, extent_, n, VK_FORMAT_R16G16B16A16_SFLOAT, usage, true});
-  // One depth buffer serves every layer in turn.
-  depth_ = Image(ci.ctx, {extent_, extent_, 1, VK_FORMAT_D32_SFLOAT,
-                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
   layer_buffer_ = Buffer(ci.ctx, std::max<size_t>(1, layers_.size()) * sizeof(gpu::GpuRsmLayer),
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
   emitter_buffer_ =
@@ -106,14 +109,23 @@ ReflectiveShadowMaps::ReflectiveShadowMaps(const TechniqueCreateInfo& ci)
              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
 
   const auto defines = feature_defines(ci.scene.features);
+  auto bindings = SceneGpu::binding_types();
+  bindings.insert(bindings.end(), 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);  // emitters, layers
+  if (ray_traced_) {
+    bindings.insert(bindings.end(), 2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+    pipeline_ = Pipeline::compute(ci.ctx, ci.compiler.compile("passes/rsm_rays.comp", defines), bindings,
+                                  sizeof(gpu::RsmLayerPush));
+    return;
+  }
+  // One depth buffer serves every layer in turn.
+  depth_ = Image(ci.ctx, {extent_, extent_, 1, VK_FORMAT_D32_SFLOAT,
+                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
   GraphicsDesc g;
   g.vertex_spirv = ci.compiler.compile("passes/rsm.vert", defines);
   g.fragment_spirv = ci.compiler.compile("passes/rsm.frag", defines);
   g.color_formats = {VK_FORMAT_R32G32B32A32_UINT, VK_FORMAT_R16G16B16A16_SFLOAT};
   g.depth_format = VK_FORMAT_D32_SFLOAT;
-  auto bindings = SceneGpu::binding_types();
-  bindings.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-  pipeline_ = Pipeline::graphics(ci.ctx, g, bindings, sizeof(gpu::RsmDrawPush));
+  pipeline_ = Pipeline::graphics(ci.ctx, g, bindings, sizeof(gpu::RsmLayerPush));
 }
 
 void ReflectiveShadowMaps::update(const scenes::Scene& scene) {
@@ -139,31 +151,58 @@ void ReflectiveShadowMaps::record(const FrameInput& in) {
   if (render) update(in.scene);
   in.timer.begin(in.cmd, "rsm");
   if (render) {
-    surface_.transition(in.cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-    flux_.transition(in.cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-    depth_.transition(in.cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
-    pipeline_.bind(in.cmd);
-    auto d = scene_gpu_.descriptors();
-    d.push_back(Descriptor::storage(emitter_buffer_));
-    pipeline_.push_descriptors(in.cmd, d);
-    for (uint32_t l = 0; l < layer_count(); ++l) {
-      const uint32_t size = uint32_t(layers_[l].params.y);
-      // The whole layer is cleared (empty texels hold zero flux: injection reads the array's
-      // full extent), the layer's own size drawn.
-      begin_rendering(in.cmd, extent_, extent_, {{surface_.layer_view(l), flux_.layer_view(l)}, depth_.view(), false},
-                      {size, size});
-      gpu::RsmDrawPush pc{};
-      pc.view_proj = layers_[l].view_proj;
-      pc.emitter = uint32_t(layers_[l].params.w);
-      pc.flux_scale = draw_scale_[l];
-      pipeline_.push_constants(in.cmd, pc);
-      draw_scene(in.cmd, scene_gpu_);
-      vkCmdEndRendering(in.cmd);
-    }
+    if (ray_traced_)
+      cast_rays(in);
+    else
+      rasterise(in);
     surface_.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
     flux_.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
   }
   in.timer.end(in.cmd);
+}
+
+gpu::RsmLayerPush ReflectiveShadowMaps::layer_push(uint32_t l) const {
+  return {l, uint32_t(layers_[l].params.w), draw_scale_[l], uint32_t(layers_[l].params.y)};
+}
+
+void ReflectiveShadowMaps::rasterise(const FrameInput& in) {
+  surface_.transition(in.cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  flux_.transition(in.cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  depth_.transition(in.cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+  pipeline_.bind(in.cmd);
+  auto d = scene_gpu_.descriptors();
+  d.push_back(Descriptor::storage(emitter_buffer_));
+  d.push_back(Descriptor::storage(layer_buffer_));
+  pipeline_.push_descriptors(in.cmd, d);
+  for (uint32_t l = 0; l < layer_count(); ++l) {
+    const uint32_t size = uint32_t(layers_[l].params.y);
+    // The whole layer is cleared (empty texels hold zero flux: injection reads the array's
+    // full extent), the layer's own size drawn.
+    begin_rendering(in.cmd, extent_, extent_, {{surface_.layer_view(l), flux_.layer_view(l)}, depth_.view(), false},
+                    {size, size});
+    pipeline_.push_constants(in.cmd, layer_push(l));
+    draw_scene(in.cmd, scene_gpu_);
+    vkCmdEndRendering(in.cmd);
+  }
+}
+
+void ReflectiveShadowMaps::cast_rays(const FrameInput& in) {
+  surface_.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
+  flux_.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
+  pipeline_.bind(in.cmd);
+  auto d = scene_gpu_.descriptors();
+  d.push_back(Descriptor::storage(emitter_buffer_));
+  d.push_back(Descriptor::storage(layer_buffer_));
+  d.push_back(Descriptor::storage_image(surface_));
+  d.push_back(Descriptor::storage_image(flux_));
+  pipeline_.push_descriptors(in.cmd, d);
+  // Every layer is written whole (cleared beyond its own size) and no layer reads another, so
+  // the dispatches need no barrier between them.
+  for (uint32_t l = 0; l < layer_count(); ++l) {
+    pipeline_.push_constants(in.cmd, layer_push(l));
+    pipeline_.dispatch_2d(in.cmd, extent_, extent_);
+  }
+  full_barrier(in.cmd);
 }
 
 }  // namespace giq::realtime

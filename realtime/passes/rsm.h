@@ -14,7 +14,10 @@
 //   - a directional light: one orthographic window over the whole scene's bounding sphere
 //     (not the camera-following shadow cascades: indirect light comes from all of the sunlit
 //     scene, seen or not), `rsm_size` texels per side.
-// Layers are rendered on the first frame and again when the lights or the geometry moved.
+// Layers are rendered on the first frame and again when the lights or the geometry moved,
+// rasterised (rsm.vert, rsm.frag) or by one ray per texel centre (rsm_rays.comp), as
+// `rsm_ray_traced` says (passes/pass_builder.h): the same texels but where a texel centre's ray
+// passes within the rasteriser's subpixel precision of a triangle's edge.
 
 #include <cstdint>
 #include <vector>
@@ -28,11 +31,12 @@ namespace giq::realtime {
 
 class ReflectiveShadowMaps {
  public:
-  // rsm_size (directional lights' window), rsm_cube_size (per cube face).
+  // rsm_size (directional lights' window), rsm_cube_size (per cube face), rsm_ray_traced.
   static std::vector<Parameter> parameters();
 
   ReflectiveShadowMaps(const TechniqueCreateInfo& ci);
 
+  bool ray_traced() const { return ray_traced_; }
   // Pass name "rsm"; leaves surface() and flux() in GENERAL layout.
   void record(const FrameInput& in);
 
@@ -47,13 +51,17 @@ class ReflectiveShadowMaps {
 
  private:
   void update(const scenes::Scene& scene);
+  gpu::RsmLayerPush layer_push(uint32_t layer) const;
+  void rasterise(const FrameInput& in);
+  void cast_rays(const FrameInput& in);
 
   const SceneGpu& scene_gpu_;
   uint32_t ortho_size_, cube_size_, extent_ = 1;
+  bool ray_traced_;
   std::vector<gpu::GpuRsmEmitter> emitters_;
   std::vector<gpu::GpuRsmLayer> layers_;
   std::vector<float> draw_scale_;  // flux scale per layer
-  Image surface_, flux_, depth_;
+  Image surface_, flux_, depth_;  // depth_: rasterised only
   Buffer layer_buffer_, emitter_buffer_;
   Pipeline pipeline_;
 };

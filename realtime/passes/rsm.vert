@@ -6,12 +6,14 @@
 #include "shaders/scene.glsl"
 #include "passes/rsm_shared.h"
 
-layout(push_constant) uniform Push { RsmDrawPush pc; };
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 1) readonly buffer Layers { GpuRsmLayer layers[]; };
+
+layout(push_constant) uniform Push { RsmLayerPush pc; };
 
 layout(location = 0) out vec3 out_position;
 
 void main() {
   vec3 p = scene_vertices[gl_VertexIndex].position.xyz;
   out_position = p;
-  gl_Position = pc.view_proj * vec4(p, 1.0);
+  gl_Position = layers[pc.layer].view_proj * vec4(p, 1.0);
 }

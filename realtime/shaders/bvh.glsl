@@ -79,8 +79,9 @@ vec3 safe_inverse(vec3 d) {
 
 // any_hit: stop at the first hit (shadow rays); else the closest hit in (0, tmax). camera:
 // a camera ray, which passes the backs of single-sided surfaces (glTF 2.0, 3.9.5: back-face
-// culling; the reference's EmbreeScene::intersect_camera).
-RayHit trace_ray(vec3 org, vec3 dir, float tmax, bool any_hit, bool camera) {
+// culling; the reference's EmbreeScene::intersect_camera). skip: triangles [x, x + y) are not
+// there (an area light's own mesh, seen from its representative point: passes/rsm_rays.comp).
+RayHit trace_ray(vec3 org, vec3 dir, float tmax, bool any_hit, bool camera, uvec2 skip) {
   RayHit hit;
   hit.triangle = 0xffffffffu;
   hit.t = tmax;
@@ -99,6 +100,7 @@ RayHit trace_ray(vec3 org, vec3 dir, float tmax, bool any_hit, bool camera) {
     if (n.count > 0u) {
       for (uint i = 0u; i < n.count; ++i) {
         uint tri = bvh_prims[n.index + i];
+        if (tri - skip.x < skip.y) continue;
         vec3 a, b, c;
         triangle_vertices(tri, a, b, c);
         float t, u, v;
@@ -135,6 +137,10 @@ RayHit trace_ray(vec3 org, vec3 dir, float tmax, bool any_hit, bool camera) {
     node = stack[--sp];
   }
   return hit;
+}
+
+RayHit trace_ray(vec3 org, vec3 dir, float tmax, bool any_hit, bool camera) {
+  return trace_ray(org, dir, tmax, any_hit, camera, uvec2(0u));
 }
 
 RayHit trace_ray(vec3 org, vec3 dir, float tmax, bool any_hit) { return trace_ray(org, dir, tmax, any_hit, false); }

@@ -32,7 +32,7 @@ Frame gbuffer_sequence(Context& ctx, ShaderCompiler& compiler, const std::vector
                        const std::vector<scenes::Camera>& cameras, uint32_t size, bool ray_traced) {
   SceneGpu gpu(ctx, compiler, poses[0]);
   GBufferPass gbuffer(ctx, compiler, gpu, poses[0].features, size, size,
-                      ray_traced ? GBufferBuilder::RayTraced : GBufferBuilder::Raster);
+                      ray_traced ? PassBuilder::RayTraced : PassBuilder::Raster);
   gbuffer.enable_motion_vectors();
   GpuTimer timer(ctx);
   for (size_t f = 0; f < poses.size(); ++f) {
@@ -135,7 +135,7 @@ std::vector<int> expect_motion_follows_vertices(Context& ctx, ShaderCompiler& co
     SCOPED_TRACE(ray_traced ? "ray traced" : "rasterised");
     const Frame f = gbuffer_sequence(ctx, compiler, {before, after}, {cam, cam}, 64, ray_traced);
     SceneGpu gpu(ctx, compiler, after);
-    GBufferPass gb(ctx, compiler, gpu, after.features, 64, 64, ray_traced ? GBufferBuilder::RayTraced : GBufferBuilder::Raster);
+    GBufferPass gb(ctx, compiler, gpu, after.features, 64, 64, ray_traced ? PassBuilder::RayTraced : PassBuilder::Raster);
     GpuTimer timer(ctx);
     ctx.submit_and_wait([&](VkCommandBuffer cmd) {
       timer.reset(cmd);

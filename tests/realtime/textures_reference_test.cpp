@@ -185,7 +185,7 @@ TEST_F(TexturesReferenceTest, GBufferNormalsAreTheReferenceFirstHitNormals) {
   for (bool ray_traced : {false, true}) {
     GpuTimer timer(*ctx);
     GBufferPass gb(*ctx, *compiler, gpu, s.features, size, size,
-                   ray_traced ? GBufferBuilder::RayTraced : GBufferBuilder::Raster);
+                   ray_traced ? PassBuilder::RayTraced : PassBuilder::Raster);
     ctx->submit_and_wait([&](VkCommandBuffer cmd) {
       timer.reset(cmd);
       gb.record(cmd, s.views[0].camera, timer);

@@ -96,6 +96,7 @@ class Image {
   void clear(VkCommandBuffer cmd, const float value[4]);
 
   // Reads an RGBA32F or R32 image back (blocking): width*height*components floats, row-major.
+  // Other 32-bit formats come back as their bits; RGBA16F as its halves, two to a float.
   std::vector<float> read_floats(uint32_t layer = 0);
   // Fills a layer from host data of the same layout (blocking); leaves the image GENERAL.
   void write_floats(const std::vector<float>& data, uint32_t layer = 0);
