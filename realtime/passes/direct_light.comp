@@ -8,10 +8,13 @@
 // energy normalisation (Karis 2013, "Real Shading in Unreal Engine 4"; Turánszki 2017, "Area
 // Lights"): of the declared shape (sphere, disc, rectangle, tube) when the mesh declares one,
 // else of each triangle, the point closest to the reflection ray. A glowing particle is one
-// light (shaders/octahedron_irradiance.glsl), a small sphere for the specular part.
+// light (shaders/octahedron_irradiance.glsl), a small sphere for the specular part. An area
+// light is shadowed by its cube shadow map from the representative point (hard shadows) or,
+// with area_shadow_rays, by rays to points on it (soft shadows: area_visibility).
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/scene.glsl"
+#include "shaders/bvh.glsl"
 #include "shaders/brdf.glsl"
 #include "shaders/surface.glsl"
 #include "shaders/camera.glsl"
@@ -176,6 +179,44 @@ vec3 area_light(GpuAreaLight l, Surface s, vec3 p, vec3 wo) {
   return sum;
 }
 
+// The share of area light l's light at p that no surface blocks, by pc.area_shadow_rays shadow
+// rays from p_off (p lifted off its surface) to points on the light's triangles: the ratio
+// estimator of Heitz et al. 2018 ("Combining Analytic Direct Illumination and Stochastic
+// Shadows", section 3), which multiplies the exact unshadowed light (area_light) by
+// sum(w V) / sum(w) over the same samples, w each sample's unshadowed irradiance over its
+// probability: where all the light is seen the result is exact, where none is it is exactly
+// zero, and in between the noise is that of the visibility alone. The weights are the diffuse
+// integrand, so a glossy highlight takes the diffuse light's share. Rays are stratified over
+// the triangles (chosen uniformly, so w carries each triangle's area) and drawn per pixel and
+// light, not per frame: a still image does not flicker.
+float area_visibility(GpuAreaLight l, uint light, vec3 p_off, vec3 n, vec3 ng, uvec2 px) {
+  uint m = l.range.y;
+  Rng rng = rng_init(px, light, 0x50f7u);
+  float total = 0.0, seen = 0.0;
+  for (uint i = 0u; i < pc.area_shadow_rays; ++i) {
+    float u = (float(i) + rng_next(rng)) / float(pc.area_shadow_rays);
+    GpuAreaTriangle t = area_triangles[l.range.x + min(uint(u * float(m)), m - 1u)];
+    vec2 bc = sample_triangle(vec2(rng_next(rng), rng_next(rng)));
+    vec3 q = t.a.xyz + bc.x * (t.b.xyz - t.a.xyz) + bc.y * (t.c.xyz - t.a.xyz);
+    vec3 d = q - p_off;
+    float dist2 = dot(d, d);
+    if (!(dist2 > 0.0)) continue;
+    float dist = sqrt(dist2);
+    vec3 w = d / dist;
+    // Twice the triangle's area times its cosine towards p (a one-sided emitter sends nothing
+    // backwards).
+    float cos_area = dot(cross(t.b.xyz - t.a.xyz, t.c.xyz - t.a.xyz), -w);
+    if (t.a.w != 0.0) cos_area = abs(cos_area);
+    float cos_r = dot(n, w);
+    if (cos_area <= 0.0 || cos_r <= 0.0 || dot(ng, w) <= 0.0) continue;
+    float weight = luminance(t.radiance.rgb) * cos_r * cos_area / dist2;
+    total += weight;
+    // Stop short of the sampled point, as the path tracer's shadow rays do (path.glsl).
+    if (!occluded(p_off, w, dist * (1.0 - 1e-4))) seen += weight;
+  }
+  return total > 0.0 ? seen / total : 1.0;
+}
+
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(px), pc.size))) return;
@@ -213,7 +254,9 @@ void main() {
       GpuAreaLight l = area_lights[i];
       vec3 c = area_light(l, s, p, wo);
       if (all(equal(c, vec3(0.0)))) continue;
-      radiance += c * shadow_cube(uint(l.position.w), l.position.xyz, p, n, normal_offset, pcf);
+      radiance += c * (pc.area_shadow_rays > 0u && l.range.y > 0u
+                           ? area_visibility(l, i, offset_ray(p, ng), n, ng, uvec2(px))
+                           : shadow_cube(uint(l.position.w), l.position.xyz, p, n, normal_offset, pcf));
     }
   }
   imageStore(out_direct, px, vec4(radiance, 1.0));

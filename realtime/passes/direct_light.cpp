@@ -24,6 +24,9 @@ std::vector<Parameter> DirectLightPass::parameters() {
           {"particle_lights", 1, 0, 1, true,
            "1: light a stage of glowing particles particle by particle, each face of one 16 circumradii away "
            "as a point (shaders/octahedron_irradiance.glsl); 0: every triangle exactly"},
+          {"area_shadow_rays", 0, 0, 1024, true,
+           "0: an area light casts hard shadows from its representative point (its cube shadow map); N: soft "
+           "shadows from N rays a pixel to points on the light, the share of its light they reach"},
           {"particle_shadow_map_size", 1024, 64, 8192, true,
            "texels per side of the cube shadow map of a stage of glowing particles (at most shadow_map_size): "
            "one point of a cloud of particles casts its shadows, so a coarser map than a lamp's does"}};
@@ -35,6 +38,7 @@ DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
       normal_offset_(float(ci.parameters.get("normal_offset"))),
       particle_lights_(ci.parameters.get_int("particle_lights") != 0),
       particle_shadow_size_(uint32_t(ci.parameters.get_int("particle_shadow_map_size"))),
+      area_shadow_rays_(uint32_t(ci.parameters.get_int("area_shadow_rays"))),
       shadows_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.bounds, uint32_t(ci.parameters.get_int("shadow_map_size"))) {
   shadows_.set_split_lambda(float(ci.parameters.get("cascade_split_lambda")));
   shadows_.set_cache_static(ci.parameters.get_int("cache_static_shadows") != 0);
@@ -59,8 +63,9 @@ void DirectLightPass::declare_shadows(const scenes::Scene& scene) {
   light_layer_.clear();
   for (const auto& l : scene.lights)
     light_layer_.push_back(l.type == scenes::LightType::Directional ? shadows_.add_cascades(l.direction) : shadows_.add_cube(l.position));
-  // Each area light's cube leaves out the emitter itself (own_geometry).
-  for (size_t i = 0; i < area_lights_.size(); ++i) {
+  // Each area light's cube leaves out the emitter itself (own_geometry). Lights shadowed by
+  // rays have none.
+  for (size_t i = 0; i < area_lights_.size() && area_shadow_rays_ == 0; ++i) {
     const uint32_t mesh = scene.area_lights[i].mesh;
     const glm::uvec2 skip(own_geometry(scene, scene_gpu_.geometry(), mesh));
     const uint32_t size = scene.meshes[mesh].emitter >= 0 ? particle_shadow_size_ : 0u;
@@ -93,7 +98,7 @@ void DirectLightPass::follow(const scenes::Scene& scene, SceneChange change) {
   build_area_lights(scene);
   shadows_.set_bounds(scene.bounds);
   if (area_lights_.size() == before) {
-    for (size_t i = 0; i < area_lights_.size(); ++i) {
+    for (size_t i = 0; i < area_lights_.size() && area_shadow_rays_ == 0; ++i) {
       const uint32_t mesh = scene.area_lights[i].mesh;
       area_lights_[i].position.w = layers[i];
       shadows_.move(scene.lights.size() + i, glm::vec3(area_lights_[i].position));
@@ -131,6 +136,7 @@ void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer
   pc.pcf_radius = pcf_radius_;
   pc.light_count = scene_gpu_.light_count();
   pc.area_light_count = uint32_t(area_lights_.size());
+  pc.area_shadow_rays = area_shadow_rays_;
   pipeline_.push_constants(in.cmd, pc);
   pipeline_.dispatch_2d(in.cmd, width_, height_);
   full_barrier(in.cmd);

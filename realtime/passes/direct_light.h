@@ -6,7 +6,8 @@
 // direct term and their differences are differences of indirect light only.
 //
 // Punctual lights are evaluated exactly (glTF units and falloff); each emissive mesh is one
-// area light, integrated exactly when unshadowed and shadowed from a representative point.
+// area light, integrated exactly when unshadowed and shadowed from a representative point
+// (hard shadows) or, with `area_shadow_rays`, by rays to points on it (soft shadows).
 
 #include <cstdint>
 #include <string>
@@ -25,7 +26,8 @@ class GBufferPass;
 class DirectLightPass {
  public:
   // The parameters this pass reads (shadow_map_size, pcf_radius, normal_offset,
-  // cascade_split_lambda, cache_static_shadows); a technique lists them among its own.
+  // cascade_split_lambda, cache_static_shadows, particle_lights, area_shadow_rays,
+  // particle_shadow_map_size); a technique lists them among its own.
   static std::vector<Parameter> parameters();
 
   explicit DirectLightPass(const TechniqueCreateInfo& ci);
@@ -61,6 +63,7 @@ class DirectLightPass {
   float normal_offset_;
   bool particle_lights_;          // light particle stages particle by particle
   uint32_t particle_shadow_size_;  // texels per side of a particle stage's shadow cube
+  uint32_t area_shadow_rays_;      // 0: area lights' shadow cubes; else rays a pixel to each
   ShadowMaps shadows_;
   std::vector<uint32_t> light_layer_;
   std::vector<gpu::GpuAreaLight> area_lights_;

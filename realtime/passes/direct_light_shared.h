@@ -18,14 +18,16 @@ struct DirectPush {
   uint pcf_radius;        // PCF kernel radius in texels
   uint light_count;       // punctual lights
   uint area_light_count;  // emissive meshes
-  uint pad0, pad1;
+  uint area_shadow_rays;  // 0: area lights shadowed by their cube maps; else rays a pixel to each
+  uint pad0;
 };
 
 // An emissive mesh as one area light: its triangles are integrated exactly, a stage of glowing
 // particles particle by particle (shaders/octahedron_irradiance.glsl), unshadowed; the light
-// is shadowed as a whole from a representative point with a cube shadow map.
+// is shadowed as a whole, from a representative point with a cube shadow map or, with
+// area_shadow_rays, by rays to points on its triangles.
 struct GpuAreaLight {
-  vec4 position;  // xyz representative point; w: first shadow layer
+  vec4 position;  // xyz representative point; w: first shadow layer (none with area_shadow_rays)
   // x: first GpuAreaTriangle, y: count; z: first GpuParticleLight, w: count. A stage of an
   // emitter's particles (w > 0) is lit particle by particle; its triangles stay listed for
   // the passes that sample emitters by triangle (gi1's light grid).
