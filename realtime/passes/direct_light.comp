@@ -191,6 +191,7 @@ vec3 area_light(GpuAreaLight l, Surface s, vec3 p, vec3 wo) {
 // light, not per frame: a still image does not flicker.
 float area_visibility(GpuAreaLight l, uint light, vec3 p_off, vec3 n, vec3 ng, uvec2 px) {
   uint m = l.range.y;
+  if (m == 0u) return 1.0;
   Rng rng = rng_init(px, light, 0x50f7u);
   float total = 0.0, seen = 0.0;
   for (uint i = 0u; i < pc.area_shadow_rays; ++i) {
@@ -254,7 +255,7 @@ void main() {
       GpuAreaLight l = area_lights[i];
       vec3 c = area_light(l, s, p, wo);
       if (all(equal(c, vec3(0.0)))) continue;
-      radiance += c * (pc.area_shadow_rays > 0u && l.range.y > 0u
+      radiance += c * (pc.area_shadow_rays > 0u
                            ? area_visibility(l, i, offset_ray(p, ng), n, ng, uvec2(px))
                            : shadow_cube(uint(l.position.w), l.position.xyz, p, n, normal_offset, pcf));
     }
