@@ -28,7 +28,7 @@
 #include "giq/realtime/technique.h"
 #include "giq/scenes/camera.h"
 #include "giq/scenes/features.h"
-#include "passes/pass_builder.h"
+#include "giq/realtime/pass_builder.h"
 
 namespace giq::realtime {
 
@@ -39,7 +39,7 @@ class ShaderCompiler;
 
 class GBufferPass {
  public:
-  // "gbuffer_ray_traced" (passes/pass_builder.h), for techniques to list among their
+  // "gbuffer_ray_traced" (giq/realtime/pass_builder.h), for techniques to list among their
   // parameters. The ray-traced builder is gbuffer_rays.comp.
   static Parameter ray_traced_parameter();
 

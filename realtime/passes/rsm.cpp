@@ -10,7 +10,7 @@
 #include "giq/realtime/scene_gpu.h"
 #include "giq/realtime/shader.h"
 #include "giq/realtime/timer.h"
-#include "passes/pass_builder.h"
+#include "giq/realtime/pass_builder.h"
 #include "passes/shadow_maps.h"
 
 namespace giq::realtime {

@@ -16,8 +16,8 @@
 //     scene, seen or not), `rsm_size` texels per side.
 // Layers are rendered on the first frame and again when the lights or the geometry moved,
 // rasterised (rsm.vert, rsm.frag) or by one ray per texel centre (rsm_rays.comp), as
-// `rsm_ray_traced` says (passes/pass_builder.h): the same texels but where a texel centre's ray
-// passes within the rasteriser's subpixel precision of a triangle's edge.
+// `rsm_ray_traced` says (giq/realtime/pass_builder.h): the same texels but where a texel
+// centre's ray passes within the rasteriser's subpixel precision of a triangle's edge.
 
 #include <cstdint>
 #include <vector>

@@ -3,7 +3,7 @@
 // per texel centre through the BVH, from the layer's near plane to its far plane, as the
 // rasteriser clips (rsm_texel_ray). The closest surface gives the texel rsm.frag would write
 // (rsm_texel.glsl); texels that see nothing, and those of the array beyond this layer's size,
-// are cleared. For GPUs whose graphics units are the bottleneck (passes/pass_builder.h).
+// are cleared. For GPUs whose graphics units are the bottleneck (giq/realtime/pass_builder.h).
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/bvh.glsl"

@@ -7,6 +7,7 @@
 #include "giq/base/error.h"
 #include "giq/base/version.h"
 #include "giq/realtime/context.h"
+#include "giq/realtime/pass_builder.h"
 #include "giq/realtime/resources.h"
 #include "giq/realtime/scene_gpu.h"
 #include "giq/realtime/shader.h"
@@ -111,6 +112,7 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
       {"giq_version", version()},
       {"technique", info.name},
       {"parameters", params.all()},
+      {"builders", resolved_builders(info.parameters, params, ctx)},
       {"scene", scene.path.string()},
       {"scene_hash", scene.content_hash},
       {"view", view_name},

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "giq/base/error.h"
+#include "giq/realtime/pass_builder.h"
 #include "giq/realtime/renderer.h"
 #include "giq/realtime/technique.h"
 #include "test_scenes.h"
@@ -84,6 +85,27 @@ TEST(Techniques, ParametersAreValidated) {
 
 class RendererTest : public test::VulkanTest {};
 
+// timings.json names the builder each two-way pass used: what was asked, or the device's choice.
+TEST_F(RendererTest, TimingsSayWhichBuilderRan) {
+  const scenes::Scene s = test::cornell_box();
+  RenderOptions o;
+  o.technique = "rsm";
+  o.width = o.height = 16;
+  for (const auto& [asked, expected] : std::vector<std::pair<std::vector<std::string>, nlohmann::json>>{
+           {{}, {{"gbuffer_ray_traced", "raster"}, {"rsm_ray_traced", "raster"}}},
+           {{"gbuffer_ray_traced=1", "rsm_ray_traced=1"}, {{"gbuffer_ray_traced", "rays"}, {"rsm_ray_traced", "rays"}}},
+           {{"rsm_ray_traced=1"}, {{"gbuffer_ray_traced", "raster"}, {"rsm_ray_traced", "rays"}}}}) {
+    o.parameters = asked;
+    o.parameters.insert(o.parameters.end(), {"shadow_map_size=64", "rsm_cube_size=16", "samples=4"});
+    const auto j = render_sequence(*ctx, *compiler, s, o, [](RenderedFrame&) {});
+    EXPECT_EQ(j["builders"], expected) << j["builders"].dump();
+  }
+  o.technique = "pt";
+  o.parameters = {};
+  EXPECT_EQ(render_sequence(*ctx, *compiler, s, o, [](RenderedFrame&) {})["builders"], nlohmann::json::object());
+  EXPECT_THROW(pass_builder_parameter("shadow_ray_traced", "shadow maps'"), std::logic_error);
+}
+
 TEST_F(RendererTest, TimingsHaveEveryPassAndExcludeWarmup) {
   const scenes::Scene s = test::cornell_box();
   RenderOptions o;
@@ -110,6 +132,8 @@ TEST_F(RendererTest, TimingsHaveEveryPassAndExcludeWarmup) {
     EXPECT_GE(p["gpu_ms"]["median"].get<double>(), 0.0);
   }
   EXPECT_EQ(passes, (std::vector<std::string>{"shadow_maps", "gbuffer", "direct_lighting"}));
+  // lavapipe is a CPU device: the device's choice (-1, the default) is the rasteriser.
+  EXPECT_EQ(j["builders"], nlohmann::json({{"gbuffer_ray_traced", "raster"}}));
   EXPECT_GT(j["frame_gpu_ms"]["median"].get<double>(), 0.0);
   // The frame spans its passes.
   double sum = 0.0;
