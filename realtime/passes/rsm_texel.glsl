@@ -5,7 +5,7 @@
 // texel's point where the ray through its centre meets the triangle's plane, as the G-buffer
 // does (passes/gbuffer.h), not the rasteriser's interpolated position: that one is off by the
 // rasteriser's subpixel snapping (2^-8 texel on lavapipe, 3e-5 m on the test Cornell box's
-// 64-texel faces), which moved the spot light's falloff under it by 0.2 %.
+// 64-texel faces), enough to change a texel's flux under a spot light's falloff by 0.2 %.
 //
 // Flux is stored as a density, so that it does not depend on the texel's size and a lookup
 // can integrate it over the light's view: per steradian seen from the light for a cube face
