@@ -105,12 +105,15 @@ TEST_F(RsmLpvTest, ADarkLightGivesExactlyNoIndirectLight) {
   // And a scene with no light at all: no RSM layer, nothing to gather or inject.
   const scenes::Scene unlit = test::lambert_plane(0.5f);
   for (const char* t : {"rsm", "lpv"})
-    for (const scenes::Scene* scene : {static_cast<const scenes::Scene*>(&s), &unlit}) {
-      const image::Image img = render(*scene, t, 16, small(t));
-      for (const char* c : {"indirect.R", "indirect.G", "indirect.B"})
-        for (size_t i = 0; i < img.pixel_count(); ++i)
-          ASSERT_EQ(img.channel(c)[i], 0.0f) << t << " " << c << " " << i;
-    }
+    for (const char* builder : {"rsm_ray_traced=0", "rsm_ray_traced=1"})
+      for (const scenes::Scene* scene : {static_cast<const scenes::Scene*>(&s), &unlit}) {
+        std::vector<std::string> p = small(t);
+        p.push_back(builder);
+        const image::Image img = render(*scene, t, 16, p);
+        for (const char* c : {"indirect.R", "indirect.G", "indirect.B"})
+          for (size_t i = 0; i < img.pixel_count(); ++i)
+            ASSERT_EQ(img.channel(c)[i], 0.0f) << t << " " << builder << " " << c << " " << i;
+      }
 }
 
 TEST_F(RsmLpvTest, IndirectLightScalesLinearlyBeyondHalfFloatRange) {
@@ -458,10 +461,10 @@ double texels_to_nearest_edge(const FlatGeometry& g, const gpu::GpuRsmLayer& l, 
 // (passes/rsm_texel.glsl). So every texel holds the same bits, except where the ray passes
 // within the rasteriser's subpixel precision (2^-8 texel on lavapipe) of a triangle's edge:
 // the rasteriser snaps vertices to that grid and breaks ties by its own rule, the watertight
-// test takes both triangles' edges as inside. Measured: 71 and 13 such texels, all within
-// 6e-4 texel of an edge. Every kind of layer: a spot light's cube, the sun's window, the
-// Cornell box's area light's cube without the light's own quad; and textures, a normal map
-// and an alpha mask's cut-outs.
+// test takes both triangles' edges as inside. Measured: 71, 13, 73 and 55 such texels (the
+// scenes below, in order), all within 6e-4 texel of an edge. Every kind of layer: a spot light's cube, the sun's window, the
+// Cornell box's area light's cube without the light's own quad; textures, a normal map and an
+// alpha mask's cut-outs; scenes from millimetres to a kilometre.
 TEST_F(RsmLpvTest, RayTracedMapsHoldTheRasterisedTexels) {
   scenes::Scene cornell = test::cornell_box();
   scenes::Light spot;
@@ -484,11 +487,25 @@ TEST_F(RsmLpvTest, RayTracedMapsHoldTheRasterisedTexels) {
   textured.lights = {point};
   textured.derive();
   ASSERT_TRUE(textured.features.textures && textured.features.normal_maps && textured.features.alpha_mask);
+  // And the Cornell box a thousand times smaller and larger (a millimetre box, a kilometre
+  // hall): the edges' distance is measured in texels, so the same bound holds.
+  std::vector<scenes::Scene> scaled;
+  for (const float k : {1e-3f, 1e3f}) {
+    scenes::Scene c = cornell;
+    for (scenes::Mesh& m : c.meshes)
+      for (glm::vec3& p : m.positions) p *= k;
+    for (scenes::Light& l : c.lights) l.position *= k;
+    for (scenes::View& v : c.views) v.camera.position *= k;
+    c.derive();
+    scaled.push_back(std::move(c));
+  }
   VkPhysicalDeviceProperties properties;
   vkGetPhysicalDeviceProperties(ctx->physical_device(), &properties);
   const double snap = std::ldexp(1.0, -int(properties.limits.subPixelPrecisionBits));
-  for (const scenes::Scene* s : {&cornell, &textured}) {
-    SCOPED_TRACE(s == &cornell ? "Cornell box, spot, sun, area light" : "textured box");
+  for (const scenes::Scene* s : {&cornell, &textured, &scaled[0], &scaled[1]}) {
+    SCOPED_TRACE(s == &cornell    ? "Cornell box, spot, sun, area light"
+                 : s == &textured ? "textured box"
+                                  : "Cornell box scaled by " + std::to_string(s->bounds.diagonal() / cornell.bounds.diagonal()));
     const Maps a = reflective_shadow_maps(*ctx, *compiler, *s, "rsm_ray_traced=0");
     const Maps b = reflective_shadow_maps(*ctx, *compiler, *s, "rsm_ray_traced=1");
     ASSERT_EQ(a.surface.size(), b.surface.size());
