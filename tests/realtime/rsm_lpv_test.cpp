@@ -462,7 +462,7 @@ double texels_to_nearest_edge(const FlatGeometry& g, const gpu::GpuRsmLayer& l, 
 // within the rasteriser's subpixel precision (2^-8 texel on lavapipe) of a triangle's edge:
 // the rasteriser snaps vertices to that grid and breaks ties by its own rule, the watertight
 // test takes both triangles' edges as inside. Measured: 71, 13, 73 and 55 such texels (the
-// scenes below, in order), all within 6e-4 texel of an edge. Every kind of layer: a spot light's cube, the sun's window, the
+// scenes below, in order), all within 1e-3 texel of an edge. Every kind of layer: a spot light's cube, the sun's window, the
 // Cornell box's area light's cube without the light's own quad; textures, a normal map and an
 // alpha mask's cut-outs; scenes from millimetres to a kilometre.
 TEST_F(RsmLpvTest, RayTracedMapsHoldTheRasterisedTexels) {
