@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "giq/realtime/context.h"
+#include "giq/realtime/pass_builder.h"
 #include "giq/realtime/scene_gpu.h"
 #include "giq/realtime/shader.h"
 #include "giq/realtime/timer.h"
@@ -29,7 +30,8 @@ std::vector<Parameter> DirectLightPass::parameters() {
            "shadows from N rays a pixel to points on the light, the share of its light they reach"},
           {"particle_shadow_map_size", 1024, 64, 8192, true,
            "texels per side of the cube shadow map of a stage of glowing particles (at most shadow_map_size): "
-           "one point of a cloud of particles casts its shadows, so a coarser map than a lamp's does"}};
+           "one point of a cloud of particles casts its shadows, so a coarser map than a lamp's does"},
+          pass_builder_parameter("shadow_maps_ray_traced", "Shadow maps'")};
 }
 
 DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
@@ -39,7 +41,8 @@ DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
       particle_lights_(ci.parameters.get_int("particle_lights") != 0),
       particle_shadow_size_(uint32_t(ci.parameters.get_int("particle_shadow_map_size"))),
       area_shadow_rays_(uint32_t(ci.parameters.get_int("area_shadow_rays"))),
-      shadows_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.bounds, uint32_t(ci.parameters.get_int("shadow_map_size"))) {
+      shadows_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.bounds, uint32_t(ci.parameters.get_int("shadow_map_size")),
+               casts_rays(pass_builder(ci.parameters, "shadow_maps_ray_traced"), ci.ctx)) {
   shadows_.set_split_lambda(float(ci.parameters.get("cascade_split_lambda")));
   shadows_.set_cache_static(ci.parameters.get_int("cache_static_shadows") != 0);
   build_area_lights(ci.scene);
@@ -67,9 +70,9 @@ void DirectLightPass::declare_shadows(const scenes::Scene& scene) {
   // rays have none.
   for (size_t i = 0; i < area_lights_.size() && area_shadow_rays_ == 0; ++i) {
     const uint32_t mesh = scene.area_lights[i].mesh;
-    const glm::uvec2 skip(own_geometry(scene, scene_gpu_.geometry(), mesh));
     const uint32_t size = scene.meshes[mesh].emitter >= 0 ? particle_shadow_size_ : 0u;
-    area_lights_[i].position.w = float(shadows_.add_cube(glm::vec3(area_lights_[i].position), skip, size));
+    area_lights_[i].position.w = float(
+        shadows_.add_cube(glm::vec3(area_lights_[i].position), own_geometry(scene, scene_gpu_.geometry(), mesh), size));
   }
   light_layer_buffer_ = Buffer::storage(*ctx_, light_layer_);
 }
@@ -102,7 +105,7 @@ void DirectLightPass::follow(const scenes::Scene& scene, SceneChange change) {
       const uint32_t mesh = scene.area_lights[i].mesh;
       area_lights_[i].position.w = layers[i];
       shadows_.move(scene.lights.size() + i, glm::vec3(area_lights_[i].position));
-      shadows_.set_skip(scene.lights.size() + i, glm::uvec2(own_geometry(scene, scene_gpu_.geometry(), mesh)));
+      shadows_.set_skip(scene.lights.size() + i, own_geometry(scene, scene_gpu_.geometry(), mesh));
     }
   } else {
     declare_shadows(scene);

@@ -27,7 +27,7 @@ class DirectLightPass {
  public:
   // The parameters this pass reads (shadow_map_size, pcf_radius, normal_offset,
   // cascade_split_lambda, cache_static_shadows, particle_lights, area_shadow_rays,
-  // particle_shadow_map_size); a technique lists them among its own.
+  // particle_shadow_map_size, shadow_maps_ray_traced); a technique lists them among its own.
   static std::vector<Parameter> parameters();
 
   explicit DirectLightPass(const TechniqueCreateInfo& ci);

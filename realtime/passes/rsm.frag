@@ -9,6 +9,7 @@
 #include "passes/rsm.glsl"
 #include "passes/rsm_albedo.glsl"
 #include "passes/rsm_texel.glsl"
+#include "shaders/texel_ray.glsl"
 
 layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 0) readonly buffer Emitters { GpuRsmEmitter emitters[]; };
 layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 1) readonly buffer Layers { GpuRsmLayer layers[]; };
@@ -28,8 +29,8 @@ void main() {
   if (tri - e.layers.z < e.layers.w) discard;
   vec3 o, d;
   float tmax;
-  rsm_texel_ray(layers[pc.layer].clip_to_world, gl_FragCoord.xy, float(pc.size), o, d, tmax);
-  vec3 p = rsm_plane_point(o, d, tri, in_position);
+  texel_ray(layers[pc.layer].clip_to_world, gl_FragCoord.xy, float(pc.size), o, d, tmax);
+  vec3 p = texel_plane_point(o, d, tri, in_position);
 #ifdef GIQ_ALPHA_MASK
   vec3 a, b, c;
   triangle_vertices(tri, a, b, c);

@@ -14,38 +14,17 @@
 // W/m^2). The flux a texel stands for is the density times its solid angle or area. Values are
 // multiplied by the layer's flux scale (1 / the light's brightest channel) so that fp16 keeps
 // its relative precision for any light and never overflows.
-// Needs scene.glsl, surface.glsl, lights.glsl, rsm_shared.h, rsm.glsl, rsm_albedo.glsl.
+// Needs scene.glsl, surface.glsl, lights.glsl, rsm_shared.h, rsm.glsl, rsm_albedo.glsl; the
+// builders take the texel's ray and point from shaders/texel_ray.glsl.
 #ifndef GIQ_RSM_TEXEL_GLSL
 #define GIQ_RSM_TEXEL_GLSL
-
-// The ray through a texel centre (in texels from the layer's corner) of a layer `size` texels
-// wide: from the near plane (origin o) to the far plane (tmax), the rasteriser's clipping.
-// NDC y runs down the image, as the rasteriser's viewport.
-void rsm_texel_ray(mat4 clip_to_world, vec2 centre, float size, out vec3 o, out vec3 d, out float tmax) {
-  vec2 ndc = centre * (2.0 / size) - 1.0;
-  vec4 near_h = clip_to_world * vec4(ndc, 0.0, 1.0), far_h = clip_to_world * vec4(ndc, 1.0, 1.0);
-  o = near_h.xyz / near_h.w;
-  d = far_h.xyz / far_h.w - o;
-  tmax = length(d);
-  d /= tmax;
-}
-
-// Where the ray (o, d) meets the plane of triangle `tri`; `fallback` for a plane seen exactly
-// edge-on.
-vec3 rsm_plane_point(vec3 o, vec3 d, uint tri, vec3 fallback) {
-  vec3 a, b, c;
-  triangle_vertices(tri, a, b, c);
-  vec3 ng = normalize(cross(b - a, c - a));
-  float denom = dot(d, ng);
-  return abs(denom) > 1e-12 ? o + (dot(a - o, ng) / denom) * d : fallback;
-}
 
 struct RsmTexel {
   uvec4 surface;  // rsm_encode_surface
   vec4 flux;      // flux density x flux_scale
 };
 
-// Point p of triangle `tri` (rsm_plane_point), lit by emitter e. The caller has already left
+// Point p of triangle `tri` (texel_plane_point), lit by emitter e. The caller has already left
 // out what no texel shows: the emitter's own triangles and alpha cut-outs.
 RsmTexel rsm_texel(GpuRsmEmitter e, uint tri, vec3 p, float flux_scale) {
   vec3 a, b, c;

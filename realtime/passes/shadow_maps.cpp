@@ -13,11 +13,22 @@
 
 namespace giq::realtime {
 
+// The rasteriser's slope-scaled depth bias (vkCmdSetDepthBias): surfaces at grazing angles to
+// the light need the most. The rays add the same (shadow_maps_rays.comp).
+constexpr float kSlopeBias = 1.5f;
+
 ShadowMaps::ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& scene, const scenes::Bounds& bounds,
-                       uint32_t size)
-    : ctx_(ctx), scene_(scene), bounds_(bounds), size_(size), sampler_(ctx, false, true) {
-  GraphicsDesc g;
+                       uint32_t size, bool ray_traced)
+    : ctx_(ctx), scene_(scene), bounds_(bounds), size_(size), ray_traced_(ray_traced), sampler_(ctx, false, true) {
   const auto defines = feature_defines(scene.features());
+  if (ray_traced_) {
+    auto bindings = SceneGpu::binding_types();
+    bindings.insert(bindings.end(), 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    pipeline_ = Pipeline::compute(ctx, compiler.compile("passes/shadow_maps_rays.comp", defines), bindings,
+                                  sizeof(gpu::ShadowRayPush));
+    return;
+  }
+  GraphicsDesc g;
   g.vertex_spirv = compiler.compile("passes/shadow_maps.vert", defines);
   // Depth only, except where alpha-masked casters need their cut-outs discarded.
   if (scene.features().alpha_mask) g.fragment_spirv = compiler.compile("passes/shadow_maps.frag", defines);
@@ -26,7 +37,7 @@ ShadowMaps::ShadowMaps(Context& ctx, ShaderCompiler& compiler, const SceneGpu& s
   pipeline_ = Pipeline::graphics(ctx, g, SceneGpu::binding_types(), sizeof(gpu::ShadowPush));
 }
 
-uint32_t ShadowMaps::add_cube(glm::vec3 position, glm::uvec2 skip, uint32_t size) {
+uint32_t ShadowMaps::add_cube(glm::vec3 position, glm::uvec4 skip, uint32_t size) {
   const uint32_t first = uint32_t(layers_.size());
   sources_.push_back({true, position, first, size == 0 ? size_ : std::min(size, size_)});
   layers_.resize(first + 6);
@@ -65,7 +76,7 @@ void ShadowMaps::move(size_t source, glm::vec3 v) {
   }
 }
 
-void ShadowMaps::set_skip(size_t source, glm::uvec2 skip) {
+void ShadowMaps::set_skip(size_t source, glm::uvec4 skip) {
   const Source& s = sources_.at(source);
   if (!s.cube || skip_[s.first_layer] == skip) return;
   std::fill(skip_.begin() + s.first_layer, skip_.begin() + s.first_layer + 6, skip);
@@ -103,6 +114,9 @@ void ShadowMaps::create_resources() {
   depth_ = Image(ctx_, {size_, size_, n, VK_FORMAT_D32_SFLOAT,
                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, true});
   layer_buffer_ = Buffer(ctx_, n * sizeof(gpu::GpuShadowLayer), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
+  if (ray_traced_)
+    ray_depth_ = Buffer(ctx_, uint64_t(size_) * size_ * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                        MemoryUsage::Device);
 }
 
 void ShadowMaps::update_cascades(const Source& s, const scenes::Camera& camera, float aspect) {
@@ -160,25 +174,53 @@ void ShadowMaps::record(VkCommandBuffer cmd, const scenes::Camera& camera, float
   for (const auto& s : sources_)
     if (!s.cube) update_cascades(s, camera, aspect);
   auto* out = static_cast<gpu::GpuShadowLayer*>(layer_buffer_.mapped());
-  for (uint32_t i = 0; i < layer_count(); ++i) out[i] = {layers_[i], params_[i]};
+  // The texel rays start on a layer's near plane: the matrix inverted in double, so that the
+  // rays of a light far from the origin keep float's precision.
+  for (uint32_t i = 0; i < layer_count(); ++i)
+    out[i] = {layers_[i], glm::mat4(glm::inverse(glm::dmat4(layers_[i]))), params_[i]};
 
   timer.begin(cmd, "shadow_maps");
-  depth_.transition(cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+  depth_.transition(cmd, ray_traced_ ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
   pipeline_.bind(cmd);
-  pipeline_.push_descriptors(cmd, scene_.descriptors());
+  auto d = scene_.descriptors();
+  if (ray_traced_) {
+    d.push_back(Descriptor::storage(layer_buffer_));
+    d.push_back(Descriptor::storage(ray_depth_));
+  }
+  pipeline_.push_descriptors(cmd, d);
   for (uint32_t l = 0; l < layer_count(); ++l) {
     if (cache_static_ && !cubes_stale_ && params_[l].x == GIQ_SHADOW_CUBE_FACE) continue;
     const uint32_t size = uint32_t(std::lround(params_[l].w * float(size_)));
-    begin_rendering(cmd, size, size, {{}, depth_.layer_view(l), true});
-    // Slope-scaled bias: surfaces at grazing angles to the light need the most.
-    vkCmdSetDepthBias(cmd, 0.0f, 0.0f, 1.5f);
-    pipeline_.push_constants(cmd, gpu::ShadowPush{layers_[l], glm::uvec4(skip_[l], 0u, 0u)});
-    draw_scene(cmd, scene_);
-    vkCmdEndRendering(cmd);
+    if (ray_traced_)
+      cast_rays(cmd, l, size);
+    else
+      rasterise(cmd, l, size);
   }
   depth_.transition(cmd, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   cubes_stale_ = false;
   timer.end(cmd);
+}
+
+void ShadowMaps::rasterise(VkCommandBuffer cmd, uint32_t l, uint32_t size) {
+  begin_rendering(cmd, size, size, {{}, depth_.layer_view(l), true});
+  vkCmdSetDepthBias(cmd, 0.0f, 0.0f, kSlopeBias);
+  pipeline_.push_constants(cmd, gpu::ShadowPush{layers_[l], skip_[l]});
+  draw_scene(cmd, scene_);
+  vkCmdEndRendering(cmd);
+}
+
+void ShadowMaps::cast_rays(VkCommandBuffer cmd, uint32_t l, uint32_t size) {
+  // One buffer serves every layer in turn: the rays fill it, a copy moves it into the layer
+  // (a depth image cannot be a storage image).
+  pipeline_.push_constants(cmd, gpu::ShadowRayPush{skip_[l], l, size, kSlopeBias, 0u});
+  pipeline_.dispatch_2d(cmd, size, size);
+  full_barrier(cmd);
+  VkBufferImageCopy c{};
+  c.bufferRowLength = size;
+  c.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, l, 1};
+  c.imageExtent = {size, size, 1};
+  vkCmdCopyBufferToImage(cmd, ray_depth_.handle(), depth_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &c);
+  full_barrier(cmd);
 }
 
 }  // namespace giq::realtime

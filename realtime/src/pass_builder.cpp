@@ -8,7 +8,7 @@
 namespace giq::realtime {
 
 const std::vector<std::string>& pass_builder_names() {
-  static const std::vector<std::string> names = {"gbuffer_ray_traced", "rsm_ray_traced"};
+  static const std::vector<std::string> names = {"gbuffer_ray_traced", "rsm_ray_traced", "shadow_maps_ray_traced"};
   return names;
 }
 

@@ -415,7 +415,7 @@ Maps reflective_shadow_maps(Context& ctx, ShaderCompiler& compiler, const scenes
   return m;
 }
 
-// The ray through the centre of texel (x, y) of layer l, as rsm_texel_ray casts it (in double).
+// The ray through the centre of texel (x, y) of layer l, as shaders/texel_ray.glsl casts it (in double).
 struct TexelRay {
   glm::dvec3 o, d;
   double tmax;

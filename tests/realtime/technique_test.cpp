@@ -92,9 +92,10 @@ TEST_F(RendererTest, TimingsSayWhichBuilderRan) {
   o.technique = "rsm";
   o.width = o.height = 16;
   for (const auto& [asked, expected] : std::vector<std::pair<std::vector<std::string>, nlohmann::json>>{
-           {{}, {{"gbuffer_ray_traced", "raster"}, {"rsm_ray_traced", "raster"}}},
-           {{"gbuffer_ray_traced=1", "rsm_ray_traced=1"}, {{"gbuffer_ray_traced", "rays"}, {"rsm_ray_traced", "rays"}}},
-           {{"rsm_ray_traced=1"}, {{"gbuffer_ray_traced", "raster"}, {"rsm_ray_traced", "rays"}}}}) {
+           {{}, {{"gbuffer_ray_traced", "raster"}, {"rsm_ray_traced", "raster"}, {"shadow_maps_ray_traced", "raster"}}},
+           {{"gbuffer_ray_traced=1", "rsm_ray_traced=1", "shadow_maps_ray_traced=1"},
+            {{"gbuffer_ray_traced", "rays"}, {"rsm_ray_traced", "rays"}, {"shadow_maps_ray_traced", "rays"}}},
+           {{"rsm_ray_traced=1"}, {{"gbuffer_ray_traced", "raster"}, {"rsm_ray_traced", "rays"}, {"shadow_maps_ray_traced", "raster"}}}}) {
     o.parameters = asked;
     o.parameters.insert(o.parameters.end(), {"shadow_map_size=64", "rsm_cube_size=16", "samples=4"});
     const auto j = render_sequence(*ctx, *compiler, s, o, [](RenderedFrame&) {});
@@ -133,7 +134,7 @@ TEST_F(RendererTest, TimingsHaveEveryPassAndExcludeWarmup) {
   }
   EXPECT_EQ(passes, (std::vector<std::string>{"shadow_maps", "gbuffer", "direct_lighting"}));
   // lavapipe is a CPU device: the device's choice (-1, the default) is the rasteriser.
-  EXPECT_EQ(j["builders"], nlohmann::json({{"gbuffer_ray_traced", "raster"}}));
+  EXPECT_EQ(j["builders"], nlohmann::json({{"gbuffer_ray_traced", "raster"}, {"shadow_maps_ray_traced", "raster"}}));
   EXPECT_GT(j["frame_gpu_ms"]["median"].get<double>(), 0.0);
   // The frame spans its passes.
   double sum = 0.0;

@@ -1,10 +1,10 @@
 #pragma once
 // How a pass that sees the scene from a viewpoint through a grid of texels is built:
 // rasterised, or by casting one ray per texel centre through the BVH in a compute shader
-// (same contents). The G-buffer (passes/gbuffer.h) and the reflective shadow maps
-// (passes/rsm.h) offer both. Auto picks by device: rays on GPUs, whose graphics units may be
-// few (on the H100 and the H200 the rasterised passes take several to more than ten times as
-// long as the same work in compute: bench/results/realtime-h100.md, dynamic-h200.md), the
+// (same contents). The G-buffer (passes/gbuffer.h), the shadow maps (passes/shadow_maps.h)
+// and the reflective shadow maps (passes/rsm.h) offer both. Auto picks by device: rays on GPUs, whose graphics units may be
+// few (on the H100 and the H200 the rasterised passes take up to more than ten times as long
+// as the same work in compute: bench/results/realtime-h100.md, dynamic-h200.md), the
 // rasteriser on CPU implementations such as lavapipe, where tracing is the slower one. A run
 // records which builder each pass used (timings.json "builders").
 
