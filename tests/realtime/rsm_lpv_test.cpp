@@ -466,39 +466,12 @@ double texels_to_nearest_edge(const FlatGeometry& g, const gpu::GpuRsmLayer& l, 
 // Cornell box's area light's cube without the light's own quad; textures, a normal map and an
 // alpha mask's cut-outs; scenes from millimetres to a kilometre.
 TEST_F(RsmLpvTest, RayTracedMapsHoldTheRasterisedTexels) {
-  scenes::Scene cornell = test::cornell_box();
-  scenes::Light spot;
-  spot.type = scenes::LightType::Spot;
-  spot.position = {0.5f, 0.8f, 0.5f};
-  spot.direction = glm::normalize(glm::vec3(-0.5f, -1.0f, -0.6f));
-  spot.intensity = 3.0f;
-  scenes::Light sun;
-  sun.type = scenes::LightType::Directional;
-  sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
-  sun.intensity = 2.0f;
-  cornell.lights = {spot, sun};
-  cornell.derive();
+  const scenes::Scene cornell = test::cornell_box_every_light(), textured = test::lit_textured_box();
   ASSERT_EQ(cornell.area_lights.size(), 1u);
-  scenes::Scene textured = test::textured_box();
-  scenes::Light point;
-  point.type = scenes::LightType::Point;
-  point.position = {0.3f, 0.5f, 0.2f};
-  point.intensity = 2.0f;
-  textured.lights = {point};
-  textured.derive();
   ASSERT_TRUE(textured.features.textures && textured.features.normal_maps && textured.features.alpha_mask);
   // And the Cornell box a thousand times smaller and larger (a millimetre box, a kilometre
   // hall): the edges' distance is measured in texels, so the same bound holds.
-  std::vector<scenes::Scene> scaled;
-  for (const float k : {1e-3f, 1e3f}) {
-    scenes::Scene c = cornell;
-    for (scenes::Mesh& m : c.meshes)
-      for (glm::vec3& p : m.positions) p *= k;
-    for (scenes::Light& l : c.lights) l.position *= k;
-    for (scenes::View& v : c.views) v.camera.position *= k;
-    c.derive();
-    scaled.push_back(std::move(c));
-  }
+  const std::vector<scenes::Scene> scaled = {test::scaled(cornell, 1e-3f), test::scaled(cornell, 1e3f)};
   VkPhysicalDeviceProperties properties;
   vkGetPhysicalDeviceProperties(ctx->physical_device(), &properties);
   const double snap = std::ldexp(1.0, -int(properties.limits.subPixelPrecisionBits));

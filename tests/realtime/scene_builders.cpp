@@ -131,6 +131,45 @@ scenes::Scene textured_box() {
   return s;
 }
 
+scenes::Scene cornell_box_every_light() {
+  scenes::Scene s = cornell_box();
+  scenes::Light spot;
+  spot.type = scenes::LightType::Spot;
+  spot.position = {0.5f, 0.8f, 0.5f};
+  spot.direction = glm::normalize(glm::vec3(-0.5f, -1.0f, -0.6f));
+  spot.intensity = 3.0f;
+  scenes::Light sun;
+  sun.type = scenes::LightType::Directional;
+  sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
+  sun.intensity = 2.0f;
+  s.lights = {spot, sun};
+  s.derive();
+  return s;
+}
+
+scenes::Scene lit_textured_box() {
+  scenes::Scene s = textured_box();
+  scenes::Light point;
+  point.type = scenes::LightType::Point;
+  point.position = {0.3f, 0.5f, 0.2f};
+  point.intensity = 2.0f;
+  s.lights = {point};
+  s.derive();
+  return s;
+}
+
+scenes::Scene scaled(scenes::Scene s, float k) {
+  for (scenes::Mesh& m : s.meshes)
+    for (glm::vec3& p : m.positions) p *= k;
+  for (scenes::Light& l : s.lights) l.position *= k;
+  for (scenes::View& v : s.views) {
+    v.camera.position *= k;
+    v.camera.znear *= k;
+  }
+  s.derive();
+  return s;
+}
+
 scenes::Scene lambert_plane(float rho, float half, float eye_height) {
   scenes::Scene s;
   const int m = add_material(s, glm::vec3(rho));

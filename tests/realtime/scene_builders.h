@@ -31,6 +31,18 @@ scenes::Scene cornell_box(glm::vec3 light_radiance = glm::vec3(17.0f, 12.0f, 4.0
 // double-sided alpha-masked grating under the light whose cut-outs let light through.
 scenes::Scene textured_box();
 
+// The Cornell box also lit by a spot light and a sun: with its emitter, every kind of
+// shadow-map and reflective-shadow-map layer (a cube, cascades or a window, an area light's
+// cube without its own quad).
+scenes::Scene cornell_box_every_light();
+
+// textured_box() lit by a point light.
+scenes::Scene lit_textured_box();
+
+// `s` scaled by k about the origin: its geometry, its lights' places, its cameras' places and
+// near planes.
+scenes::Scene scaled(scenes::Scene s, float k);
+
 // A Lambertian plane y = 0, [-half, half]^2 (albedo rho), seen from above by view "top"
 // looking straight down from height `eye_height` with a 60 degree field of view.
 scenes::Scene lambert_plane(float rho, float half = 4.0f, float eye_height = 3.0f);
