@@ -161,6 +161,13 @@ void ReflectiveShadowMaps::record(const FrameInput& in) {
   in.timer.end(in.cmd);
 }
 
+std::vector<Descriptor> ReflectiveShadowMaps::builder_descriptors() const {
+  auto d = scene_gpu_.descriptors();
+  d.push_back(Descriptor::storage(emitter_buffer_));
+  d.push_back(Descriptor::storage(layer_buffer_));
+  return d;
+}
+
 gpu::RsmLayerPush ReflectiveShadowMaps::layer_push(uint32_t l) const {
   return {l, uint32_t(layers_[l].params.w), draw_scale_[l], uint32_t(layers_[l].params.y)};
 }
@@ -170,10 +177,7 @@ void ReflectiveShadowMaps::rasterise(const FrameInput& in) {
   flux_.transition(in.cmd, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
   depth_.transition(in.cmd, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
   pipeline_.bind(in.cmd);
-  auto d = scene_gpu_.descriptors();
-  d.push_back(Descriptor::storage(emitter_buffer_));
-  d.push_back(Descriptor::storage(layer_buffer_));
-  pipeline_.push_descriptors(in.cmd, d);
+  pipeline_.push_descriptors(in.cmd, builder_descriptors());
   for (uint32_t l = 0; l < layer_count(); ++l) {
     const uint32_t size = uint32_t(layers_[l].params.y);
     // The whole layer is cleared (empty texels hold zero flux: injection reads the array's
@@ -190,9 +194,7 @@ void ReflectiveShadowMaps::cast_rays(const FrameInput& in) {
   surface_.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
   flux_.transition(in.cmd, VK_IMAGE_LAYOUT_GENERAL);
   pipeline_.bind(in.cmd);
-  auto d = scene_gpu_.descriptors();
-  d.push_back(Descriptor::storage(emitter_buffer_));
-  d.push_back(Descriptor::storage(layer_buffer_));
+  auto d = builder_descriptors();
   d.push_back(Descriptor::storage_image(surface_));
   d.push_back(Descriptor::storage_image(flux_));
   pipeline_.push_descriptors(in.cmd, d);

@@ -51,6 +51,8 @@ class ReflectiveShadowMaps {
 
  private:
   void update(const scenes::Scene& scene);
+  // Both builders' first bindings: the scene's, the emitters, the layers.
+  std::vector<Descriptor> builder_descriptors() const;
   gpu::RsmLayerPush layer_push(uint32_t layer) const;
   void rasterise(const FrameInput& in);
   void cast_rays(const FrameInput& in);

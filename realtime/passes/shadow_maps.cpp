@@ -175,9 +175,9 @@ void ShadowMaps::record(VkCommandBuffer cmd, const scenes::Camera& camera, float
     if (!s.cube) update_cascades(s, camera, aspect);
   auto* out = static_cast<gpu::GpuShadowLayer*>(layer_buffer_.mapped());
   // The texel rays start on a layer's near plane: the matrix inverted in double, so that the
-  // rays of a light far from the origin keep float's precision.
+  // rays of a light far from the origin keep float's precision. The rasteriser needs none.
   for (uint32_t i = 0; i < layer_count(); ++i)
-    out[i] = {layers_[i], glm::mat4(glm::inverse(glm::dmat4(layers_[i]))), params_[i]};
+    out[i] = {layers_[i], ray_traced_ ? glm::mat4(glm::inverse(glm::dmat4(layers_[i]))) : glm::mat4(1.0f), params_[i]};
 
   timer.begin(cmd, "shadow_maps");
   depth_.transition(cmd, ray_traced_ ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);

@@ -20,13 +20,18 @@ layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 1) writeonly buffer Depth { f
 
 layout(push_constant) uniform Push { ShadowRayPush pc; };
 
-// The depth of the point where the ray through texel centre `centre` meets the plane of `tri`.
+// The depth of the point where the ray (o, d) meets the plane of `tri`.
+float plane_depth(GpuShadowLayer l, vec3 o, vec3 d, uint tri, vec3 fallback) {
+  vec4 c = l.view_proj * vec4(texel_plane_point(o, d, tri, fallback), 1.0);
+  return c.z / c.w;
+}
+
+// The same for the ray through texel centre `centre`.
 float plane_depth(GpuShadowLayer l, vec2 centre, uint tri, vec3 fallback) {
   vec3 o, d;
   float tmax;
   texel_ray(l.clip_to_world, centre, float(pc.size), o, d, tmax);
-  vec4 c = l.view_proj * vec4(texel_plane_point(o, d, tri, fallback), 1.0);
-  return c.z / c.w;
+  return plane_depth(l, o, d, tri, fallback);
 }
 
 void main() {
@@ -41,7 +46,7 @@ void main() {
   float z = 1.0;
   if (hit.triangle != 0xffffffffu) {
     vec3 p = o + hit.t * d;
-    z = plane_depth(l, centre, hit.triangle, p);
+    z = plane_depth(l, o, d, hit.triangle, p);
     float m = max(abs(plane_depth(l, centre + vec2(1.0, 0.0), hit.triangle, p) - z),
                   abs(plane_depth(l, centre + vec2(0.0, 1.0), hit.triangle, p) - z));
     z = clamp(z + pc.slope_bias * m, 0.0, 1.0);
