@@ -13,37 +13,38 @@
 //
 // Same estimator, same random numbers, same operations in the same order: a path gives the
 // same bits in a lane as in PathIntegrator::trace, and tests/reference/lanes_test.cpp fails
-// when the two drift apart (a change to the Lambertian BSDF, the emissive triangles' sampling
-// or the warps must be made in both). The lanes take every scene rendered with the Sobol
-// sampler. On Lambertian, untextured scenes every step's arithmetic runs on the eight lanes;
-// where materials have a GGX lobe or read textures (or the environment is a map), each lane
-// builds its surface with make_surface, evaluates and samples the BSDF with bsdf.h, looks up
-// the environment and samples emissive triangles with LightSampler::sample, one lane at a
-// time: the same functions as PathIntegrator, so the same bits by construction. The rays are
-// still traced eight at a time, and the rest of the step (frames, offsets, MIS weights,
-// throughput, roulette) still runs on the eight lanes. Tracing the GGX lobe's arithmetic in
-// lanes as well would need lane versions of libm's sin and cos with libm's bits.
+// when the two drift apart (a change to the BSDF, the emissive triangles' sampling or the
+// warps must be made in both). The lanes take every scene rendered with the Sobol
+// sampler, and each step's arithmetic runs on the eight lanes, the GGX lobe's sampling,
+// evaluation and lobe choice included (lane_bsdf.h). What reads textures is done one lane at
+// a time with PathIntegrator's own functions, so the same bits by construction: where
+// materials read textures (or the environment is a map), each lane builds its surface with
+// make_surface, looks up the environment and samples emissive triangles with
+// LightSampler::sample; the BSDF, frames, offsets, MIS weights, throughput and roulette then
+// run on the eight lanes.
 
 #include <embree3/rtcore.h>
 
-#include <array>
 #include <bit>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "giq/reference/film.h"
+#include "lane_bsdf.h"
 #include "lanes.h"
 #include "path_integrator.h"
 
 namespace giq::reference {
 
 // Whether the lanes render feature mask F with these settings: with the Sobol sampler, whose
-// numbers the lanes draw for eight paths at once, and, unless told always, only where every
-// step runs on the eight lanes (RenderSettings::Lanes).
+// numbers the lanes draw for eight paths at once, and, unless told always, only where they
+// were measured faster: not where a material has a GGX lobe or reads textures, where the two
+// integrators are about as fast (bench/results/reference-lanes-amd-epyc-2vcpu.md).
 inline bool lanes_support(unsigned F, const RenderSettings& s) {
   using L = RenderSettings::Lanes;
-  const bool per_lane = has(F, kSpecular) || has(F, kTextures);
-  return s.block() != 0 && (s.lanes == L::Always || (s.lanes == L::Auto && !per_lane));
+  const bool faster = !has(F, kSpecular) && !has(F, kTextures);
+  return s.block() != 0 && (s.lanes == L::Always || (s.lanes == L::Auto && faster));
 }
 
 namespace lanes {
@@ -66,16 +67,6 @@ template <int skip>
     g.u[d] = to_float(bits(x >> 8)) * 0x1p-24f;
   }
   return g;
-}
-
-// sampling.h's square_to_cosine_hemisphere.
-[[gnu::always_inline]] inline V3 cosine_hemisphere(F ux, F uy) {
-  const F ox = 2.0f * ux - 1.0f, oy = 2.0f * uy - 1.0f;
-  const I x_wedge = abs(ox) > abs(oy);
-  const F r = select(x_wedge, ox, oy), q = select(x_wedge, oy, ox);
-  const SinCosOf<F> a = sincos_quarter(select(r != 0.0f, (kPi / 4.0f) * (q / r), F{}));
-  const F dx = r * select(x_wedge, a.cos, a.sin), dy = r * select(x_wedge, a.sin, a.cos);
-  return {dx, dy, sqrt(max(F{}, 1.0f - dx * dx - dy * dy))};
 }
 
 // sampling.h's Frame.
@@ -127,11 +118,14 @@ class LaneIntegrator {
   using LU = lanes::U;
   using V3 = lanes::V3;
   static constexpr int kWidth = lanes::kWidth;
-  // Surfaces, BSDF and emitters one lane at a time, with PathIntegrator's own functions.
-  static constexpr bool kPerLane = has(F, kSpecular) || has(F, kTextures);
+  // Textured surfaces and emitters one lane at a time, with PathIntegrator's own functions.
+  static constexpr bool kPerLane = has(F, kTextures);
 
  public:
-  explicit LaneIntegrator(const RenderContext& ctx) : c_(ctx) {}
+  explicit LaneIntegrator(const RenderContext& ctx) : c_(ctx) {
+    if constexpr (has(F, kSpecular) && !kPerLane)
+      for (const scenes::Material& m : ctx.scene.materials) bsdf_.push_back(bsdf_params<F>(m));
+  }
 
   // Adds samples to the pixels [x0, x1) x [y0, y1) until each has `target_spp`, in each
   // pixel's sample order, as PathIntegrator's loop over the pixels does.
@@ -246,13 +240,9 @@ class LaneIntegrator {
         V3 wi_l;
         LI next;
         if constexpr (has(F, kSpecular)) {
-          next = cont;
-          for (int l = 0; l < kWidth; ++l) {
-            if (cont[l] == 0) continue;
-            glm::vec3 w(0.0f);
-            if (!bsdf_sample<true>(sf.bsdf[l], get(wo_l, l), u.u[2][l], {u.u[0][l], u.u[1][l]}, w)) next[l] = 0;
-            set(wi_l, l, w);
-          }
+          const lanes::Sample b = lanes::bsdf_sample(sf.bsdf, wo_l, u.u[2], u.u[0], u.u[1]);
+          wi_l = b.wi;
+          next = cont & b.ok;
         } else {
           wi_l = cosine_hemisphere(u.u[0], u.u[1]);
           next = cont & ~(wo_l.z <= 0.0f) & (wi_l.z > 0.0f);
@@ -343,7 +333,7 @@ class LaneIntegrator {
     V3 p, ng, ns, base, emission;
     LF metallic{}, t{}, area{}, cos_ray{}, light_pmf{}, offset{};
     LI black{};
-    std::array<BsdfParams, kPerLane ? kWidth : 0> bsdf;  // make_surface's, for bsdf.h one lane at a time
+    lanes::Bsdf bsdf;  // with a GGX lobe in the scene
   };
 
   struct LightSamples {
@@ -410,7 +400,7 @@ class LaneIntegrator {
         sf.t[l] = h.t, sf.area[l] = one.area, sf.cos_ray[l] = one.cos_ray;
         if constexpr (has(F, kEmissive))
           if (one.emission != glm::vec3(0.0f) && s.depth[l] > 0) sf.light_pmf[l] = c_.lights.triangle_pmf(h.mesh, h.triangle);
-        sf.bsdf[l] = one.bsdf;
+        if constexpr (has(F, kSpecular)) set(sf.bsdf, l, one.bsdf);
       }
       return sf;
     }
@@ -433,6 +423,7 @@ class LaneIntegrator {
       double_sided[l] = m.double_sided ? -1 : 0;
       set(sf.base, l, glm::vec3(m.base_color));
       sf.metallic[l] = m.metallic;
+      if constexpr (has(F, kSpecular)) set(sf.bsdf, l, bsdf_[size_t(mesh.material)]);
       if constexpr (has(F, kEmissive)) {
         sf.t[l] = rh.ray.tfar[l], sf.area[l] = shape.area;
         if (m.is_emissive()) {
@@ -461,19 +452,13 @@ class LaneIntegrator {
     return sf;
   }
 
-  // The BSDF's value and pdf for the lanes in `m` (the others: zero): the Lambertian lobe on
-  // the eight lanes, or bsdf_evaluate one lane at a time.
+  // The BSDF's value and pdf for the lanes in `m` (the others: zero): bsdf_evaluate<true>, or
+  // without a GGX lobe in the scene the Lambertian lobe alone.
   [[gnu::always_inline]] lanes::Lambert evaluate(LI m, const Surfaces& sf, const V3& wo_l, const V3& wi_l) const {
     using namespace lanes;
     if constexpr (has(F, kSpecular)) {
-      Lambert e{V3{}, LF{}};
-      for (int l = 0; l < kWidth; ++l) {
-        if (m[l] == 0) continue;
-        const BsdfEval one = bsdf_evaluate<true>(sf.bsdf[l], get(wo_l, l), get(wi_l, l));
-        set(e.f, l, one.f);
-        e.pdf[l] = one.pdf;
-      }
-      return e;
+      const Eval e = bsdf_evaluate(sf.bsdf, wo_l, wi_l);
+      return {select(m, e.f, V3{}), select(m, e.pdf, LF{})};
     } else {
       return lambert(sf.base, sf.metallic, wo_l.z, wi_l.z);
     }
@@ -564,6 +549,7 @@ class LaneIntegrator {
   }
 
   const RenderContext& c_;
+  std::vector<BsdfParams> bsdf_;  // each material's, where surfaces are made on the lanes
 };
 
 }  // namespace giq::reference

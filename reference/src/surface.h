@@ -25,6 +25,28 @@ struct Surface {
   bool black = false;   // the back of a one-sided material: absorbs and emits nothing
 };
 
+// The BSDF of material m with the values it has at a point (its factors, times its textures
+// there when F has them).
+template <unsigned F>
+BsdfParams bsdf_params(const scenes::Material& m, glm::vec3 base, float metallic, float roughness, float specular,
+                       glm::vec3 specular_color) {
+  BsdfParams p;
+  p.base = base;
+  p.metallic = std::clamp(metallic, 0.0f, 1.0f);
+  const float r = std::clamp(roughness, 0.0f, 1.0f);
+  p.alpha = std::max(r * r, kMinAlpha);
+  p.specular_lobe = has(F, kSpecular) && m.has_specular_lobe();
+  // KHR_materials_specular: F0 = min(F0(ior = 1.5) * specularColor, 1) * specular, F90 = specular.
+  p.f0_dielectric = glm::min(0.04f * specular_color, glm::vec3(1.0f)) * specular;
+  p.f90_dielectric = specular;
+  return p;
+}
+// The same for a material without textures.
+template <unsigned F>
+BsdfParams bsdf_params(const scenes::Material& m) {
+  return bsdf_params<F>(m, glm::vec3(m.base_color), m.metallic, m.roughness, m.specular, m.specular_color);
+}
+
 template <unsigned F>
 Surface make_surface(const RenderContext& ctx, const Hit& hit, glm::vec3 dir) {
   Surface s;
@@ -110,14 +132,7 @@ Surface make_surface(const RenderContext& ctx, const Hit& hit, glm::vec3 dir) {
   s.ng = ng;
   s.ns = ns;
 
-  s.bsdf.base = base;
-  s.bsdf.metallic = std::clamp(metallic, 0.0f, 1.0f);
-  const float r = std::clamp(roughness, 0.0f, 1.0f);
-  s.bsdf.alpha = std::max(r * r, kMinAlpha);
-  s.bsdf.specular_lobe = has(F, kSpecular) && m.has_specular_lobe();
-  // KHR_materials_specular: F0 = min(F0(ior = 1.5) * specularColor, 1) * specular, F90 = specular.
-  s.bsdf.f0_dielectric = glm::min(0.04f * specular_color, glm::vec3(1.0f)) * specular;
-  s.bsdf.f90_dielectric = specular;
+  s.bsdf = bsdf_params<F>(m, base, metallic, roughness, specular, specular_color);
   if constexpr (has(F, kEmissive)) {
     if (m.is_emissive()) s.emission = emitted_radiance<F>(ctx.scene, m, m.uv2_slots & scenes::kEmissiveSlot ? mesh.uv_at(tri, b1, b2, true) : uv);
   }

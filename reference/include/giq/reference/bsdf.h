@@ -1,7 +1,8 @@
 #pragma once
 // The glTF 2.0 metallic-roughness BRDF (glTF 2.0 specification, Appendix B, "BRDF
 // Implementation") with KHR_materials_specular, in a local shading frame where the normal is
-// +z. All functions are pure; the integrator composes them.
+// +z. All functions are pure; the integrator composes them. reference/src/lane_bsdf.h computes
+// the same on eight lanes with the same bits: a change here is a change there.
 //
 //   f = (1 - metallic) * dielectric + metallic * metal
 //   dielectric = (1 - specular * max(F_d)) * base / pi + F_d * D * V   (KHR_materials_specular)
@@ -75,12 +76,14 @@ inline glm::vec3 ggx_sample_visible_normal(glm::vec3 wo, float alpha, glm::vec2 
   const float lensq = vh.x * vh.x + vh.y * vh.y;
   const glm::vec3 t1 = lensq > 0.0f ? glm::vec3(-vh.y, vh.x, 0.0f) / std::sqrt(lensq) : glm::vec3(1.0f, 0.0f, 0.0f);
   const glm::vec3 t2 = glm::cross(vh, t1);
-  const float r = std::sqrt(u.x);
-  const float phi = 2.0f * kPi * u.y;
-  const float p1 = r * std::cos(phi);
-  float p2 = r * std::sin(phi);
+  // A uniform point on the unit disk: Heitz's listing draws it in polar coordinates; the
+  // concentric map draws the same distribution with sincos_quarter's polynomials instead of
+  // libm's sin and cos, which the eight-lane integrator can then compute with the same bits
+  // (lane_bsdf.h).
+  const glm::vec2 d = square_to_concentric_disk(u);
+  const float p1 = d.x;
   const float s = 0.5f * (1.0f + vh.z);
-  p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * p2;
+  const float p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * d.y;
   const glm::vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
   return glm::normalize(glm::vec3(alpha * nh.x, alpha * nh.y, std::max(1e-6f, nh.z)));
 }

@@ -52,9 +52,8 @@ struct RenderSettings {
   bool all_features = false;
   // Eight paths at a time (reference/src/lane_integrator.h) or one at a time, always with the
   // same image. The lanes need the Sobol sampler. Auto takes them where they are faster:
-  // Lambertian, untextured scenes (1.1x to 1.3x). On scenes with GGX lobes or textures, where
-  // each lane runs the one-path integrator's material code, they measured 0.83x to 1.0x
-  // (docs/reference.md, "Light transport").
+  // Lambertian, untextured scenes (1.1x to 1.3x). On scenes with GGX lobes or textures they
+  // measured 0.85x to 1.04x (docs/reference.md, "Light transport").
   enum class Lanes { Auto, Always, Never };
   Lanes lanes = Lanes::Auto;
   Sampler sampler = Sampler::Sobol;
