@@ -102,16 +102,25 @@ struct Disk {
   return select(p.specular_lobe, clamp(s, F(0.05f), F(1.0f)), F{});
 }
 
-// bsdf_evaluate<true>: f and the sampling pdf; zero on lanes with either direction below the
-// surface.
+// BsdfEval across the lanes.
 struct Eval {
   V3 f;
   F pdf;
 };
+
+// bsdf.h's bsdf_evaluate without a specular lobe: the Lambertian value and the cosine pdf.
+[[gnu::always_inline]] inline Eval lambert(V3 base, F metallic, F cos_o, F cos_i) {
+  const I on = ~((cos_o <= 0.0f) | (cos_i <= 0.0f));  // as bsdf_evaluate tests it, NaN included
+  const V3 f = base * ((1.0f - metallic) * kInvPi);
+  return {select(on, f, V3{}), select(on & (cos_i > 0.0f), cos_i * kInvPi, F{})};
+}
+
+// bsdf_evaluate<true>: f and the sampling pdf; zero on lanes with either direction below the
+// surface.
 [[gnu::always_inline]] inline Eval bsdf_evaluate(const Bsdf& p, V3 wo, V3 wi) {
   const I on = ~((wo.z <= 0.0f) | (wi.z <= 0.0f));  // as bsdf.h tests it, NaN included
   const F pdf_cos = cosine_hemisphere_pdf(wi.z);
-  const V3 lambert = p.base * ((1.0f - p.metallic) * kInvPi);
+  const Eval diffuse = lambert(p.base, p.metallic, wo.z, wi.z);  // without the GGX lobe
   const V3 h = normalize(wo + wi);
   const F voh = max(F{}, dot(wo, h));
   const F dv = ggx_d(h, p.alpha) * ggx_g2(wo, wi, p.alpha) / (4.0f * wo.z * wi.z);
@@ -121,8 +130,8 @@ struct Eval {
   const V3 ggx = (1.0f - p.metallic) * dielectric + p.metallic * fm * dv;
   const F ps = specular_lobe_probability(p, wo.z);
   const F pdf_ggx = ps * ggx_reflection_pdf(wo, h, p.alpha) + (1.0f - ps) * pdf_cos;
-  return {select(on, select(p.specular_lobe, ggx, lambert), V3{}),
-          select(on, select(p.specular_lobe, pdf_ggx, pdf_cos), F{})};
+  return {select(p.specular_lobe, select(on, ggx, V3{}), diffuse.f),
+          select(p.specular_lobe, select(on, pdf_ggx, F{}), diffuse.pdf)};
 }
 
 // bsdf_sample<true>: wi for wo; `ok` is bsdf_sample's result (false: the path ends).

@@ -98,17 +98,6 @@ struct Frame {
   return select(a > 0.0f, w, F{});
 }
 
-// bsdf.h's bsdf_evaluate without a specular lobe: the Lambertian value and the cosine pdf.
-struct Lambert {
-  V3 f;
-  F pdf;
-};
-[[gnu::always_inline]] inline Lambert lambert(V3 base, F metallic, F cos_o, F cos_i) {
-  const I on = ~((cos_o <= 0.0f) | (cos_i <= 0.0f));  // as bsdf_evaluate tests it, NaN included
-  const V3 f = base * ((1.0f - metallic) * kInvPi);
-  return {select(on, f, V3{}), select(on & (cos_i > 0.0f), cos_i * kInvPi, F{})};
-}
-
 }  // namespace lanes
 
 template <unsigned F>
@@ -216,7 +205,7 @@ class LaneIntegrator {
           const LightSamples ls = sample_lights(cont, sf.p, u);
           const LI use = ls.delta | (rs.estimator != Estimator::BsdfOnly ? -1 : 0);
           LI lit = cont & use & (ls.pdf > 0.0f) & (dot(ls.wi, sf.ng) > 0.0f) & nonzero(ls.radiance);
-          const Lambert e = evaluate(lit, sf, wo_l, frame.to_local(ls.wi));
+          const Eval e = evaluate(lit, sf, wo_l, frame.to_local(ls.wi));
           lit &= nonzero(e.f);
           if (any(lit)) {
             const LI unweighted = ls.delta | (rs.estimator == Estimator::LightOnly ? -1 : 0);
@@ -250,7 +239,7 @@ class LaneIntegrator {
         const V3 wi = frame.to_world(wi_l);
         // Reflection only: a direction below the geometric surface would leak through it.
         next &= ~(dot(wi, sf.ng) <= 0.0f);
-        const Lambert e = evaluate(next, sf, wo_l, wi_l);
+        const Eval e = evaluate(next, sf, wo_l, wi_l);
         next &= e.pdf > 0.0f;
         V3 beta = s.beta * (e.f * (wi_l.z / e.pdf));
         // Unbiased Russian roulette: survive with q, divide by q.
@@ -454,7 +443,7 @@ class LaneIntegrator {
 
   // The BSDF's value and pdf for the lanes in `m` (the others: zero): bsdf_evaluate<true>, or
   // without a GGX lobe in the scene the Lambertian lobe alone.
-  [[gnu::always_inline]] lanes::Lambert evaluate(LI m, const Surfaces& sf, const V3& wo_l, const V3& wi_l) const {
+  [[gnu::always_inline]] lanes::Eval evaluate(LI m, const Surfaces& sf, const V3& wo_l, const V3& wi_l) const {
     using namespace lanes;
     if constexpr (has(F, kSpecular)) {
       const Eval e = bsdf_evaluate(sf.bsdf, wo_l, wi_l);
