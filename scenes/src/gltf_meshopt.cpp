@@ -45,12 +45,12 @@ void decode_meshopt_views(const Document& d, Context& ctx) {
     const uint64_t count = unsigned_property(d, *e, "count", w, true);
     const std::string mode_name = string_property(d, *e, "mode", w, nullptr);
     const std::string filter_name = string_property(d, *e, "filter", w, "NONE");
-    Mode mode;
+    Mode mode{};  // each name sets it or fails (throws), which the compiler cannot see through the lambda
     if (mode_name == "ATTRIBUTES") mode = Mode::Attributes;
     else if (mode_name == "TRIANGLES") mode = Mode::Triangles;
     else if (mode_name == "INDICES") mode = Mode::Indices;
     else fail("mode", "is \"" + mode_name + "\"; expected \"ATTRIBUTES\", \"TRIANGLES\" or \"INDICES\"");
-    Filter filter;
+    Filter filter{};
     if (filter_name == "NONE") filter = Filter::None;
     else if (filter_name == "OCTAHEDRAL") filter = Filter::Octahedral;
     else if (filter_name == "QUATERNION") filter = Filter::Quaternion;
