@@ -2,10 +2,10 @@
 // bsdf.h's BRDF on eight lanes: the glTF metallic-roughness BRDF with KHR_materials_specular,
 // evaluated and sampled for eight paths with each instruction. Every function does, lane by
 // lane, the IEEE operations of its namesake in bsdf.h in the same order (glm's normalize is
-// v * (1 / sqrt(v.v)), its reflect i - (n (n.i)) 2, std::clamp and std::max are the selects
-// below), and computes both sides of a branch where bsdf.h takes one: a path gives the same
-// bits here as in PathIntegrator (tests/reference/lanes_test.cpp). A change to bsdf.h is a
-// change here.
+// v * (1 / sqrt(v.v)), its reflect i - (n (n.i)) 2; std::clamp is the select below, std::max
+// lanes.h's), and computes both sides of a branch where bsdf.h takes one: a path gives the
+// same bits here as in PathIntegrator (tests/reference/lanes_test.cpp). A change to bsdf.h is
+// a change here.
 //
 // The visible-normal sampling needs the sine and cosine of an angle: bsdf.h draws its disk
 // point with the concentric map, whose quarter-range polynomials (sampling.h's
