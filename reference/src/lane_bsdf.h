@@ -95,7 +95,7 @@ struct Disk {
 }
 
 [[gnu::always_inline]] inline F specular_lobe_probability(const Bsdf& p, F cos_o) {
-  const F fd = max_component(fresnel_schlick(p.f0_dielectric, {p.f90_dielectric, p.f90_dielectric, p.f90_dielectric}, cos_o));
+  const F fd = max_component(fresnel_schlick(p.f0_dielectric, splat(p.f90_dielectric), cos_o));
   const F spec = p.metallic + (1.0f - p.metallic) * fd;
   const F diff = (1.0f - p.metallic) * (1.0f - fd) * max_component(p.base);
   const F s = spec / max(spec + diff, F(1e-8f));
@@ -124,8 +124,8 @@ struct Eval {
   const V3 h = normalize(wo + wi);
   const F voh = max(F{}, dot(wo, h));
   const F dv = ggx_d(h, p.alpha) * ggx_g2(wo, wi, p.alpha) / (4.0f * wo.z * wi.z);
-  const V3 fd = fresnel_schlick(p.f0_dielectric, {p.f90_dielectric, p.f90_dielectric, p.f90_dielectric}, voh);
-  const V3 fm = fresnel_schlick(p.base, splat(glm::vec3(1.0f)), voh);
+  const V3 fd = fresnel_schlick(p.f0_dielectric, splat(p.f90_dielectric), voh);
+  const V3 fm = fresnel_schlick(p.base, splat(F(1.0f)), voh);
   const V3 dielectric = (1.0f - max_component(fd)) * p.base * F(kInvPi) + fd * dv;
   const V3 ggx = (1.0f - p.metallic) * dielectric + p.metallic * fm * dv;
   const F ps = specular_lobe_probability(p, wo.z);

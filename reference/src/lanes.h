@@ -101,6 +101,7 @@ struct V3 {
   F x, y, z;
 };
 [[gnu::always_inline]] inline V3 splat(glm::vec3 v) { return {v.x, v.y, v.z}; }
+[[gnu::always_inline]] inline V3 splat(F s) { return {s, s, s}; }  // glm::vec3(s)
 [[gnu::always_inline]] inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 [[gnu::always_inline]] inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 [[gnu::always_inline]] inline V3 operator-(V3 a) { return {-a.x, -a.y, -a.z}; }
