@@ -111,10 +111,7 @@ class LaneIntegrator {
   static constexpr bool kPerLane = has(F, kTextures);
 
  public:
-  explicit LaneIntegrator(const RenderContext& ctx) : c_(ctx) {
-    if constexpr (has(F, kSpecular) && !kPerLane)
-      for (const scenes::Material& m : ctx.scene.materials) bsdf_.push_back(bsdf_params<F>(m));
-  }
+  explicit LaneIntegrator(const RenderContext& ctx) : c_(ctx) {}
 
   // Adds samples to the pixels [x0, x1) x [y0, y1) until each has `target_spp`, in each
   // pixel's sample order, as PathIntegrator's loop over the pixels does.
@@ -412,7 +409,7 @@ class LaneIntegrator {
       double_sided[l] = m.double_sided ? -1 : 0;
       set(sf.base, l, glm::vec3(m.base_color));
       sf.metallic[l] = m.metallic;
-      if constexpr (has(F, kSpecular)) set(sf.bsdf, l, bsdf_[size_t(mesh.material)]);
+      if constexpr (has(F, kSpecular)) set(sf.bsdf, l, c_.material_bsdf[size_t(mesh.material)]);
       if constexpr (has(F, kEmissive)) {
         sf.t[l] = rh.ray.tfar[l], sf.area[l] = shape.area;
         if (m.is_emissive()) {
@@ -538,7 +535,6 @@ class LaneIntegrator {
   }
 
   const RenderContext& c_;
-  std::vector<BsdfParams> bsdf_;  // each material's, where surfaces are made on the lanes
 };
 
 }  // namespace giq::reference

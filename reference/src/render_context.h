@@ -5,6 +5,9 @@
 
 #include <glm/glm.hpp>
 
+#include <vector>
+
+#include "bsdf_params.h"
 #include "embree_scene.h"
 #include "giq/reference/renderer.h"
 #include "lights.h"
@@ -14,7 +17,9 @@ namespace giq::reference {
 struct RenderContext {
   RenderContext(const scenes::Scene& s, const scenes::Camera& cam, const RenderSettings& rs, glm::vec3 c, float radius)
       : scene(s), settings(rs), camera(cam), rays(cam, rs.width, rs.height), centre(c), eye(cam.position - c),
-        bvh(s, c, s.features.alpha_mask), lights(s, bvh, c, radius) {}
+        bvh(s, c, s.features.alpha_mask), lights(s, bvh, c, radius) {
+    for (const scenes::Material& m : s.materials) material_bsdf.push_back(bsdf_params<kSpecular>(m));
+  }
 
   const scenes::Scene& scene;
   RenderSettings settings;
@@ -24,6 +29,7 @@ struct RenderContext {
   glm::vec3 eye;     // camera position in the renderer's frame
   EmbreeScene bvh;
   LightSampler lights;
+  std::vector<BsdfParams> material_bsdf;  // each material's without its textures, GGX lobe included
 };
 
 }  // namespace giq::reference
