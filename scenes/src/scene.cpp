@@ -151,6 +151,10 @@ void Scene::derive() {
   features.environment = environment != glm::vec3(0.0f) || environment_map >= 0;
   features.environment_map = environment_map >= 0;
 
+  size_t emissive = 0;  // at most: the triangles of emissive meshes (a million particles have eight million)
+  for (const Mesh& m : meshes)
+    if (m.material >= 0 && size_t(m.material) < materials.size() && materials[size_t(m.material)].is_emissive()) emissive += m.triangles.size();
+  emissive_triangles.reserve(emissive);
   for (uint32_t mi = 0; mi < meshes.size(); ++mi) {
     const Mesh& m = meshes[mi];
     stats.triangles += m.triangles.size();
