@@ -4,7 +4,8 @@
 //   phase 0, before simulating: the last frame's alive list becomes this frame's input;
 //   phase 1, before emitting: as many particles as requested, at most as many as are dead
 //            (the simulation has just freed this frame's deaths);
-//   phase 2, after emitting: the draw arguments of the alive particles' octahedra.
+//   phase 2, after emitting: the octahedra pass's arguments, a group per GIQ_PARTICLES_GROUP
+//            alive particles.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/particles_bindings.glsl"
@@ -27,9 +28,7 @@ void main() {
     uvec3 g = groups(n);
     indirect[GIQ_PARTICLES_EMIT_ARGS] = g.x, indirect[GIQ_PARTICLES_EMIT_ARGS + 1u] = g.y, indirect[GIQ_PARTICLES_EMIT_ARGS + 2u] = g.z;
   } else {
-    indirect[GIQ_PARTICLES_DRAW_ARGS] = 24u * counters[GIQ_PARTICLES_OUT];
-    indirect[GIQ_PARTICLES_DRAW_ARGS + 1u] = 1u;
-    indirect[GIQ_PARTICLES_DRAW_ARGS + 2u] = 0u;
-    indirect[GIQ_PARTICLES_DRAW_ARGS + 3u] = 0u;
+    uvec3 g = groups(counters[GIQ_PARTICLES_OUT]);
+    indirect[GIQ_PARTICLES_VERTICES_ARGS] = g.x, indirect[GIQ_PARTICLES_VERTICES_ARGS + 1u] = g.y, indirect[GIQ_PARTICLES_VERTICES_ARGS + 2u] = g.z;
   }
 }

@@ -17,11 +17,12 @@ using uint = uint32_t;
 #define GIQ_PARTICLES_DEAD 1u  // free slots on the dead list
 #define GIQ_PARTICLES_EMIT 2u  // emitted this frame: min(requested, dead)
 #define GIQ_PARTICLES_OUT 3u   // alive now: the list the next frame simulates
-// The indirect argument buffer's words: VkDispatchIndirectCommand for simulate and emit, then
-// VkDrawIndirectCommand for the alive particles' octahedra (24 vertices each).
+// The indirect argument buffer's words: VkDispatchIndirectCommand for simulate, emit and the
+// pass that draws the alive particles into the scene as octahedra (particles_vertices.comp:
+// giq's particles are scene geometry, which every pass then draws or traces).
 #define GIQ_PARTICLES_SIMULATE_ARGS 0u
 #define GIQ_PARTICLES_EMIT_ARGS 3u
-#define GIQ_PARTICLES_DRAW_ARGS 6u
+#define GIQ_PARTICLES_VERTICES_ARGS 6u
 #define GIQ_PARTICLES_GROUP 256u  // invocations per group of every particle pass
 
 // One particle, 64 bytes: its state at the last frame (what renderers read, written by the

@@ -125,7 +125,7 @@ void ParticleSystem::record_vertices(VkCommandBuffer cmd, const Buffer& vertices
   vertices_.bind(cmd);
   vertices_.push_descriptors(cmd, d);
   vertices_.push_constants(cmd, float(frame_seconds));
-  vkCmdDispatch(cmd, uint32_t((alive_count_ + GIQ_PARTICLES_GROUP - 1) / GIQ_PARTICLES_GROUP), 1, 1);
+  vkCmdDispatchIndirect(cmd, indirect_.handle(), GIQ_PARTICLES_VERTICES_ARGS * sizeof(uint32_t));
   full_barrier(cmd);
 }
 

@@ -2,8 +2,10 @@
 // One emitter's particles simulated on the GPU as Turánszki 2017 ("GPU-based particle
 // simulation") describes: a particle buffer of the emitter's capacity, a dead list of free
 // slots, two alive lists that swap every frame, a counter buffer, and indirect arguments for
-// the simulate and emit passes (written on the GPU from the counters) and for drawing the
-// alive particles. Which particles are alive and what they do is scenes/particles.h's: the
+// the simulate and emit passes and for drawing the alive particles, written on the GPU from
+// the counters. giq's particles are opaque scene geometry, so their draw is a compute pass
+// that writes each alive particle's octahedron into the scene's vertex array (every pass
+// then draws or traces the scene), dispatched by those arguments. Which particles are alive and what they do is scenes/particles.h's: the
 // host makes the frame's integer decisions (the ids to emit, the first id alive, the stage
 // starts) and the passes evaluate each particle in float, so the GPU holds the particles the
 // scene library places for the reference, to float rounding (tests/realtime/
@@ -59,7 +61,6 @@ class ParticleSystem {
   std::vector<State> alive() const;  // in alive-list order
   std::vector<uint32_t> dead_slots() const;
   uint32_t capacity() const { return capacity_; }
-  const Buffer& draw_arguments() const { return indirect_; }  // VkDrawIndirectCommand at word 6
 
  private:
   void reset();
