@@ -24,6 +24,7 @@
 #include "shaders/octahedron_irradiance.glsl"
 #include "shaders/environment.glsl"
 #include "passes/direct_light_shared.h"
+#include "passes/particle_light.glsl"
 #include "passes/shadow_maps_shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -35,7 +36,6 @@ layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 2) readonly buffer AreaLig
 layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 3) readonly buffer AreaTriangles { GpuAreaTriangle area_triangles[]; };
 layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 4) readonly buffer LightShadow { uint light_shadow_layer[]; };
 layout(binding = GIQ_RECEIVER_BINDING_COUNT + 5, rgba32f) uniform writeonly image2D out_direct;
-layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 6) readonly buffer ParticleLights { GpuParticleLight particle_lights[]; };
 
 layout(push_constant) uniform Push { DirectPush pc; };
 
@@ -95,9 +95,9 @@ float widening(float alpha, float source_radius, float d) {
 // part from the representative point of the sphere of its mean projected area (a convex
 // body's is a quarter of its surface, sqrt(3) r^2 for the octahedron: radius
 // r (sqrt(3) / pi)^(1/2)), energy-normalised like a declared sphere.
-vec3 particle_light(uint k, Surface s, vec3 p, vec3 wo) {
-  vec3 c = particle_lights[k].centre.xyz - p;
-  float r = particle_lights[k].centre.w;
+vec3 particle_light(GpuParticleLight particle, Surface s, vec3 p, vec3 wo) {
+  vec3 c = particle.centre.xyz - p;
+  float r = particle.centre.w;
   float e = octahedron_irradiance(c, r, s.n);
   if (e <= 0.0) return vec3(0.0);
   float d = length(c);
@@ -113,14 +113,14 @@ vec3 particle_light(uint k, Surface s, vec3 p, vec3 wo) {
     f += specular * widening(s.alpha, radius, dq);
   }
 #endif
-  return f * particle_lights[k].radiance.rgb * e;
+  return f * particle.radiance.rgb * e;
 }
 
 vec3 area_light(GpuAreaLight l, Surface s, vec3 p, vec3 wo) {
   vec3 sum = vec3(0.0);
   vec3 incident = vec3(0.0);  // sum of radiance x irradiance over the triangles (declared shapes)
   int shape = int(l.shape.w);
-  for (uint k = 0u; k < l.range.w; ++k) sum += particle_light(l.range.z + k, s, p, wo);
+  for (uint k = 0u; k < l.range.w; ++k) sum += particle_light(stage_particle(l, k), s, p, wo);
   // A stage of particles is lit by particle (above), not by triangle.
   uint triangles = l.range.w > 0u ? 0u : l.range.y;
   for (uint k = 0u; k < triangles; ++k) {

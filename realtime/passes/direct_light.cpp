@@ -54,7 +54,7 @@ DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
   bindings.insert(bindings.end(), {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+                                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
   pipeline_ = Pipeline::compute(
       ci.ctx, ci.compiler.compile("passes/direct_light.comp", feature_defines(ci.scene.features)), bindings,
       sizeof(gpu::DirectPush));
@@ -80,7 +80,6 @@ void DirectLightPass::declare_shadows(const scenes::Scene& scene) {
 void DirectLightPass::upload_area_lights(Context& ctx) {
   area_light_buffer_ = Buffer::storage(ctx, area_lights_);
   area_triangle_buffer_ = Buffer::storage(ctx, area_triangles_);
-  particle_light_buffer_ = Buffer::storage(ctx, particles_);
 }
 
 void DirectLightPass::follow(const scenes::Scene& scene, SceneChange change) {
@@ -97,7 +96,6 @@ void DirectLightPass::follow(const scenes::Scene& scene, SceneChange change) {
   const size_t before = area_lights_.size();
   area_lights_.clear();
   area_triangles_.clear();
-  particles_.clear();
   build_area_lights(scene);
   shadows_.set_bounds(scene.bounds);
   if (area_lights_.size() == before) {
@@ -129,7 +127,6 @@ void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer
   d.push_back(Descriptor::storage(area_triangle_buffer_));
   d.push_back(Descriptor::storage(light_layer_buffer_));
   d.push_back(Descriptor::storage_image(direct_));
-  d.push_back(Descriptor::storage(particle_light_buffer_));
   pipeline_.push_descriptors(in.cmd, d);
   gpu::DirectPush pc{};
   pc.camera = gpu::make_gpu_camera(in.camera);
@@ -161,16 +158,13 @@ void DirectLightPass::build_area_lights(const scenes::Scene& scene) {
                                  glm::vec4(mesh.positions[t.y], 0.0f), glm::vec4(mesh.positions[t.z], 0.0f),
                                  glm::vec4(e.radiance, 0.0f)});
     }
-    // Every triangle of a stage glows alike (one material), eight to a particle.
-    if (particle_lights_ && mesh.emitter >= 0) {
-      const std::vector<glm::vec3> centres = scenes::particle_centres(mesh);
-      if (!centres.empty() && a.triangles.size() == 8 * centres.size()) {
-        const float radius = float(scene.emitters[size_t(mesh.emitter)].size);
-        const glm::vec3 radiance = scene.emissive_triangles[a.triangles.front()].radiance;
-        l.range.z = uint32_t(particles_.size());
-        l.range.w = uint32_t(centres.size());
-        for (const glm::vec3& c : centres) particles_.push_back({glm::vec4(c, radius), glm::vec4(radiance, 0.0f)});
-      }
+    // Every triangle of a stage glows alike (one material), eight to a particle; the shaders
+    // read each particle from its vertices (passes/particle_light.glsl).
+    const size_t particles = mesh.positions.size() / scenes::kParticleVertices;
+    if (particle_lights_ && mesh.emitter >= 0 && particles > 0 && a.triangles.size() == scenes::kParticleTriangles * particles) {
+      l.range.z = scene_gpu_.geometry().mesh_first_vertex[a.mesh];
+      l.range.w = uint32_t(particles);
+      l.particle = glm::vec4(scene.emissive_triangles[a.triangles.front()].radiance, float(scene.emitters[size_t(mesh.emitter)].size));
     }
     l.position = glm::vec4(a.representative, 0.0f);
     l.extent = glm::vec4(a.extent, 0.0f, 0.0f, 0.0f);

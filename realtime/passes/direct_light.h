@@ -42,12 +42,12 @@ class DirectLightPass {
   // Shadow-map layer of punctual light i (scene order), and the area lights.
   const std::vector<uint32_t>& light_layers() const { return light_layer_; }
   const std::vector<gpu::GpuAreaLight>& area_lights() const { return area_lights_; }
-  // The area lights as the GPU reads them (GpuAreaLight, GpuAreaTriangle, GpuParticleLight),
-  // for passes that light other points than the G-buffer's; rebuilt when emitters move, so
-  // take them when recording, after record_shadows().
+  // The area lights as the GPU reads them (GpuAreaLight, GpuAreaTriangle; a stage of glowing
+  // particles reads its particles from the scene's vertices, passes/particle_light.glsl), for
+  // passes that light other points than the G-buffer's; rebuilt when emitters move, so take
+  // them when recording, after record_shadows().
   const Buffer& area_light_buffer() const { return area_light_buffer_; }
   const Buffer& area_triangle_buffer() const { return area_triangle_buffer_; }
-  const Buffer& particle_light_buffer() const { return particle_light_buffer_; }
 
  private:
   void build_area_lights(const scenes::Scene& scene);
@@ -68,8 +68,7 @@ class DirectLightPass {
   std::vector<uint32_t> light_layer_;
   std::vector<gpu::GpuAreaLight> area_lights_;
   std::vector<gpu::GpuAreaTriangle> area_triangles_;
-  std::vector<gpu::GpuParticleLight> particles_;
-  Buffer light_layer_buffer_, area_light_buffer_, area_triangle_buffer_, particle_light_buffer_;
+  Buffer light_layer_buffer_, area_light_buffer_, area_triangle_buffer_;
   Image direct_;
   Pipeline pipeline_;
 };

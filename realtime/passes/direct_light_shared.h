@@ -28,10 +28,13 @@ struct DirectPush {
 // area_shadow_rays, by rays to points on its triangles.
 struct GpuAreaLight {
   vec4 position;  // xyz representative point; w: first shadow layer (none with area_shadow_rays)
-  // x: first GpuAreaTriangle, y: count; z: first GpuParticleLight, w: count. A stage of an
-  // emitter's particles (w > 0) is lit particle by particle; its triangles stay listed for
-  // the passes that sample emitters by triangle (gi1's light grid).
+  // x: first GpuAreaTriangle, y: count; z: the first vertex of a stage of an emitter's
+  // particles in the scene's vertex array, w: its particle count. Such a stage (w > 0) is lit
+  // particle by particle, each read from its octahedron where the GPU simulation wrote it
+  // (passes/particle_light.glsl); its triangles stay listed for the passes that sample
+  // emitters by triangle (gi1's light grid).
   uvec4 range;
+  vec4 particle;  // a particle of the stage: rgb its emitted radiance, w its circumradius
   vec4 extent;    // x: how far from `position` shadow rays towards it stop (AreaLight::extent)
   // The declared shape for glossy reflections (scenes::AreaLight::shape_*): xyz centre, w the
   // shape (GIQ_AREA_*); u and v: xyz half vectors (rectangle: sides; tube: half segment; disc:
@@ -55,7 +58,8 @@ struct GpuAreaTriangle {
   vec4 radiance;  // rgb emitted radiance
 };
 
-// A glowing particle: an octahedron (shaders/octahedron_irradiance.glsl).
+// A glowing particle: an octahedron (shaders/octahedron_irradiance.glsl), as
+// passes/particle_light.glsl reads it.
 struct GpuParticleLight {
   vec4 centre;    // xyz centre; w circumradius
   vec4 radiance;  // rgb emitted radiance

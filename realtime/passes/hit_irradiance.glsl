@@ -4,10 +4,10 @@
 // polygon_irradiance.glsl) or, for glowing particles, particle by particle, each light
 // shadowed by one BVH ray (towards an area light's representative point). Written once for
 // `ddgi`'s probe rays and `gi1`'s cache rays.
-// The includer declares the frame's area lights as `area_lights[]`, their triangles as
-// `area_triangles[]` and their particles as `particle_lights[]` (passes/direct_light.h); needs
-// shaders/scene.glsl, bvh.glsl, lights.glsl, sampling.glsl, octahedron_irradiance.glsl and
-// passes/direct_light_shared.h.
+// The includer declares the frame's area lights as `area_lights[]` and their triangles as
+// `area_triangles[]` (passes/direct_light.h); needs shaders/scene.glsl, bvh.glsl, lights.glsl,
+// sampling.glsl, octahedron_irradiance.glsl, passes/direct_light_shared.h and
+// passes/particle_light.glsl.
 #ifndef GIQ_HIT_IRRADIANCE_GLSL
 #define GIQ_HIT_IRRADIANCE_GLSL
 
@@ -16,7 +16,7 @@
 vec3 area_irradiance(GpuAreaLight l, vec3 p, vec3 n) {
   vec3 e = vec3(0.0);
   for (uint k = 0u; k < l.range.w; ++k) {
-    GpuParticleLight q = particle_lights[l.range.z + k];
+    GpuParticleLight q = stage_particle(l, k);
     e += q.radiance.rgb * octahedron_irradiance(q.centre.xyz - p, q.centre.w, n);
   }
   uint triangles = l.range.w > 0u ? 0u : l.range.y;

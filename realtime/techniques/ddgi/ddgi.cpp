@@ -108,7 +108,7 @@ class Ddgi : public IndirectLight {
                smp = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     const auto defines = feature_defines(ci.scene.features);
     auto b = SceneGpu::binding_types();
-    b.insert(b.end(), {s, s, smp, smp, s, s, s, s});
+    b.insert(b.end(), {s, s, smp, smp, s, s, s});
     trace_ = Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/ddgi/ddgi_trace.comp", defines), b,
                                sizeof(gpu::DdgiTracePush));
     auto with_texels = [](uint32_t n, bool distance) {
@@ -165,8 +165,7 @@ class Ddgi : public IndirectLight {
                        Descriptor::sampled(irradiance_, sampler_), Descriptor::sampled(distance_, sampler_),
                        Descriptor::storage(frame.direct_light().area_light_buffer()),
                        Descriptor::storage(frame.direct_light().area_triangle_buffer()),
-                       Descriptor::storage(ray_buffer_),
-                       Descriptor::storage(frame.direct_light().particle_light_buffer())});
+                       Descriptor::storage(ray_buffer_)});
     trace_.push_descriptors(cmd, d);
     trace_.push_constants(cmd, tp);
     vkCmdDispatch(cmd, (rays_ + 63) / 64, gy, gz);

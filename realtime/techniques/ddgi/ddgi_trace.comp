@@ -34,11 +34,11 @@ layout(binding = GIQ_SCENE_BINDING_COUNT + 3) uniform sampler2D ddgi_distance;
 layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 4) readonly buffer AreaLights { GpuAreaLight area_lights[]; };
 layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 5) readonly buffer AreaTriangles { GpuAreaTriangle area_triangles[]; };
 layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 6) writeonly buffer Rays { vec4 rays[]; };
-layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 7) readonly buffer ParticleLights { GpuParticleLight particle_lights[]; };
 
 layout(push_constant) uniform Push { DdgiTracePush pc; };
 
 #include "techniques/ddgi/ddgi_volume.glsl"
+#include "passes/particle_light.glsl"
 #include "passes/hit_irradiance.glsl"
 
 void main() {

@@ -181,7 +181,7 @@ class Gi1 : public IndirectLight {
       return b;
     };
     light_grid_pass_ = compile("gi1_light_grid.comp", with_common({s, s, s}));
-    trace_ = compile("gi1_trace.comp", receiver({s, s, s, s, s, s, s, s, s, s, s, img, s, s, s, s, s, s}));
+    trace_ = compile("gi1_trace.comp", receiver({s, s, s, s, s, s, s, s, s, s, s, img, s, s, s, s, s}));
     reservoir_store_ = compile("gi1_reservoir_store.comp", {s, s, s, s});
     update_ = compile("gi1_cache_update.comp", {s, s, s, s});
     args_ = compile("gi1_args.comp", {s});
@@ -298,8 +298,7 @@ class Gi1 : public IndirectLight {
               Descriptor::storage(frame.direct_light().area_triangle_buffer()),
               Descriptor::storage_image(irradiance_[prev]), Descriptor::storage(ray_cells_),
               Descriptor::storage(light_grid_), Descriptor::storage(reservoirs_),
-              Descriptor::storage(reservoir_claims_), Descriptor::storage(reservoir_stash_),
-              Descriptor::storage(frame.direct_light().particle_light_buffer())});
+              Descriptor::storage(reservoir_claims_), Descriptor::storage(reservoir_stash_)});
     trace_.push_descriptors(cmd, d);
     vkCmdDispatchIndirect(cmd, counters_.handle(), 0);
     full_barrier(cmd);

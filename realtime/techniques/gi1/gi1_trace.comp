@@ -54,9 +54,8 @@ layout(std430, binding = GIQ_GI1_BINDING_COUNT + 12) readonly buffer LightGrid {
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 13) readonly buffer Reservoirs { GpuGi1Reservoir reservoirs[]; };
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 14) buffer ReservoirClaims { uint reservoir_claims[]; };
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 15) writeonly buffer ReservoirStash { GpuGi1Reservoir reservoir_stash[]; };
-// The area lights' particles (passes/hit_irradiance.glsl).
-layout(std430, binding = GIQ_GI1_BINDING_COUNT + 16) readonly buffer ParticleLights { GpuParticleLight particle_lights[]; };
 
+#include "passes/particle_light.glsl"
 #include "passes/hit_irradiance.glsl"
 #include "techniques/gi1/gi1_probe.glsl"
 #include "techniques/gi1/gi1_hash.glsl"
