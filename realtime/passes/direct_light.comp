@@ -24,7 +24,6 @@
 #include "shaders/octahedron_irradiance.glsl"
 #include "shaders/environment.glsl"
 #include "passes/direct_light_shared.h"
-#include "passes/particle_light.glsl"
 #include "passes/shadow_maps_shared.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -36,6 +35,8 @@ layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 2) readonly buffer AreaLig
 layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 3) readonly buffer AreaTriangles { GpuAreaTriangle area_triangles[]; };
 layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 4) readonly buffer LightShadow { uint light_shadow_layer[]; };
 layout(binding = GIQ_RECEIVER_BINDING_COUNT + 5, rgba32f) uniform writeonly image2D out_direct;
+
+#include "passes/area_light_parts.glsl"
 
 layout(push_constant) uniform Push { DirectPush pc; };
 
@@ -124,7 +125,7 @@ vec3 area_light(GpuAreaLight l, Surface s, vec3 p, vec3 wo) {
   // A stage of particles is lit by particle (above), not by triangle.
   uint triangles = l.range.w > 0u ? 0u : l.range.y;
   for (uint k = 0u; k < triangles; ++k) {
-    GpuAreaTriangle t = area_triangles[l.range.x + k];
+    GpuAreaTriangle t = area_triangle(l, k);
     vec3 a = t.a.xyz - p, b = t.b.xyz - p, c = t.c.xyz - p;
     vec3 ng = cross(b - a, c - a);
     // A one-sided emitter lights only the half-space in front of it.
@@ -196,7 +197,7 @@ float area_visibility(GpuAreaLight l, uint light, vec3 p_off, vec3 n, vec3 ng, u
   float total = 0.0, seen = 0.0;
   for (uint i = 0u; i < pc.area_shadow_rays; ++i) {
     float u = (float(i) + rng_next(rng)) / float(pc.area_shadow_rays);
-    GpuAreaTriangle t = area_triangles[l.range.x + min(uint(u * float(m)), m - 1u)];
+    GpuAreaTriangle t = area_triangle(l, min(uint(u * float(m)), m - 1u));
     vec2 bc = sample_triangle(vec2(rng_next(rng), rng_next(rng)));
     vec3 q = t.a.xyz + bc.x * (t.b.xyz - t.a.xyz) + bc.y * (t.c.xyz - t.a.xyz);
     vec3 d = q - p_off;

@@ -144,30 +144,31 @@ void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer
 }
 
 // One area light per emissive mesh (the scene's AreaLight), its triangles integrated exactly,
-// or, for a stage of glowing particles, its particles one by one; its representative point is
-// where the shadow cube sits. The shadow layer (position.w) is set by the caller.
+// or, for a stage of glowing particles, its particles one by one, read from the scene's
+// vertices (passes/area_light_parts.glsl); its representative point is where the shadow cube
+// sits. The shadow layer (position.w) is set by the caller.
 void DirectLightPass::build_area_lights(const scenes::Scene& scene) {
   for (const scenes::AreaLight& a : scene.area_lights) {
     const scenes::Mesh& mesh = scene.meshes[a.mesh];
     gpu::GpuAreaLight l;
     l.range = glm::uvec4(uint32_t(area_triangles_.size()), uint32_t(a.triangles.size()), 0, 0);
-    for (const uint32_t i : a.triangles) {
-      const scenes::EmissiveTriangle& e = scene.emissive_triangles[i];
-      const auto t = mesh.triangles[e.triangle];
-      area_triangles_.push_back({glm::vec4(mesh.positions[t.x], a.two_sided ? 1.0f : 0.0f),
-                                 glm::vec4(mesh.positions[t.y], 0.0f), glm::vec4(mesh.positions[t.z], 0.0f),
-                                 glm::vec4(e.radiance, 0.0f)});
-    }
-    // Every triangle of a stage glows alike (one material), eight to a particle; the shaders
-    // read each particle from its vertices (passes/particle_light.glsl).
+    // Every triangle of a stage glows alike (one material), eight to a particle.
     const size_t particles = mesh.positions.size() / scenes::kParticleVertices;
     if (particle_lights_ && mesh.emitter >= 0 && particles > 0 && a.triangles.size() == scenes::kParticleTriangles * particles) {
       l.range.z = scene_gpu_.geometry().mesh_first_vertex[a.mesh];
       l.range.w = uint32_t(particles);
       l.particle = glm::vec4(scene.emissive_triangles[a.triangles.front()].radiance, float(scene.emitters[size_t(mesh.emitter)].size));
     }
+    for (size_t k = 0; k < a.triangles.size() && l.range.w == 0; ++k) {
+      const uint32_t i = a.triangles[k];
+      const scenes::EmissiveTriangle& e = scene.emissive_triangles[i];
+      const auto t = mesh.triangles[e.triangle];
+      area_triangles_.push_back({glm::vec4(mesh.positions[t.x], a.two_sided ? 1.0f : 0.0f),
+                                 glm::vec4(mesh.positions[t.y], 0.0f), glm::vec4(mesh.positions[t.z], 0.0f),
+                                 glm::vec4(e.radiance, 0.0f)});
+    }
     l.position = glm::vec4(a.representative, 0.0f);
-    l.extent = glm::vec4(a.extent, 0.0f, 0.0f, 0.0f);
+    l.extent = glm::vec4(a.extent, a.two_sided ? 1.0f : 0.0f, 0.0f, 0.0f);
     static_assert(GIQ_AREA_MESH == int(scenes::AreaShape::Mesh) && GIQ_AREA_TUBE == int(scenes::AreaShape::Tube));
     l.shape = glm::vec4(a.shape_centre, float(int(a.shape)));
     l.shape_u = glm::vec4(a.shape_u, a.shape_radius);

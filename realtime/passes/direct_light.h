@@ -43,7 +43,7 @@ class DirectLightPass {
   const std::vector<uint32_t>& light_layers() const { return light_layer_; }
   const std::vector<gpu::GpuAreaLight>& area_lights() const { return area_lights_; }
   // The area lights as the GPU reads them (GpuAreaLight, GpuAreaTriangle; a stage of glowing
-  // particles reads its particles from the scene's vertices, passes/particle_light.glsl), for
+  // particles reads its particles from the scene's vertices, passes/area_light_parts.glsl), for
   // passes that light other points than the G-buffer's; rebuilt when emitters move, so take
   // them when recording, after record_shadows().
   const Buffer& area_light_buffer() const { return area_light_buffer_; }

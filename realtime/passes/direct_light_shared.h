@@ -28,14 +28,16 @@ struct DirectPush {
 // area_shadow_rays, by rays to points on its triangles.
 struct GpuAreaLight {
   vec4 position;  // xyz representative point; w: first shadow layer (none with area_shadow_rays)
-  // x: first GpuAreaTriangle, y: count; z: the first vertex of a stage of an emitter's
-  // particles in the scene's vertex array, w: its particle count. Such a stage (w > 0) is lit
-  // particle by particle, each read from its octahedron where the GPU simulation wrote it
-  // (passes/particle_light.glsl); its triangles stay listed for the passes that sample
-  // emitters by triangle (gi1's light grid).
+  // x: first GpuAreaTriangle, y: the triangle count; z: the first vertex of a stage of an
+  // emitter's particles in the scene's vertex array, w: its particle count. Such a stage
+  // (w > 0) is lit particle by particle, and its particles and triangles (eight a particle,
+  // for the passes that sample emitters by triangle) are read from the octahedra where the
+  // GPU simulation wrote them (passes/area_light_parts.glsl), none listed.
   uvec4 range;
   vec4 particle;  // a particle of the stage: rgb its emitted radiance, w its circumradius
-  vec4 extent;    // x: how far from `position` shadow rays towards it stop (AreaLight::extent)
+  // x: how far from `position` shadow rays towards it stop (AreaLight::extent); y: 1 when the
+  // emitter is double-sided (as GpuAreaTriangle::a.w).
+  vec4 extent;
   // The declared shape for glossy reflections (scenes::AreaLight::shape_*): xyz centre, w the
   // shape (GIQ_AREA_*); u and v: xyz half vectors (rectangle: sides; tube: half segment; disc:
   // v its unit normal), u.w the radius; v.w: sqrt(area / pi), the radius of the disc of the
@@ -59,7 +61,7 @@ struct GpuAreaTriangle {
 };
 
 // A glowing particle: an octahedron (shaders/octahedron_irradiance.glsl), as
-// passes/particle_light.glsl reads it.
+// passes/area_light_parts.glsl reads it.
 struct GpuParticleLight {
   vec4 centre;    // xyz centre; w circumradius
   vec4 radiance;  // rgb emitted radiance

@@ -7,7 +7,7 @@
 // The includer declares the frame's area lights as `area_lights[]` and their triangles as
 // `area_triangles[]` (passes/direct_light.h); needs shaders/scene.glsl, bvh.glsl, lights.glsl,
 // sampling.glsl, octahedron_irradiance.glsl, passes/direct_light_shared.h and
-// passes/particle_light.glsl.
+// passes/area_light_parts.glsl.
 #ifndef GIQ_HIT_IRRADIANCE_GLSL
 #define GIQ_HIT_IRRADIANCE_GLSL
 
@@ -21,7 +21,7 @@ vec3 area_irradiance(GpuAreaLight l, vec3 p, vec3 n) {
   }
   uint triangles = l.range.w > 0u ? 0u : l.range.y;
   for (uint k = 0u; k < triangles; ++k) {
-    GpuAreaTriangle t = area_triangles[l.range.x + k];
+    GpuAreaTriangle t = area_triangle(l, k);
     vec3 a = t.a.xyz - p, b = t.b.xyz - p, c = t.c.xyz - p;
     // A one-sided emitter lights only the half-space in front of it.
     if (t.a.w == 0.0 && dot(cross(b - a, c - a), -a) <= 0.0) continue;

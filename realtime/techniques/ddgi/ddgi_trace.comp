@@ -38,7 +38,7 @@ layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 6) writeonly buffer Rays { ve
 layout(push_constant) uniform Push { DdgiTracePush pc; };
 
 #include "techniques/ddgi/ddgi_volume.glsl"
-#include "passes/particle_light.glsl"
+#include "passes/area_light_parts.glsl"
 #include "passes/hit_irradiance.glsl"
 
 void main() {

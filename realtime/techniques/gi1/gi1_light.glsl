@@ -2,8 +2,8 @@
 // the frame's area lights (emissive meshes: area_lights, area_triangles), then, where the scene
 // has one, the environment; P = gi1.counts.x, and gi1.lights.x counts them all. The light grid
 // (gi1_light_grid.comp) ranks them per cell, the hits sample them (gi1_light_sample.glsl).
-// Needs shaders/scene.glsl, lights.glsl, environment.glsl, sampling.glsl; the includer binds
-// area_lights[] and area_triangles[].
+// Needs shaders/scene.glsl, lights.glsl, environment.glsl, sampling.glsl and
+// passes/area_light_parts.glsl; the includer binds area_lights[] and area_triangles[].
 #ifndef GIQ_GI1_LIGHT_GLSL
 #define GIQ_GI1_LIGHT_GLSL
 
@@ -36,7 +36,7 @@ float gi1_light_importance(uint l, vec3 c, float near) {
   GpuAreaLight a = area_lights[l - gi1.counts.x];
   float sum = 0.0;
   for (uint k = 0u; k < a.range.y; ++k) {
-    GpuAreaTriangle t = area_triangles[a.range.x + k];
+    GpuAreaTriangle t = area_triangle(a, k);
     vec3 n2 = cross(t.b.xyz - t.a.xyz, t.c.xyz - t.a.xyz);  // twice the area along the normal
     vec3 to = c - (t.a.xyz + t.b.xyz + t.c.xyz) / 3.0;
     float d2 = max(dot(to, to), near * near);

@@ -35,6 +35,7 @@ layout(std430, binding = GIQ_GI1_BINDING_COUNT + 0) readonly buffer AreaLights {
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 1) readonly buffer AreaTriangles { GpuAreaTriangle area_triangles[]; };
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 2) writeonly buffer LightGrid { uint light_grid[]; };
 
+#include "passes/area_light_parts.glsl"
 #include "techniques/gi1/gi1_light.glsl"
 
 #define GIQ_GI1_MAX_CELL_LIGHTS 64u

@@ -30,7 +30,7 @@ uint gi1_light_cell(vec3 p) {
 }
 
 struct Gi1LightSample {
-  uint light, triangle;  // the light, and for an area light the triangle the point is on
+  uint light, triangle;  // the light, and for an area light the triangle the point is on (in it)
   vec3 y;                // the point on an area light, or the environment's direction
   vec3 f;                // unshadowed irradiance contribution at the hit, in the light's measure
   float pdf;             // the density of the point in that measure (1 for a punctual light)
@@ -38,8 +38,9 @@ struct Gi1LightSample {
   float dist;            // to it (1e30: directional light, environment)
 };
 
-// What light l's point y (triangle k of an area light; the direction for the environment;
-// ignored for a punctual light) sends to p (geometric normal ng, shading normal ns), unshadowed.
+// What light l's point y (on its triangle k for an area light; the direction for the
+// environment; ignored for a punctual light) sends to p (geometric normal ng, shading normal
+// ns), unshadowed.
 Gi1LightSample gi1_light_at(uint l, uint k, vec3 y, vec3 p, vec3 ng, vec3 ns) {
   Gi1LightSample s;
   s.light = l;
@@ -56,7 +57,11 @@ Gi1LightSample gi1_light_at(uint l, uint k, vec3 y, vec3 p, vec3 ng, vec3 ns) {
     s.wi = y;
     s.f = environment_radiance(gi1.environment, y) * max(dot(ns, y), 0.0);
   } else {
-    GpuAreaTriangle t = area_triangles[k];
+    GpuAreaLight a = area_lights[l - gi1.counts.x];
+    // A reservoir's triangle from the last frame may be past a stage of particles that has
+    // fewer now.
+    if (k >= a.range.y) return s;
+    GpuAreaTriangle t = area_triangle(a, k);
     vec3 n2 = cross(t.b.xyz - t.a.xyz, t.c.xyz - t.a.xyz);
     vec3 d = y - p;
     float d2 = dot(d, d), len2 = length(n2);
@@ -85,8 +90,8 @@ Gi1LightSample gi1_sample_light(uint l, vec3 p, vec3 ng, vec3 ns, vec2 u, float 
     return s;
   }
   GpuAreaLight a = area_lights[l - gi1.counts.x];
-  uint k = a.range.x + min(uint(u_triangle * float(a.range.y)), a.range.y - 1u);
-  GpuAreaTriangle t = area_triangles[k];
+  uint k = min(uint(u_triangle * float(a.range.y)), a.range.y - 1u);
+  GpuAreaTriangle t = area_triangle(a, k);
   vec2 b = sample_triangle(u);
   vec3 y = t.a.xyz + b.x * (t.b.xyz - t.a.xyz) + b.y * (t.c.xyz - t.a.xyz);
   Gi1LightSample s = gi1_light_at(l, k, y, p, ng, ns);

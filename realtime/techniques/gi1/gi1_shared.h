@@ -101,7 +101,7 @@ struct GpuGi1Reservoir {
   vec4 point;   // xyz the point on an area light or the environment's direction; w in the
                  // trace's stash (gi1_reservoir_store.comp) the grid slot, as float bits
   uvec4 info;    // x the cell's fingerprint (0: empty), y the light, z its triangle (area
-                 // lights), w the candidates it stands for (M)
+                 // lights: its index in the light), w the candidates it stands for (M)
   vec4 weight;   // x its unbiased contribution weight W (unshadowed), yzw the surface normal
 };
 

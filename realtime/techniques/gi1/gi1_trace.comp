@@ -55,7 +55,7 @@ layout(std430, binding = GIQ_GI1_BINDING_COUNT + 13) readonly buffer Reservoirs 
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 14) buffer ReservoirClaims { uint reservoir_claims[]; };
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 15) writeonly buffer ReservoirStash { GpuGi1Reservoir reservoir_stash[]; };
 
-#include "passes/particle_light.glsl"
+#include "passes/area_light_parts.glsl"
 #include "passes/hit_irradiance.glsl"
 #include "techniques/gi1/gi1_probe.glsl"
 #include "techniques/gi1/gi1_hash.glsl"

@@ -1,0 +1,36 @@
+// The parts of an area light (GpuAreaLight, passes/direct_light.h): its triangles and, for a
+// stage of glowing particles (range.w > 0), its particles. A stage's are read from the
+// octahedra the GPU simulation wrote into the scene's vertex array this frame
+// (shaders/particles_vertices.comp: six vertices a particle, on its axes), so they are where
+// the drawn particles are and the host lists none of them; another light's triangles from
+// the includer's `area_triangles[]`. Needs shaders/scene.glsl and
+// passes/direct_light_shared.h.
+#ifndef GIQ_AREA_LIGHT_PARTS_GLSL
+#define GIQ_AREA_LIGHT_PARTS_GLSL
+
+// Particle k of a stage: its centre midway between its +x and -x corners (vertices 0 and 1,
+// as scenes::particle_centres reads them).
+GpuParticleLight stage_particle(GpuAreaLight l, uint k) {
+  uint v = l.range.z + 6u * k;
+  GpuParticleLight q;
+  q.centre = vec4(0.5 * (scene_vertices[v].position.xyz + scene_vertices[v + 1u].position.xyz), l.particle.w);
+  q.radiance = vec4(l.particle.rgb, 0.0);
+  return q;
+}
+
+// Triangle k (below range.y) of the light; a stage's are its particles' faces, eight each,
+// counter-clockwise from outside (scenes::kParticleFaces).
+GpuAreaTriangle area_triangle(GpuAreaLight l, uint k) {
+  if (l.range.w == 0u) return area_triangles[l.range.x + k];
+  const uvec3 kFaces[8] = uvec3[8](uvec3(0, 2, 4), uvec3(2, 1, 4), uvec3(1, 3, 4), uvec3(3, 0, 4),
+                                   uvec3(2, 0, 5), uvec3(1, 2, 5), uvec3(3, 1, 5), uvec3(0, 3, 5));
+  uvec3 f = kFaces[k % 8u] + l.range.z + 6u * (k / 8u);
+  GpuAreaTriangle t;
+  t.a = vec4(scene_vertices[f.x].position.xyz, l.extent.y);
+  t.b = vec4(scene_vertices[f.y].position.xyz, 0.0);
+  t.c = vec4(scene_vertices[f.z].position.xyz, 0.0);
+  t.radiance = vec4(l.particle.rgb, 0.0);
+  return t;
+}
+
+#endif
