@@ -2,14 +2,14 @@
 // One emitter's particles simulated on the GPU as Turánszki 2017 ("GPU-based particle
 // simulation") describes: a particle buffer of the emitter's capacity, a dead list of free
 // slots, two alive lists that swap every frame, a counter buffer, and indirect arguments for
-// the simulate and emit passes and for drawing the alive particles, written on the GPU from
-// the counters. giq's particles are opaque scene geometry, so their draw is a compute pass
-// that writes each alive particle's octahedron into the scene's vertex array (every pass
-// then draws or traces the scene), dispatched by those arguments. Which particles are alive and what they do is scenes/particles.h's: the
-// host makes the frame's integer decisions (the ids to emit, the first id alive, the stage
-// starts) and the passes evaluate each particle in float, so the GPU holds the particles the
-// scene library places for the reference, to float rounding (tests/realtime/
-// particle_system_test.cpp).
+// the simulate and emit passes and for drawing the alive particles, written on the GPU from the
+// counters. giq's particles are opaque scene geometry, so their draw is a compute pass that
+// writes each alive particle's octahedron into the scene's vertex array (every pass then draws
+// or traces the scene), dispatched by those arguments. Which particles are alive and what they
+// do is scenes/particles.h's: the host makes the frame's integer decisions (the ids to emit,
+// the first id alive, the stage starts) and the passes evaluate each particle in float, so the
+// GPU holds the particles the scene library places for the reference, to float rounding
+// (tests/realtime/particle_system_test.cpp).
 //
 // Two departures from the post: the simulation runs before the emission, so that this frame's
 // deaths free their slots first and the capacity needed is the most particles alive at once
