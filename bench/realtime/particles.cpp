@@ -86,12 +86,10 @@ int main(int argc, char** argv) {
         const scenes::AliveRange alive = scenes::alive_range(e, t);
         const std::vector<uint64_t> starts = scenes::stage_starts(e, t);
         std::vector<uint32_t> stage_first(size_t(e.stages));
-        uint64_t upper = alive.end, vertex = 0;
+        uint64_t vertex = 0;
         for (size_t st = 0; st < stage_first.size(); ++st) {
-          const uint64_t lowest = st < starts.size() ? std::clamp(starts[st], alive.first, alive.end) : alive.first;
           stage_first[st] = uint32_t(vertex);
-          vertex += scenes::kParticleVertices * (upper - lowest);
-          upper = lowest;
+          vertex += scenes::kParticleVertices * scenes::stage_range(alive, starts, int(st)).count();
         }
         ctx.submit_and_wait([&](VkCommandBuffer cmd) {
           timer.reset(cmd);

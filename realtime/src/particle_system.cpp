@@ -72,11 +72,9 @@ void ParticleSystem::prepare(double t) {
   for (size_t s = 0; s < starts.size(); ++s) f.starts[s / 4][int(s % 4)] = uint32_t(std::min<uint64_t>(starts[s], 0xffffffffu));
   emitted_end_ = std::max(emitted_end_, alive.end);
   frame_.upload(&f, sizeof(f));
-  // Stage s holds the alive ids below starts[s - 1] and at or above starts[s] (stage_starts).
   alive_count_ = alive.count();
-  stage_lowest_id_.assign(size_t(e.stages), uint32_t(alive.first));
-  for (size_t s = 0; s < starts.size() && s < stage_lowest_id_.size(); ++s)
-    stage_lowest_id_[s] = uint32_t(std::max<uint64_t>(alive.first, std::min<uint64_t>(starts[s], 0xffffffffu)));
+  stage_lowest_id_.clear();
+  for (int s = 0; s < e.stages; ++s) stage_lowest_id_.push_back(uint32_t(scenes::stage_range(alive, starts, s).first));
 }
 
 std::vector<Descriptor> ParticleSystem::descriptors(int in, int out) const {

@@ -67,13 +67,11 @@ void add_particle_meshes(const std::vector<Emitter>& emitters, double t, double 
     const AliveRange alive = alive_range(e, t);
     const std::vector<uint64_t> starts = stage_starts(e, t);
     std::vector<Mesh> stage(size_t(e.stages));
-    // Each stage's particles are known from the integers alone (stage s holds the alive ids in
-    // [starts[s], starts[s - 1])), so its arrays are allocated once: a million particles
-    // would otherwise spend most of their time in the vectors' regrowth.
+    // Each stage's particles are known from the integers alone (stage_range), so its arrays
+    // are allocated once: a million particles would otherwise spend most of their time in the
+    // vectors' regrowth.
     for (int s = 0; s < e.stages; ++s) {
-      const uint64_t hi = s == 0 ? alive.end : std::clamp(starts[size_t(s) - 1], alive.first, alive.end);
-      const uint64_t lo = s + 1 == e.stages ? alive.first : std::clamp(starts[size_t(s)], alive.first, alive.end);
-      const size_t n = size_t(hi > lo ? hi - lo : 0);
+      const size_t n = size_t(stage_range(alive, starts, s).count());
       Mesh& m = stage[size_t(s)];
       m.positions.reserve(n * kParticleVertices);
       m.previous_positions.reserve(n * kParticleVertices);

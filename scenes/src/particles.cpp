@@ -54,6 +54,14 @@ std::vector<uint64_t> stage_starts(const Emitter& e, double t) {
   return out;
 }
 
+AliveRange stage_range(const AliveRange& alive, const std::vector<uint64_t>& starts, int s) {
+  const size_t i = size_t(s);
+  AliveRange r;
+  r.end = i == 0 ? alive.end : std::clamp(starts[i - 1], alive.first, alive.end);
+  r.first = i < starts.size() ? std::clamp(starts[i], alive.first, r.end) : alive.first;
+  return r;
+}
+
 uint32_t particle_random(uint32_t seed, uint32_t id, uint32_t k) { return pcg_hash(k ^ pcg_hash(id ^ pcg_hash(seed))); }
 
 double particle_unit(uint32_t seed, uint32_t id, uint32_t k) { return double(particle_random(seed, id, k) >> 8) * 0x1p-24; }

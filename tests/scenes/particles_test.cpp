@@ -147,6 +147,8 @@ TEST(Particles, PosedScenesHoldTheAliveParticlesAsOctahedra) {
       ASSERT_LT(stage, e.stages);
       const std::vector<glm::vec3> centres = particle_centres(m);
       ASSERT_EQ(centres.size(), m.positions.size() / 6);
+      // Its particles are the stage's ids, which the integers give.
+      EXPECT_EQ(centres.size(), stage_range(r, starts, stage).count()) << "stage " << stage;
       for (size_t k = 0; k < centres.size(); ++k) {
         for (size_t v = 6 * k; v < 6 * k + 6; ++v)
           EXPECT_NEAR(glm::length(glm::dvec3(m.positions[v]) - glm::dvec3(centres[k])), e.size, 1e-6);

@@ -78,6 +78,10 @@ AliveRange alive_range(const Emitter& e, double t);
 // stage_starts(e, t)[s - 1] for s in 1..stages-1: an alive particle is in stage s or later
 // when its id is below that (born at least s lifetime / stages ago).
 std::vector<uint64_t> stage_starts(const Emitter& e, double t);
+// The ids of stage s among the `alive` ones, given their `starts` (stage_starts): those below
+// starts[s - 1] (every alive id for s = 0) and at or above starts[s] (down to the first alive
+// one for the last stage). Stage s - 1's ids come right after stage s's.
+AliveRange stage_range(const AliveRange& alive, const std::vector<uint64_t>& starts, int s);
 
 // The k-th 32-bit random word of particle `id` (PCG hashes, Jarzynski and Olano 2020, "Hash
 // Functions for GPU Rendering", JCGT 9(3)), and the same as a float in [0, 1) (its top 24
