@@ -8,6 +8,8 @@
 #ifndef GIQ_AREA_LIGHT_PARTS_GLSL
 #define GIQ_AREA_LIGHT_PARTS_GLSL
 
+#include "shaders/particle_octahedron.glsl"
+
 // Particle k of a stage: its centre midway between its +x and -x corners (vertices 0 and 1,
 // as scenes::particle_centres reads them).
 GpuParticleLight stage_particle(GpuAreaLight l, uint k) {
@@ -18,13 +20,10 @@ GpuParticleLight stage_particle(GpuAreaLight l, uint k) {
   return q;
 }
 
-// Triangle k (below range.y) of the light; a stage's are its particles' faces, eight each,
-// counter-clockwise from outside (scenes::kParticleFaces).
+// Triangle k (below range.y) of the light; a stage's are its particles' faces, eight each.
 GpuAreaTriangle area_triangle(GpuAreaLight l, uint k) {
   if (l.range.w == 0u) return area_triangles[l.range.x + k];
-  const uvec3 kFaces[8] = uvec3[8](uvec3(0, 2, 4), uvec3(2, 1, 4), uvec3(1, 3, 4), uvec3(3, 0, 4),
-                                   uvec3(2, 0, 5), uvec3(1, 2, 5), uvec3(3, 1, 5), uvec3(0, 3, 5));
-  uvec3 f = kFaces[k % 8u] + l.range.z + 6u * (k / 8u);
+  uvec3 f = kParticleFaces[k % 8u] + l.range.z + 6u * (k / 8u);
   GpuAreaTriangle t;
   t.a = vec4(scene_vertices[f.x].position.xyz, l.extent.y);
   t.b = vec4(scene_vertices[f.y].position.xyz, 0.0);

@@ -11,6 +11,7 @@
 
 #include "shaders/particles_bindings.glsl"
 #include "shaders/particle_motion.glsl"
+#include "shaders/particle_octahedron.glsl"
 
 layout(local_size_x = GIQ_PARTICLES_GROUP) in;
 
@@ -19,8 +20,6 @@ layout(std430, binding = 11) writeonly buffer Previous { vec4 previous[]; };
 // Per stage of life: x its mesh's first vertex, y the lowest id in it.
 layout(std430, binding = 12) readonly buffer Stages { uvec4 stages[]; };
 layout(push_constant) uniform Push { float frame_seconds; };
-
-const vec3 kAxes[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1));
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -35,7 +34,7 @@ void main() {
   uint first = stages[stage].x + 6u * (id - stages[stage].y);
   float size = emitter.motion.w;
   for (uint k = 0u; k < 6u; ++k) {
-    vec3 axis = kAxes[k];
+    vec3 axis = kParticleAxes[k];
     uint row = 2u * (first + k);
     vertices[row] = vec4(position.xyz + size * axis, 1.0);
     vertices[row + 1u] = vec4(axis, 0.0);

@@ -29,8 +29,8 @@ struct StrengthKey {
 };
 
 // A particle's octahedron: six vertices on the axes, normals pointing out along them (a small
-// sphere's), eight faces counter-clockwise from outside (shaders/particles_vertices.comp
-// writes the same vertices).
+// sphere's), eight faces counter-clockwise from outside (the GPU's copy is
+// realtime/shaders/particle_octahedron.glsl).
 inline constexpr uint32_t kParticleVertices = 6, kParticleTriangles = 8;
 inline const glm::dvec3 kParticleAxes[kParticleVertices] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
 inline const glm::uvec3 kParticleFaces[kParticleTriangles] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
