@@ -516,7 +516,7 @@ Scene load(const std::filesystem::path& path) {
   // Emitters emit from their node's surface as posed now, and add their particles at t = 0.
   s.emitters = std::move(extras.emitters);
   for (size_t i = 0; i < s.emitters.size(); ++i) complete_emitter(s.emitters[i], s.meshes, s.materials, doc.file, extras.emitter_fields[i] + ".node");
-  add_particle_meshes(s.emitters, 0.0, 1.0 / s.sequence.fps, s.meshes, doc.file);
+  add_particle_meshes(s.emitters, 0.0, 1.0 / s.sequence.fps, ParticleDetail::Placed, s.meshes, doc.file);
   for (size_t i = 0; i < s.views.size(); ++i)
     for (size_t j = 0; j < i; ++j)
       if (s.views[i].name == s.views[j].name) {

@@ -58,7 +58,8 @@ std::vector<glm::vec3> particle_centres(const Mesh& m) {
   return centres;
 }
 
-void add_particle_meshes(const std::vector<Emitter>& emitters, double t, double frame, std::vector<Mesh>& meshes, const std::string& file) {
+void add_particle_meshes(const std::vector<Emitter>& emitters, double t, double frame, ParticleDetail detail,
+                         std::vector<Mesh>& meshes, const std::string& file) {
   for (size_t i = 0; i < emitters.size(); ++i) {
     const Emitter& e = emitters[i];
     if (e.rate * t >= 4294967295.0)
@@ -73,12 +74,14 @@ void add_particle_meshes(const std::vector<Emitter>& emitters, double t, double 
     for (int s = 0; s < e.stages; ++s) {
       const size_t n = size_t(stage_range(alive, starts, s).count());
       Mesh& m = stage[size_t(s)];
+      m.particles = uint32_t(n);
+      if (detail == ParticleDetail::Counted) continue;
       m.positions.reserve(n * kParticleVertices);
       m.previous_positions.reserve(n * kParticleVertices);
       m.normals.reserve(n * kParticleVertices);
       m.triangles.reserve(n * kParticleTriangles);
     }
-    for (uint64_t id = alive.first; id < alive.end; ++id) {
+    for (uint64_t id = alive.first; id < alive.end && detail == ParticleDetail::Placed; ++id) {
       const ParticleBirth birth = particle_birth(e, uint32_t(id));
       const Particle p = particle_at(e, uint32_t(id), birth, t, starts);
       // One frame earlier by the same closed form, before its birth too (the motion it would

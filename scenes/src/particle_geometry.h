@@ -16,9 +16,11 @@ void complete_emitter(Emitter& e, const std::vector<Mesh>& meshes, std::vector<M
                       const std::string& field);
 
 // The particles alive at time t appended to `meshes`: per emitter, one mesh per stage of life
-// (empty when no particle is in it), each particle an octahedron. Throws InputError when an emitter would have
-// emitted more than 2^32 particles by then.
-// `frame` is the sequence's frame duration: where each particle was then (Mesh::previous_positions).
-void add_particle_meshes(const std::vector<Emitter>& emitters, double t, double frame, std::vector<Mesh>& meshes, const std::string& file);
+// (empty when no particle is in it) holding its particle count and, where `detail` places
+// them, each particle as an octahedron. Throws InputError when an emitter would have emitted
+// more than 2^32 particles by then. `frame` is the sequence's frame duration: where each
+// particle was then (Mesh::previous_positions).
+void add_particle_meshes(const std::vector<Emitter>& emitters, double t, double frame, ParticleDetail detail,
+                         std::vector<Mesh>& meshes, const std::string& file);
 
 }  // namespace giq::scenes

@@ -90,10 +90,16 @@ void Scene::derive_area_lights() {
     AreaLight l;
     l.mesh = m;
     if (per_mesh[m].empty()) {
-      const std::vector<glm::dvec3>& surface = emitters[size_t(mesh.emitter)].surface;
+      const Emitter& e = emitters[size_t(mesh.emitter)];
       glm::dvec3 centre(0.0);
-      for (const glm::dvec3& p : surface) centre += p / double(surface.size());
+      for (const glm::dvec3& p : e.surface) centre += p / double(e.surface.size());
       l.centroid = l.representative = glm::vec3(centre);
+      // Counted particles (ParticleDetail::Counted): their area and light from the count, the
+      // place and extent left to the renderer that places them.
+      const Material& mat = materials[size_t(mesh.material)];
+      l.two_sided = mat.double_sided;
+      l.area = float(double(kParticleTriangles) * mesh.particles * e.face_area());
+      l.intensity = mat.emissive * l.area;
       area_lights.push_back(std::move(l));
       continue;
     }
@@ -155,14 +161,16 @@ void Scene::derive() {
   for (const Mesh& m : meshes)
     if (m.material >= 0 && size_t(m.material) < materials.size() && materials[size_t(m.material)].is_emissive()) emissive += m.triangles.size();
   emissive_triangles.reserve(emissive);
+  bool counted_light = false;  // a stage of counted particles glows (ParticleDetail::Counted)
   for (uint32_t mi = 0; mi < meshes.size(); ++mi) {
     const Mesh& m = meshes[mi];
-    stats.triangles += m.triangles.size();
-    stats.vertices += m.positions.size();
+    const bool counted = m.emitter >= 0 && m.triangles.empty() && m.particles > 0;
+    stats.triangles += counted ? size_t(kParticleTriangles) * m.particles : m.triangles.size();
+    stats.vertices += counted ? size_t(kParticleVertices) * m.particles : m.positions.size();
     for (const auto& t : m.triangles)
       for (int c = 0; c < 3; ++c)
         if (t[c] < m.positions.size()) bounds.extend(m.positions[t[c]]);
-    if (m.triangles.empty() || m.material < 0 || size_t(m.material) >= materials.size()) continue;
+    if ((m.triangles.empty() && !counted) || m.material < 0 || size_t(m.material) >= materials.size()) continue;
     const Material& mat = materials[size_t(m.material)];
     features.specular |= mat.has_specular_lobe();
     features.textures |= mat.has_textures();
@@ -176,6 +184,14 @@ void Scene::derive() {
       features.morph_targets |= !m.deformation->rest->targets.empty();
     }
     if (!mat.is_emissive()) continue;
+    if (counted) {
+      // The octahedra's faces, as the placed ones' power below (one material, no texture).
+      const double face = emitters[size_t(m.emitter)].face_area();
+      stats.total_light_power += double(kParticleTriangles) * m.particles *
+                                 float(std::numbers::pi * face * luminance(mat.emissive) * (mat.double_sided ? 2.0 : 1.0));
+      counted_light = true;
+      continue;
+    }
     // k^2 <= 2^24 / triangles samples per triangle, so averaging stays bounded (about 2^24
     // lookups per mesh) however many large triangles a mesh has.
     const int max_half_k = std::clamp(int(std::sqrt(double(1 << 22) / double(m.triangles.size()))), 1, 32);
@@ -195,7 +211,7 @@ void Scene::derive() {
       emissive_triangles.push_back(e);
     }
   }
-  features.emissive_meshes = !emissive_triangles.empty();
+  features.emissive_meshes = !emissive_triangles.empty() || counted_light;
 
   // Punctual lights, roughly (Light::power), a directional light over the scene's bounding
   // disc.
@@ -219,7 +235,7 @@ double Scene::duration() const {
   return source_->animations[size_t(sequence.animation)].end;
 }
 
-Scene Scene::at(double t) const {
+Scene Scene::at(double t, ParticleDetail particles) const {
   Scene s = *this;
   s.time = t;
   const bool animated = source_ && sequence.animation >= 0;
@@ -231,7 +247,7 @@ Scene Scene::at(double t) const {
   } else {
     std::erase_if(s.meshes, [](const Mesh& m) { return m.emitter >= 0; });
   }
-  add_particle_meshes(s.emitters, t, 1.0 / sequence.fps, s.meshes, path.string());
+  add_particle_meshes(s.emitters, t, 1.0 / sequence.fps, particles, s.meshes, path.string());
   s.derive();
   return s;
 }

@@ -178,5 +178,46 @@ TEST(Particles, PosedScenesHoldTheAliveParticlesAsOctahedra) {
   EXPECT_GT(a.emissive_triangles.size(), 0u);
 }
 
+// Counted particles (ParticleDetail::Counted): the same meshes, counts, features, stats and
+// lights' power as the placed ones, with no vertex; the area lights' area and intensity are
+// the placed octahedra's to float rounding (each face's area there comes from float corners a
+// few metres from the origin: relative 1e-6 would hold; 1e-5 leaves room for the sums).
+TEST(Particles, CountedPosesHoldTheSameParticlesWithoutVertices) {
+  const Scene s = fountain();
+  for (int frame : {0, 15, 30}) {
+    const Scene placed = s.at_frame(frame), counted = s.at_frame(frame, ParticleDetail::Counted);
+    ASSERT_EQ(placed.meshes.size(), counted.meshes.size());
+    for (size_t m = 0; m < placed.meshes.size(); ++m) {
+      const Mesh &p = placed.meshes[m], &c = counted.meshes[m];
+      EXPECT_EQ(p.emitter, c.emitter);
+      EXPECT_EQ(p.material, c.material);
+      EXPECT_EQ(p.particles, c.particles);
+      if (p.emitter < 0) {
+        EXPECT_EQ(p.positions, c.positions);
+        continue;
+      }
+      EXPECT_EQ(p.positions.size(), size_t(6) * p.particles) << "mesh " << m;
+      EXPECT_TRUE(c.positions.empty() && c.triangles.empty() && c.previous_positions.empty()) << "mesh " << m;
+    }
+    EXPECT_EQ(placed.features, counted.features) << "frame " << frame;
+    EXPECT_EQ(placed.stats.triangles, counted.stats.triangles);
+    EXPECT_EQ(placed.stats.vertices, counted.stats.vertices);
+    EXPECT_NEAR(counted.stats.total_light_power, placed.stats.total_light_power, 1e-5 * placed.stats.total_light_power);
+    // The file's emissive triangles only; the particles' none.
+    for (const EmissiveTriangle& e : counted.emissive_triangles) EXPECT_LT(counted.meshes[e.mesh].emitter, 0);
+    ASSERT_EQ(placed.area_lights.size(), counted.area_lights.size());
+    for (size_t i = 0; i < placed.area_lights.size(); ++i) {
+      const AreaLight &p = placed.area_lights[i], &c = counted.area_lights[i];
+      EXPECT_EQ(p.mesh, c.mesh);
+      EXPECT_EQ(p.two_sided, c.two_sided);
+      EXPECT_NEAR(c.area, p.area, 1e-5 * p.area) << "light " << i;
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(c.intensity[k], p.intensity[k], 1e-5 * p.intensity[k]) << "light " << i;
+      if (counted.meshes[c.mesh].emitter < 0) {
+        EXPECT_EQ(p.centroid, c.centroid);
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace giq::scenes

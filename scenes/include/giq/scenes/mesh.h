@@ -29,6 +29,9 @@ struct Mesh {
   uint32_t object_id = 0;
   int material = 0;  // index into Scene::materials (always valid; a default one is added)
   int emitter = -1;  // >= 0: the particles of Scene::emitters[emitter] in one stage of life (node -1)
+  // A stage's particle count: six vertices and eight triangles each where the scene places
+  // them, none where it only counts them (ParticleDetail::Counted).
+  uint32_t particles = 0;
   // Particles: each vertex where it was one frame (1 / Sequence::fps) earlier, for motion
   // vectors, since a particle is not at the same vertex index from frame to frame; empty for
   // other meshes.

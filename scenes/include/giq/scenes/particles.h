@@ -67,6 +67,9 @@ struct Emitter {
   uint32_t object_id = 0;   // of the particles' pixels: glTF node count + 1 + emitter index
 
   double stage_strength(int stage) const;  // strength at the stage's middle of life
+  // The area of each face of a particle's octahedron: an equilateral triangle of side
+  // size sqrt(2).
+  double face_area() const { return 0.5 * 1.7320508075688772 * size * size; }
 };
 
 // The ids alive at time t: born at id / rate <= t, dying at id / rate + lifetime > t.

@@ -116,6 +116,16 @@ struct SceneStats {
 
 struct SceneSource;  // the parsed glTF document kept to pose the scene at other times
 
+// How a posed scene holds its emitters' particles. Placed: each an octahedron of the stage
+// mesh, the triangles the reference renders. Counted: each stage mesh holds its particle count
+// (Mesh::particles) and no vertex, for a renderer that places the particles itself (the
+// real-time module's GPU simulation): posing a million particles then costs nothing, and the
+// scene lists no emissive triangle of theirs. A counted stage's area light has its area and
+// intensity but sits at the emitting surface's centre with no extent, and the bounds leave the
+// particles out, until that renderer completes them from where it placed them
+// (realtime::SceneGpu::complete).
+enum class ParticleDetail { Placed, Counted };
+
 class Scene {
  public:
   // --- provenance
@@ -163,8 +173,8 @@ class Scene {
 
   // The scene posed at time t in seconds (animations evaluated, lights and cameras moved).
   // Same origin, materials and textures. For a scene without animation, a copy.
-  Scene at(double t) const;
-  Scene at_frame(int frame) const { return at(frame / sequence.fps); }
+  Scene at(double t, ParticleDetail particles = ParticleDetail::Placed) const;
+  Scene at_frame(int frame, ParticleDetail particles = ParticleDetail::Placed) const { return at(frame / sequence.fps, particles); }
   double duration() const;  // of the playing animation; 0 when static
 
   // Coverage (Material::coverage) of mesh m's triangle t at barycentrics (b1, b2): its
