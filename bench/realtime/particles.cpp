@@ -8,7 +8,8 @@
 // simulation and emission apart, and the frame), the median over the timed frames of every run. At the last frame a sample of particles is compared
 // with the scene library's double-precision particles (scenes::particle_at), as the tests do.
 // After the system's passes, as in the scene on the GPU, the particles are written as their
-// octahedra (ParticleSystem::record_vertices) and a tree is built over them (LinearBvh), each
+// octahedra, glowing (ParticleSystem::record_vertices: vertices, previous vertices, triangle
+// records, indices and emissive triangles) and a tree is built over them (LinearBvh), each
 // timed apart from the system's frame.
 
 #include <CLI/CLI.hpp>
@@ -22,6 +23,7 @@
 #include "giq/realtime/particle_system.h"
 #include "giq/realtime/shader.h"
 #include "giq/realtime/timer.h"
+#include "shaders/particles_shared.h"
 #include "shaders/scene_shared.h"
 
 using namespace giq;
@@ -61,13 +63,10 @@ int main(int argc, char** argv) {
     const realtime::Buffer vertices(ctx, uint64_t(capacity) * scenes::kParticleVertices * sizeof(realtime::gpu::GpuVertex),
                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     const realtime::Buffer previous(ctx, vertices.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    std::vector<realtime::gpu::GpuTriangle> triangles;
-    triangles.reserve(uint64_t(capacity) * scenes::kParticleTriangles);
-    for (uint32_t p = 0; p < capacity; ++p)
-      for (const glm::uvec3& f : scenes::kParticleFaces)
-        triangles.push_back({glm::uvec4(f + glm::uvec3(p * scenes::kParticleVertices), 0u), glm::uvec4(0u)});
-    const realtime::Buffer triangle_buffer = realtime::Buffer::storage(ctx, triangles);
-    triangles = {};
+    const uint64_t max_triangles = uint64_t(capacity) * scenes::kParticleTriangles;
+    const realtime::Buffer triangle_buffer(ctx, max_triangles * sizeof(realtime::gpu::GpuTriangle), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const realtime::Buffer indices(ctx, 3 * max_triangles * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const realtime::Buffer emissive(ctx, max_triangles * sizeof(realtime::gpu::GpuEmissive), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     realtime::LinearBvh tree(ctx, compiler, capacity, scenes::kParticleTriangles);
     std::vector<realtime::BvhNode> nodes;
     std::vector<uint32_t> prims;
@@ -81,21 +80,26 @@ int main(int argc, char** argv) {
       for (int f = 0; f < frames; ++f) {
         const double t = f / 30.0;
         system.prepare(t);
-        // Each stage's first vertex: stages in order, each holding its ids in [lowest, the
-        // previous stage's lowest), as scenes::Scene::at places them.
+        // Each stage's place: stages in order, each holding its ids in [lowest, the previous
+        // stage's lowest), as scenes::Scene::at places them; every triangle glows alike.
         const scenes::AliveRange alive = scenes::alive_range(e, t);
-        const std::vector<uint64_t> starts = scenes::stage_starts(e, t);
-        std::vector<uint32_t> stage_first(size_t(e.stages));
-        uint64_t vertex = 0;
-        for (size_t st = 0; st < stage_first.size(); ++st) {
-          stage_first[st] = uint32_t(vertex);
-          vertex += scenes::kParticleVertices * scenes::stage_range(alive, starts, int(st)).count();
+        const std::vector<uint32_t>& counts = system.stage_counts();
+        std::vector<realtime::gpu::GpuParticleStage> stages(counts.size());
+        uint32_t particle = 0;
+        const float each = 1.0f / float(std::max<uint64_t>(1, scenes::kParticleTriangles * alive.count()));
+        for (size_t st = 0; st < stages.size(); ++st) {
+          const uint32_t triangle = scenes::kParticleTriangles * particle;
+          stages[st].first = glm::uvec4(scenes::kParticleVertices * particle, 0u, triangle, triangle + 1);
+          stages[st].triangle = glm::uvec4(0u, 1u, GIQ_TRIANGLE_HAS_NORMALS, uint32_t(scenes::kParticleTriangles * alive.count()));
+          stages[st].radiance = glm::vec4(1.0f, 1.0f, 1.0f, float(e.face_area()));
+          stages[st].sampling = glm::vec4(float(triangle) * each, each, 0.0f, 0.0f);
+          particle += counts[st];
         }
         ctx.submit_and_wait([&](VkCommandBuffer cmd) {
           timer.reset(cmd);
           system.record(cmd, &timer);
           timer.begin(cmd, "particle vertices");
-          system.record_vertices(cmd, vertices, previous, stage_first, 1.0 / 30.0);
+          system.record_vertices(cmd, {vertices, previous, triangle_buffer, indices, emissive}, stages, 1.0 / 30.0);
           timer.end(cmd);
           tree.record(cmd, vertices, triangle_buffer, node_buffer, prim_buffer, 0, uint32_t(alive.count()), &timer);
         });

@@ -20,6 +20,12 @@ GpuParticleLight stage_particle(GpuAreaLight l, uint k) {
   return q;
 }
 
+// The particles a pass lights particle by particle, and the triangles it integrates one by
+// one: a stage's particles unless it asks for its triangles (extent.z), another light's
+// triangles.
+uint lit_particles(GpuAreaLight l) { return l.extent.z == 0.0 ? l.range.w : 0u; }
+uint lit_triangles(GpuAreaLight l) { return lit_particles(l) > 0u ? 0u : l.range.y; }
+
 // Triangle k (below range.y) of the light; a stage's are its particles' faces, eight each.
 GpuAreaTriangle area_triangle(GpuAreaLight l, uint k) {
   if (l.range.w == 0u) return area_triangles[l.range.x + k];

@@ -121,9 +121,8 @@ vec3 area_light(GpuAreaLight l, Surface s, vec3 p, vec3 wo) {
   vec3 sum = vec3(0.0);
   vec3 incident = vec3(0.0);  // sum of radiance x irradiance over the triangles (declared shapes)
   int shape = int(l.shape.w);
-  for (uint k = 0u; k < l.range.w; ++k) sum += particle_light(stage_particle(l, k), s, p, wo);
-  // A stage of particles is lit by particle (above), not by triangle.
-  uint triangles = l.range.w > 0u ? 0u : l.range.y;
+  for (uint k = 0u; k < lit_particles(l); ++k) sum += particle_light(stage_particle(l, k), s, p, wo);
+  uint triangles = lit_triangles(l);
   for (uint k = 0u; k < triangles; ++k) {
     GpuAreaTriangle t = area_triangle(l, k);
     vec3 a = t.a.xyz - p, b = t.b.xyz - p, c = t.c.xyz - p;

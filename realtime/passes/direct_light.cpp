@@ -152,12 +152,13 @@ void DirectLightPass::build_area_lights(const scenes::Scene& scene) {
     const scenes::Mesh& mesh = scene.meshes[a.mesh];
     gpu::GpuAreaLight l;
     l.range = glm::uvec4(uint32_t(area_triangles_.size()), uint32_t(a.triangles.size()), 0, 0);
-    // Every triangle of a stage glows alike (one material), eight to a particle.
-    const size_t particles = mesh.positions.size() / scenes::kParticleVertices;
-    if (particle_lights_ && mesh.emitter >= 0 && particles > 0 && a.triangles.size() == scenes::kParticleTriangles * particles) {
+    // Every triangle of a stage glows alike (one material, no texture), eight to a particle;
+    // the scene may only count them (scenes::ParticleDetail::Counted).
+    if (mesh.emitter >= 0 && mesh.particles > 0) {
+      l.range.y = scenes::kParticleTriangles * mesh.particles;
       l.range.z = scene_gpu_.geometry().mesh_first_vertex[a.mesh];
-      l.range.w = uint32_t(particles);
-      l.particle = glm::vec4(scene.emissive_triangles[a.triangles.front()].radiance, float(scene.emitters[size_t(mesh.emitter)].size));
+      l.range.w = mesh.particles;
+      l.particle = glm::vec4(scene.materials[size_t(mesh.material)].emissive, float(scene.emitters[size_t(mesh.emitter)].size));
     }
     for (size_t k = 0; k < a.triangles.size() && l.range.w == 0; ++k) {
       const uint32_t i = a.triangles[k];
@@ -168,7 +169,7 @@ void DirectLightPass::build_area_lights(const scenes::Scene& scene) {
                                  glm::vec4(e.radiance, 0.0f)});
     }
     l.position = glm::vec4(a.representative, 0.0f);
-    l.extent = glm::vec4(a.extent, a.two_sided ? 1.0f : 0.0f, 0.0f, 0.0f);
+    l.extent = glm::vec4(a.extent, a.two_sided ? 1.0f : 0.0f, l.range.w > 0 && !particle_lights_ ? 1.0f : 0.0f, 0.0f);
     static_assert(GIQ_AREA_MESH == int(scenes::AreaShape::Mesh) && GIQ_AREA_TUBE == int(scenes::AreaShape::Tube));
     l.shape = glm::vec4(a.shape_centre, float(int(a.shape)));
     l.shape_u = glm::vec4(a.shape_u, a.shape_radius);

@@ -36,7 +36,8 @@ struct GpuAreaLight {
   uvec4 range;
   vec4 particle;  // a particle of the stage: rgb its emitted radiance, w its circumradius
   // x: how far from `position` shadow rays towards it stop (AreaLight::extent); y: 1 when the
-  // emitter is double-sided (as GpuAreaTriangle::a.w).
+  // emitter is double-sided (as GpuAreaTriangle::a.w); z: 1 when a stage of particles is lit
+  // by its triangles rather than particle by particle (area_light_parts.glsl, lit_particles).
   vec4 extent;
   // The declared shape for glossy reflections (scenes::AreaLight::shape_*): xyz centre, w the
   // shape (GIQ_AREA_*); u and v: xyz half vectors (rectangle: sides; tube: half segment; disc:

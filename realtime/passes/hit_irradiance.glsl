@@ -15,11 +15,11 @@
 // of a stage of them (shaders/octahedron_irradiance.glsl), unshadowed.
 vec3 area_irradiance(GpuAreaLight l, vec3 p, vec3 n) {
   vec3 e = vec3(0.0);
-  for (uint k = 0u; k < l.range.w; ++k) {
+  for (uint k = 0u; k < lit_particles(l); ++k) {
     GpuParticleLight q = stage_particle(l, k);
     e += q.radiance.rgb * octahedron_irradiance(q.centre.xyz - p, q.centre.w, n);
   }
-  uint triangles = l.range.w > 0u ? 0u : l.range.y;
+  uint triangles = lit_triangles(l);
   for (uint k = 0u; k < triangles; ++k) {
     GpuAreaTriangle t = area_triangle(l, k);
     vec3 a = t.a.xyz - p, b = t.b.xyz - p, c = t.c.xyz - p;

@@ -50,6 +50,19 @@ struct GpuParticleFrame {
   uvec4 starts[16];  // stage_starts, four a row (63 at most)
 };
 
+// A stage of life of an emitter's particles as the scene holds it (SceneGpu), for the pass
+// that writes them into the scene (particles_vertices.comp): particle k of the stage (its ids
+// ascending) has vertices first.x + 6k.., triangles first.z + 8k.. and, when the stage glows,
+// emissive triangles first.w - 1 + 8k.., their CDF values sampling.x + (j + 1) sampling.y for
+// the stage's j-th one (all of a stage's triangles have one power, so the prefix sum has a
+// closed form).
+struct GpuParticleStage {
+  uvec4 first;     // x first vertex, y the stage's lowest id, z first triangle, w first emissive triangle + 1 (0: dark)
+  uvec4 triangle;  // x material, y object id, z GIQ_TRIANGLE_HAS_* bits, w emissive triangles in the scene (the last has CDF 1)
+  vec4 radiance;   // rgb emitted radiance; w a face's area
+  vec4 sampling;   // x the CDF before the stage's first triangle, y each triangle's probability
+};
+
 #ifdef __cplusplus
 }  // namespace giq::realtime::gpu
 #endif

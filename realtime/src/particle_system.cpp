@@ -23,9 +23,9 @@ ParticleSystem::ParticleSystem(Context& ctx, ShaderCompiler& compiler, const sce
   simulate_ = Pipeline::compute(ctx, compiler.compile("shaders/particles_simulate.comp"), bindings, 0);
   emit_ = Pipeline::compute(ctx, compiler.compile("shaders/particles_emit.comp"), bindings, 0);
   std::vector<VkDescriptorType> vertex_bindings = bindings;
-  vertex_bindings.resize(kBindings + 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  vertex_bindings.resize(kBindings + 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   vertices_ = Pipeline::compute(ctx, compiler.compile("shaders/particles_vertices.comp"), vertex_bindings, sizeof(float));
-  stages_ = Buffer(ctx, uint64_t(std::max(1, emitter.stages)) * sizeof(glm::uvec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  stages_ = Buffer(ctx, uint64_t(std::max(1, emitter.stages)) * sizeof(GpuParticleStage), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
   particles_ = Buffer(ctx, uint64_t(capacity_) * sizeof(GpuParticle), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   dead_ = Buffer(ctx, uint64_t(capacity_) * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -74,7 +74,12 @@ void ParticleSystem::prepare(double t) {
   frame_.upload(&f, sizeof(f));
   alive_count_ = alive.count();
   stage_lowest_id_.clear();
-  for (int s = 0; s < e.stages; ++s) stage_lowest_id_.push_back(uint32_t(scenes::stage_range(alive, starts, s).first));
+  stage_count_.clear();
+  for (int s = 0; s < e.stages; ++s) {
+    const scenes::AliveRange r = scenes::stage_range(alive, starts, s);
+    stage_lowest_id_.push_back(uint32_t(r.first));
+    stage_count_.push_back(uint32_t(r.count()));
+  }
 }
 
 std::vector<Descriptor> ParticleSystem::descriptors(int in, int out) const {
@@ -111,15 +116,17 @@ void ParticleSystem::record(VkCommandBuffer cmd, GpuTimer* timer) {
   out_ = in;  // this frame's output is the next frame's input
 }
 
-void ParticleSystem::record_vertices(VkCommandBuffer cmd, const Buffer& vertices, const Buffer& previous,
-                                     const std::vector<uint32_t>& stage_first_vertex, double frame_seconds) {
+void ParticleSystem::record_vertices(VkCommandBuffer cmd, const SceneArrays& scene, const std::vector<gpu::GpuParticleStage>& places,
+                                     double frame_seconds) {
   if (alive_count_ == 0) return;
-  std::vector<glm::uvec4> stages(stage_lowest_id_.size());
-  for (size_t s = 0; s < stages.size() && s < stage_first_vertex.size(); ++s) stages[s] = glm::uvec4(stage_first_vertex[s], stage_lowest_id_[s], 0, 0);
-  stages_.upload(stages.data(), stages.size() * sizeof(glm::uvec4));
+  std::vector<gpu::GpuParticleStage> stages = places;
+  stages.resize(stage_lowest_id_.size());
+  for (size_t s = 0; s < stages.size(); ++s) stages[s].first.y = stage_lowest_id_[s];
+  stages_.upload(stages.data(), stages.size() * sizeof(gpu::GpuParticleStage));
   // record() made the list it wrote (alive_out here) the next frame's input.
   std::vector<Descriptor> d = descriptors(out_, 1 - out_);
-  d.insert(d.end(), {Descriptor::storage(vertices), Descriptor::storage(previous), Descriptor::storage(stages_)});
+  d.insert(d.end(), {Descriptor::storage(scene.vertices), Descriptor::storage(scene.previous), Descriptor::storage(stages_),
+                     Descriptor::storage(scene.triangles), Descriptor::storage(scene.indices), Descriptor::storage(scene.emissive)});
   vertices_.bind(cmd);
   vertices_.push_descriptors(cmd, d);
   vertices_.push_constants(cmd, float(frame_seconds));

@@ -46,14 +46,16 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
   GpuTimer timer(ctx);
   // One technique instance for the whole sequence, so temporal techniques keep their history:
   // an animated scene is posed per frame into `posed` (which the technique holds by
-  // reference) and the GPU scene is updated in place; the technique learns what moved.
-  scenes::Scene posed = scene.features.animation ? scene.at_frame(0) : scene;
+  // reference) and the GPU scene is updated in place; the technique learns what moved. The
+  // GPU places the particles, so the pose only counts them, and the GPU scene completes it.
+  scenes::Scene posed = scene.features.animation ? scene.at_frame(0, scenes::ParticleDetail::Counted) : scene;
   // Device memory the scene and the technique keep resident (sub-allocated bytes, so what
   // the resources need, not the 64 MiB blocks around them); measured after the first frame,
   // since passes may create resources when they first record.
   const uint64_t memory_before = ctx.allocator().bytes_in_use();
   if (options.on_progress) options.on_progress(-1);
   SceneGpu scene_gpu(ctx, compiler, posed);
+  scene_gpu.complete(posed);
   const uint64_t memory_scene = ctx.allocator().bytes_in_use();
   std::unique_ptr<Technique> technique =
       info.create({ctx, compiler, posed, scene_gpu, options.width, options.height, params});
@@ -64,8 +66,9 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
   for (int f = 0; f < total; ++f) {
     SceneChange change = SceneChange::None;
     if (f > 0 && scene.features.animation) {
-      posed = scene.at_frame(f);
+      posed = scene.at_frame(f, scenes::ParticleDetail::Counted);
       change = scene_gpu.update(posed);
+      scene_gpu.complete(posed);
     }
     const scenes::Camera camera = posed.view(view_name).camera;
     FrameTiming t;

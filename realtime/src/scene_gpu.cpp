@@ -4,21 +4,30 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <numbers>
 
 #include "giq/base/error.h"
 #include "giq/realtime/context.h"
 #include "giq/realtime/shader.h"
 #include "giq/realtime/timer.h"
+#include "shaders/particles_shared.h"
 #include "shaders/scene_shared.h"
 
 namespace giq::realtime {
 
-FlatGeometry flatten(const scenes::Scene& scene) {
+FlatGeometry flatten(const scenes::Scene& scene, bool placed) {
   FlatGeometry g;
   for (const auto& m : scene.meshes) {
-    const uint32_t base = uint32_t(g.positions.size());
-    g.mesh_first_triangle.push_back(uint32_t(g.triangles.size()));
+    const uint32_t base = g.vertex_count;
+    g.mesh_first_triangle.push_back(g.triangle_count);
     g.mesh_first_vertex.push_back(base);
+    if (m.emitter >= 0 && !placed) {
+      g.vertex_count += scenes::kParticleVertices * m.particles;
+      g.triangle_count += scenes::kParticleTriangles * m.particles;
+      continue;
+    }
+    g.vertex_count += uint32_t(m.positions.size());
+    g.triangle_count += uint32_t(m.triangles.size());
     for (size_t i = 0; i < m.positions.size(); ++i) {
       g.positions.push_back(m.positions[i]);
       g.normals.push_back(i < m.normals.size() ? m.normals[i] : glm::vec3(0.0f));
@@ -38,8 +47,8 @@ glm::uvec4 own_geometry(const scenes::Scene& scene, const FlatGeometry& g, uint3
     while (first > 0 && scene.meshes[first - 1].emitter >= 0) --first;
     while (end < scene.meshes.size() && scene.meshes[end].emitter >= 0) ++end;
   }
-  auto vertex = [&](size_t m) { return m < g.mesh_first_vertex.size() ? g.mesh_first_vertex[m] : uint32_t(g.positions.size()); };
-  auto triangle = [&](size_t m) { return m < g.mesh_first_triangle.size() ? g.mesh_first_triangle[m] : uint32_t(g.triangles.size()); };
+  auto vertex = [&](size_t m) { return m < g.mesh_first_vertex.size() ? g.mesh_first_vertex[m] : g.vertex_count; };
+  auto triangle = [&](size_t m) { return m < g.mesh_first_triangle.size() ? g.mesh_first_triangle[m] : g.triangle_count; };
   return {vertex(first), vertex(end) - vertex(first), triangle(first), triangle(end) - triangle(first)};
 }
 
@@ -58,6 +67,15 @@ uint32_t format_code(scenes::TexelFormat f) {
 
 bool needs_textures(const scenes::FeatureSet& f) {
   return f.textures || f.normal_maps || f.alpha_mask || f.vertex_colors || f.environment_map;
+}
+
+// A storage buffer of `bytes` (at least 16) whose first bytes are `v`'s; the GPU writes the
+// rest (the particles').
+template <class T>
+Buffer leading(Context& ctx, const std::vector<T>& v, uint64_t bytes, VkBufferUsageFlags extra = 0) {
+  Buffer b(ctx, std::max<uint64_t>(bytes, 16), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | extra);
+  if (!v.empty()) b.upload(v.data(), v.size() * sizeof(T));
+  return b;
 }
 
 }  // namespace
@@ -97,9 +115,13 @@ SceneGpu::SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& 
     particles_.push_back(std::make_unique<ParticleSystem>(ctx, compiler, e));
     most_particles += particles_.back()->capacity();
   }
-  if (!particles_.empty()) particle_bvh_ = std::make_unique<LinearBvh>(ctx, compiler, most_particles, scenes::kParticleTriangles);
+  if (!particles_.empty()) {
+    particle_bvh_ = std::make_unique<LinearBvh>(ctx, compiler, most_particles, scenes::kParticleTriangles);
+    particle_bounds_ = std::make_unique<ParticleBounds>(ctx, compiler);
+  }
   upload_geometry(scene, flatten(scene));
-  previous_vertices_ = Buffer::storage(ctx, previous_rows(scene, geometry_));
+  reserve(previous_vertices_, uint64_t(geometry_.vertex_count) * sizeof(gpu::GpuVertex));
+  if (!vertices_host_.empty()) previous_vertices_.upload(vertices_host_.data(), vertices_host_.size() * sizeof(glm::vec4));
   make_deformer(scene);
   prepare_particles(scene);
   if (deformer_ || !particles_.empty())
@@ -111,10 +133,14 @@ SceneGpu::SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& 
   make_mips(compiler, scene, levels);
 }
 
+SceneGpu::~SceneGpu() = default;
+
 SceneChange SceneGpu::update(const scenes::Scene& posed) {
   SceneChange change = SceneChange::None;
   FlatGeometry g = flatten(posed);
-  const bool moved = g.positions != geometry_.positions || g.normals != geometry_.normals;
+  // Particles move whenever there are any (the GPU places them).
+  auto has_particles = [](const FlatGeometry& f) { return f.vertex_count > f.positions.size(); };
+  const bool moved = has_particles(g) || has_particles(geometry_) || g.positions != geometry_.positions || g.normals != geometry_.normals;
   // The deforming meshes keep their places in the vertex array (they keep every vertex) unless
   // a mesh before them changed its vertex count; then the pass is made anew. (Particles, whose
   // count changes every frame, come after every mesh of the file.)
@@ -122,36 +148,28 @@ SceneChange SceneGpu::update(const scenes::Scene& posed) {
   if (keep_deformed) rigid_ranges_ = rigid_ranges(posed, g);
 
   // The previous frame's vertices in this frame's layout, for motion vectors: a mesh whose
-  // vertices are where they were keeps its last ones; particles (a particle is not at the same
-  // index from frame to frame) bring theirs; meshes whose vertex count changed get this
-  // frame's, that is no motion. The deformation pass saves its own vertices' before
-  // overwriting them.
-  std::vector<glm::vec4> previous = previous_rows(posed, g);
+  // vertices are where they were keeps its last ones; meshes whose vertex count changed get
+  // this frame's, that is no motion. The deformation pass saves its own vertices' before
+  // overwriting them, the particle pass writes where each particle was (a particle is not at
+  // the same index from frame to frame).
+  std::vector<glm::vec4> previous = vertex_rows(g);
   for (size_t m = 0; m < posed.meshes.size() && m < geometry_.mesh_first_vertex.size(); ++m) {
     if (posed.meshes[m].emitter >= 0) continue;
     const size_t first = g.mesh_first_vertex[m], count = posed.meshes[m].positions.size();
     const size_t old_first = geometry_.mesh_first_vertex[m];
-    const size_t old_end = m + 1 < geometry_.mesh_first_vertex.size() ? geometry_.mesh_first_vertex[m + 1] : geometry_.positions.size();
+    const size_t old_end = m + 1 < geometry_.mesh_first_vertex.size() ? geometry_.mesh_first_vertex[m + 1] : geometry_.vertex_count;
     if (old_end - old_first != count) continue;
     std::copy(vertices_host_.begin() + long(2 * old_first), vertices_host_.begin() + long(2 * (old_first + count)), previous.begin() + long(2 * first));
   }
-  const uint64_t bytes = previous.size() * sizeof(glm::vec4);
-  if (keep_deformed) {
-    reserve(previous_vertices_, bytes);
+  reserve(previous_vertices_, uint64_t(g.vertex_count) * sizeof(gpu::GpuVertex));
+  if (keep_deformed)
     previous_vertices_.upload_ranges(previous.data(), rigid_ranges_);
-  } else if (previous_vertices_.size() == std::max<uint64_t>(bytes, 16)) {
-    previous_vertices_.upload(previous.data(), bytes);
-  } else {
-    previous_vertices_ = Buffer::storage(*ctx_, previous);
-  }
+  else if (!previous.empty())
+    previous_vertices_.upload(previous.data(), previous.size() * sizeof(glm::vec4));
 
   if (moved) {
-    // The CPU's tree holds every triangle but the particles' (which come last).
-    const size_t m = first_particle_mesh(posed);
-    auto fixed_vertices = [&](const FlatGeometry& f) { return m < f.mesh_first_vertex.size() ? f.mesh_first_vertex[m] : f.positions.size(); };
-    const size_t fixed = m < g.mesh_first_triangle.size() ? g.mesh_first_triangle[m] : g.triangles.size();
-    const bool same_triangles = fixed == fixed_triangles_ && fixed_vertices(g) == fixed_vertices(geometry_) &&
-                                std::equal(g.triangles.begin(), g.triangles.begin() + long(fixed), geometry_.triangles.begin());
+    // The CPU's tree holds every triangle but the particles' (which are not in `g`).
+    const bool same_triangles = g.positions.size() == geometry_.positions.size() && g.triangles == geometry_.triangles;
     upload_geometry(posed, std::move(g), same_triangles, keep_deformed);
     change = SceneChange::Geometry;
   }
@@ -178,19 +196,10 @@ std::vector<glm::vec4> SceneGpu::vertex_rows(const FlatGeometry& g) {
   return rows;
 }
 
-std::vector<glm::vec4> SceneGpu::previous_rows(const scenes::Scene& scene, const FlatGeometry& g) {
-  std::vector<glm::vec4> rows = vertex_rows(g);
-  for (size_t m = 0; m < scene.meshes.size(); ++m) {
-    const std::vector<glm::vec3>& was = scene.meshes[m].previous_positions;
-    for (size_t i = 0; i < was.size(); ++i) rows[2 * (g.mesh_first_vertex[m] + i)] = glm::vec4(was[i], 1.0f);
-  }
-  return rows;
-}
-
 std::vector<VkBufferCopy> SceneGpu::rigid_ranges(const scenes::Scene& scene, const FlatGeometry& g) {
   std::vector<VkBufferCopy> ranges;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
-    if (scene.meshes[m].deformation) continue;
+    if (scene.meshes[m].deformation || scene.meshes[m].emitter >= 0) continue;
     const uint64_t first = g.mesh_first_vertex[m] * sizeof(gpu::GpuVertex);
     const uint64_t bytes = scene.meshes[m].positions.size() * sizeof(gpu::GpuVertex);
     if (!ranges.empty() && ranges.back().dstOffset + ranges.back().size == first)
@@ -202,14 +211,18 @@ std::vector<VkBufferCopy> SceneGpu::rigid_ranges(const scenes::Scene& scene, con
 }
 
 void SceneGpu::reserve(Buffer& buffer, uint64_t bytes) {
+  bytes = std::max<uint64_t>(bytes, 16);
   if (buffer.size() >= bytes) return;
-  // Twice what is needed, so that a growing particle count rarely moves the buffer; the
-  // deformed vertices, which only the GPU holds, go along.
-  Buffer bigger(*ctx_, 2 * bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  // Twice what is needed when the count may grow again (particles, or a buffer that has
+  // grown), so that it rarely moves; the deformed vertices, which only the GPU holds, go along.
+  const uint64_t size = particles_.empty() && !buffer ? bytes : 2 * bytes;
+  Buffer bigger(*ctx_, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   std::vector<VkBufferCopy> deformed;
-  for (const auto& [first, count] : deformer_->ranges())
-    deformed.push_back({first * sizeof(gpu::GpuVertex), first * sizeof(gpu::GpuVertex), uint64_t(count) * sizeof(gpu::GpuVertex)});
-  ctx_->submit_and_wait([&](VkCommandBuffer cmd) { vkCmdCopyBuffer(cmd, buffer.handle(), bigger.handle(), uint32_t(deformed.size()), deformed.data()); });
+  if (deformer_ && buffer)
+    for (const auto& [first, count] : deformer_->ranges())
+      deformed.push_back({first * sizeof(gpu::GpuVertex), first * sizeof(gpu::GpuVertex), uint64_t(count) * sizeof(gpu::GpuVertex)});
+  if (!deformed.empty())
+    ctx_->submit_and_wait([&](VkCommandBuffer cmd) { vkCmdCopyBuffer(cmd, buffer.handle(), bigger.handle(), uint32_t(deformed.size()), deformed.data()); });
   buffer = std::move(bigger);
 }
 
@@ -223,36 +236,93 @@ void SceneGpu::make_deformer(const scenes::Scene& scene) {
   refitter_->set_tree(bvh_, particle_bvh_ ? 1 : 0);
 }
 
-// Scene::at puts the particle meshes after every mesh of the file.
-size_t SceneGpu::first_particle_mesh(const scenes::Scene& scene) {
-  size_t m = 0;
-  while (m < scene.meshes.size() && scene.meshes[m].emitter < 0) ++m;
-  return m;
-}
-
 void SceneGpu::prepare_particles(const scenes::Scene& posed) {
   if (particles_.empty()) return;
   frame_seconds_ = 1.0 / posed.sequence.fps;
-  particle_vertices_ = 0;
-  stage_first_vertex_.assign(particles_.size(), {});
-  for (size_t m = 0; m < posed.meshes.size(); ++m) {
-    const int e = posed.meshes[m].emitter;
-    if (e < 0 || size_t(e) >= particles_.size()) continue;
-    // scenes::Scene::at appends an emitter's stage meshes in stage order.
-    stage_first_vertex_[size_t(e)].push_back(geometry_.mesh_first_vertex[m]);
-    particle_vertices_ += uint32_t(posed.meshes[m].positions.size());
-  }
+  particle_vertices_ = geometry_.vertex_count - uint32_t(geometry_.positions.size());
   for (const auto& p : particles_) p->prepare(posed.time);
+}
+
+double SceneGpu::place_particle_stages(const scenes::Scene& scene, uint32_t fixed, double power) {
+  stages_.assign(particles_.size(), {});
+  stage_mesh_.clear();
+  // Each glowing stage's triangles all have one power (the scene library's, from the face's
+  // closed-form area), chosen in proportion to it like the host's emissive triangles.
+  std::vector<double> face_power;
+  const double host = power;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const scenes::Mesh& mesh = scene.meshes[m];
+    if (mesh.emitter < 0 || size_t(mesh.emitter) >= particles_.size()) continue;
+    const scenes::Emitter& e = scene.emitters[size_t(mesh.emitter)];
+    const scenes::Material& mat = scene.materials[size_t(mesh.material)];
+    const float area = float(e.face_area());
+    const glm::vec3 radiance = mat.is_emissive() ? mat.emissive : glm::vec3(0.0f);
+    const double p = std::numbers::pi * double(area) * scenes::luminance(radiance) * (mat.double_sided ? 2.0 : 1.0);
+    const bool glows = p > 0.0 && (radiance.r > 0.0f || radiance.g > 0.0f || radiance.b > 0.0f);
+    gpu::GpuParticleStage st{};
+    st.first = glm::uvec4(geometry_.mesh_first_vertex[m], 0u, geometry_.mesh_first_triangle[m], 0u);
+    st.triangle = glm::uvec4(uint32_t(mesh.material), mesh.object_id, GIQ_TRIANGLE_HAS_NORMALS, 0u);
+    st.radiance = glm::vec4(radiance, area);
+    face_power.push_back(glows ? p : 0.0);
+    power += double(scenes::kParticleTriangles) * mesh.particles * face_power.back();
+    // scenes::Scene::at appends an emitter's stage meshes in stage order.
+    stages_[size_t(mesh.emitter)].push_back(st);
+    stage_mesh_.push_back(uint32_t(m));
+  }
+  // The CDF runs on from the host's triangles through the stages in mesh order (emitter by
+  // emitter), as the scene library lists placed particles' emissive triangles.
+  double acc = host;
+  uint32_t next = fixed;
+  size_t k = 0;
+  for (auto& stages : stages_)
+    for (gpu::GpuParticleStage& st : stages) {
+      const uint32_t n = scenes::kParticleTriangles * scene.meshes[stage_mesh_[k]].particles;
+      if (face_power[k] > 0.0 && n > 0) {
+        st.first.w = next + 1;
+        st.sampling = glm::vec4(float(acc / power), float(face_power[k] / power), 0.0f, 0.0f);
+        acc += n * face_power[k];
+        next += n;
+      }
+      ++k;
+    }
+  for (auto& stages : stages_)
+    for (gpu::GpuParticleStage& st : stages) st.triangle.w = next;
+  emissive_count_ = next;
+  return power;
 }
 
 void SceneGpu::record_particles(VkCommandBuffer cmd) {
   if (particles_.empty()) return;
+  const ParticleSystem::SceneArrays arrays{vertices_, previous_vertices_, triangles_, indices_, emissive_};
+  std::vector<ParticleBounds::Range> ranges;
   for (size_t e = 0; e < particles_.size(); ++e) {
     particles_[e]->record(cmd);
-    particles_[e]->record_vertices(cmd, vertices_, previous_vertices_, stage_first_vertex_[e], frame_seconds_);
+    particles_[e]->record_vertices(cmd, arrays, stages_[e], frame_seconds_);
+    const std::vector<uint32_t>& counts = particles_[e]->stage_counts();
+    for (size_t s = 0; s < stages_[e].size() && s < counts.size(); ++s) ranges.push_back({stages_[e][s].first.x, counts[s]});
   }
   particle_bvh_->record(cmd, vertices_, triangles_, nodes_, prims_, fixed_triangles_,
                         (triangle_count_ - fixed_triangles_) / scenes::kParticleTriangles);
+  particle_bounds_->record(cmd, vertices_, ranges);
+}
+
+void SceneGpu::complete(scenes::Scene& posed) {
+  if (!particle_bounds_) return;
+  const std::vector<ParticleBounds::Stage> stages = particle_bounds_->read();
+  for (size_t k = 0; k < stages.size() && k < stage_mesh_.size(); ++k) {
+    const ParticleBounds::Stage& st = stages[k];
+    if (st.particles == 0) continue;
+    posed.bounds.extend(st.lo);
+    posed.bounds.extend(st.hi);
+    for (scenes::AreaLight& l : posed.area_lights) {
+      if (l.mesh != stage_mesh_[k]) continue;
+      // A cloud of octahedra is closed (scenes::Scene::derive_area_lights): its representative
+      // point is its centroid, inside it.
+      l.centroid = l.representative = st.centroid;
+      l.extent = st.extent;
+    }
+  }
+  bounds_ = posed.bounds;
 }
 
 void SceneGpu::record_deformation(VkCommandBuffer cmd, bool save_previous, bool refit, GpuTimer* timer) const {
@@ -272,9 +342,8 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
   Context& ctx = *ctx_;
   geometry_ = std::move(flat);
   bounds_ = scene.bounds;
-  triangle_count_ = uint32_t(geometry_.triangles.size());
-  const size_t m = first_particle_mesh(scene);
-  fixed_triangles_ = m < geometry_.mesh_first_triangle.size() ? geometry_.mesh_first_triangle[m] : triangle_count_;
+  triangle_count_ = geometry_.triangle_count;
+  fixed_triangles_ = uint32_t(geometry_.triangles.size());
   // Moved triangles keep the tree and refit its bounds, until the motion has made it
   // kMaxRefitCost times as costly to traverse as a fresh build (bench/results: refit against
   // build in time and in cost).
@@ -284,9 +353,7 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
     if (sah_cost(bvh_) <= kMaxRefitCost * built_cost_) last_bvh_update_ = BvhUpdate::Refitted;
   }
   if (last_bvh_update_ == BvhUpdate::Built) {
-    bvh_ = fixed_triangles_ == triangle_count_
-               ? build_bvh(geometry_.positions, geometry_.triangles)
-               : build_bvh(geometry_.positions, std::vector<glm::uvec3>(geometry_.triangles.begin(), geometry_.triangles.begin() + fixed_triangles_));
+    bvh_ = build_bvh(geometry_.positions, geometry_.triangles);
     built_cost_ = sah_cost(bvh_);
     if (refitter_) refitter_->set_tree(bvh_, particle_bvh_ ? 1 : 0);
   }
@@ -294,14 +361,19 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
   vertices_host_ = vertex_rows(geometry_);
 
   // Emissive triangles: chosen by power, as the reference does; the CDF is accumulated in
-  // double so that a million small lights still end at exactly 1.
+  // double so that a million small lights still end at exactly 1. The particles' come after
+  // the host's, written by the GPU (place_particle_stages).
+  auto listed = [&](const scenes::EmissiveTriangle& e) { return e.power > 0.0f && scene.meshes[e.mesh].emitter < 0; };
+  double host = 0.0;
+  uint32_t host_count = 0;
+  for (const auto& e : scene.emissive_triangles)
+    if (listed(e)) host += e.power, ++host_count;
+  const double total = place_particle_stages(scene, host_count, host);
   std::vector<GpuEmissive> emissive;
-  std::vector<uint32_t> emissive_of_triangle(triangle_count_, 0);
-  double total = 0.0;
-  for (const auto& e : scene.emissive_triangles) total += std::max(0.0f, e.power);
+  std::vector<uint32_t> emissive_of_triangle(fixed_triangles_, 0);
   double acc = 0.0;
   for (const auto& e : scene.emissive_triangles) {
-    if (!(total > 0.0) || !(e.power > 0.0f)) continue;
+    if (!listed(e)) continue;
     const uint32_t tri = geometry_.mesh_first_triangle[e.mesh] + e.triangle;
     acc += e.power;
     GpuEmissive g;
@@ -311,13 +383,12 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
     emissive.push_back(g);
     emissive_of_triangle[tri] = uint32_t(emissive.size());
   }
-  if (!emissive.empty()) emissive.back().sampling.x = 1.0f;
-  emissive_count_ = uint32_t(emissive.size());
+  if (!emissive.empty() && emissive_count_ == emissive.size()) emissive.back().sampling.x = 1.0f;
 
-  std::vector<GpuTriangle> triangles(triangle_count_);
+  std::vector<GpuTriangle> triangles(fixed_triangles_);
   std::vector<uint32_t> indices;
-  indices.reserve(3 * triangle_count_);
-  for (uint32_t i = 0; i < triangle_count_; ++i) {
+  indices.reserve(3 * fixed_triangles_);
+  for (uint32_t i = 0; i < fixed_triangles_; ++i) {
     const auto t = geometry_.triangles[i];
     triangles[i].v = glm::uvec4(t, geometry_.material[i]);
     triangles[i].extra = glm::uvec4(emissive_of_triangle[i], geometry_.object_id[i], 0, 0);
@@ -325,6 +396,7 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
   }
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const scenes::Mesh& mesh = scene.meshes[m];
+    if (mesh.emitter >= 0) continue;
     const uint32_t flags = (mesh.uvs.size() == mesh.positions.size() && !mesh.uvs.empty() ? GIQ_TRIANGLE_HAS_UVS : 0u) |
                            (mesh.tangents.size() == mesh.positions.size() && !mesh.tangents.empty() ? GIQ_TRIANGLE_HAS_TANGENTS : 0u) |
                            (mesh.normals.size() == mesh.positions.size() && !mesh.normals.empty() ? GIQ_TRIANGLE_HAS_NORMALS : 0u) |
@@ -334,10 +406,12 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
     for (size_t t = 0; t < mesh.triangles.size(); ++t) triangles[first + t].extra.z = flags;
   }
 
+  // A particle's vertices have no texture coordinates, tangents or colours: the defaults.
   std::vector<GpuVertexExtra> vertex_extra;
-  if (needs_textures(scene.features))
+  if (needs_textures(scene.features)) {
+    vertex_extra.reserve(geometry_.vertex_count);
     for (const auto& mesh : scene.meshes)
-      for (size_t i = 0; i < mesh.positions.size(); ++i) {
+      for (size_t i = 0; i < mesh.positions.size() && mesh.emitter < 0; ++i) {
         GpuVertexExtra e{glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(1.0f)};
         if (i < mesh.tangents.size()) e.tangent = mesh.tangents[i];
         if (i < mesh.uvs.size()) e.uv.x = mesh.uvs[i].x, e.uv.y = mesh.uvs[i].y;
@@ -345,6 +419,8 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
         if (i < mesh.colors.size()) e.color = mesh.colors[i];
         vertex_extra.push_back(e);
       }
+    vertex_extra.resize(geometry_.vertex_count, GpuVertexExtra{glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(1.0f)});
+  }
 
   std::vector<BvhNode> tree = bvh_.nodes;
   std::vector<uint32_t> prims = bvh_.prims;
@@ -353,17 +429,16 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
   static_assert(sizeof(GpuBvhNode) == sizeof(BvhNode));
   std::memcpy(nodes.data(), tree.data(), nodes.size() * sizeof(GpuBvhNode));
 
-  if (keep_deformed) {
-    reserve(vertices_, vertices_host_.size() * sizeof(glm::vec4));
+  reserve(vertices_, uint64_t(geometry_.vertex_count) * sizeof(GpuVertex));
+  if (keep_deformed)
     vertices_.upload_ranges(vertices_host_.data(), rigid_ranges_);
-  } else {
-    vertices_ = Buffer::storage(ctx, vertices_host_);
-  }
-  triangles_ = Buffer::storage(ctx, triangles);
+  else if (!vertices_host_.empty())
+    vertices_.upload(vertices_host_.data(), vertices_host_.size() * sizeof(glm::vec4));
+  triangles_ = leading(ctx, triangles, uint64_t(triangle_count_) * sizeof(GpuTriangle));
   nodes_ = Buffer::storage(ctx, nodes);
   prims_ = Buffer::storage(ctx, prims);
-  emissive_ = Buffer::storage(ctx, emissive);
-  indices_ = Buffer::storage(ctx, indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  emissive_ = leading(ctx, emissive, uint64_t(emissive_count_) * sizeof(GpuEmissive));
+  indices_ = leading(ctx, indices, 3 * uint64_t(triangle_count_) * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
   vertex_extra_ = Buffer::storage(ctx, vertex_extra);
 }
 

@@ -32,6 +32,16 @@ constexpr double kU = 0x1p-24;
 
 class ParticleSystemTest : public test::VulkanTest {};
 
+// How far the GPU's corners of particle `id` at time t (and a frame dt earlier) may be from the
+// scene library's: the system's own bound (above) at the older of the two ages, plus the
+// rounding of the corner's sum.
+double corner_bound(const scenes::Emitter& e, uint32_t id, double t, double dt) {
+  const scenes::Particle p = scenes::particle_at(e, id, t), birth = scenes::particle_at(e, id, id / e.rate);
+  const double a = std::max(std::abs(p.age), std::abs(p.age - dt));
+  const double scale = glm::length(birth.position) + glm::length(birth.velocity) * a + glm::length(e.gravity) * a * a + glm::length(p.velocity);
+  return 64.0 * kU * scale + 2.0 * kU * (glm::length(p.position) + e.size);
+}
+
 TEST_F(ParticleSystemTest, AgreesWithTheSceneLibraryOver120Frames) {
   const scenes::Scene scene = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "fountain.gltf");
   const scenes::Emitter& e = scene.emitters.at(0);
@@ -129,13 +139,8 @@ TEST_F(ParticleSystemTest, TheSceneOnTheGpuDrawsTheSystemsParticles) {
       const std::vector<uint32_t>& stage_ids = ids.at(size_t(mesh.material - e.first_material));
       ASSERT_EQ(mesh.positions.size(), 6 * stage_ids.size()) << "frame " << frame;
       for (size_t i = 0; i < mesh.positions.size(); ++i) {
-        // The bound of the system's own test above at the older of the two ages, plus the
-        // rounding of the corner's sum.
         const uint32_t id = stage_ids[i / 6];
-        const scenes::Particle p = scenes::particle_at(e, id, t), birth = scenes::particle_at(e, id, id / e.rate);
-        const double a = std::max(std::abs(p.age), std::abs(p.age - dt));
-        const double scale = glm::length(birth.position) + glm::length(birth.velocity) * a + glm::length(e.gravity) * a * a + glm::length(p.velocity);
-        const double bound = 64.0 * kU * scale + 2.0 * kU * (glm::length(p.position) + e.size);
+        const double bound = corner_bound(e, id, t, dt);
         const size_t v = gpu.geometry().mesh_first_vertex[m] + i;
         const double d_now = glm::length(glm::dvec3(glm::vec3(now[v].position)) - glm::dvec3(mesh.positions[i]));
         const double d_was = glm::length(glm::dvec3(glm::vec3(was[v].position)) - glm::dvec3(mesh.previous_positions[i]));
@@ -155,6 +160,133 @@ TEST_F(ParticleSystemTest, TheSceneOnTheGpuDrawsTheSystemsParticles) {
   // the closed form leaves many a last bit different from the double one rounded.
   EXPECT_GT(own, compared / 10) << "the particle pass wrote nothing";
   std::printf("particle vertices: %zu compared, %zu not the CPU's bits; worst error %.3f of its bound\n", compared, own, worst);
+}
+
+// The particles' triangle records, indices and emissive triangles, which the GPU writes, are
+// what the host listed when the scene placed them: `dynamic`, whose rectangle light's
+// emissive triangles come first and whose CDF the particles' continue. Areas, probabilities
+// and the CDF differ by the faces' areas: closed form on the GPU, from float corners on the
+// host, each corner rounded to half an ulp of its distance r from the origin, a face's edge
+// size sqrt(2) long: relative 8 u r / size bounds that, and the float sums besides.
+TEST_F(ParticleSystemTest, TheGpuListsTheParticlesTrianglesAsTheHostDid) {
+  const scenes::Scene scene = scenes::load(std::filesystem::path(GIQ_SCENES_DIR) / "dynamic.gltf");
+  SceneGpu gpu(*ctx, *compiler, scene.at_frame(29, scenes::ParticleDetail::Counted));
+  for (int frame : {30, 31}) {
+    const scenes::Scene placed = scene.at_frame(frame);
+    gpu.update(scene.at_frame(frame, scenes::ParticleDetail::Counted));
+    const FlatGeometry g = flatten(placed, true);
+    ASSERT_EQ(gpu.triangle_count(), g.triangle_count);
+    float reach = 0.0f;
+    for (const scenes::Mesh& m : placed.meshes)
+      for (const glm::vec3& v : m.positions) reach = m.emitter >= 0 ? std::max(reach, glm::length(v)) : reach;
+    const double rel = 8.0 * kU * reach / scene.emitters.at(0).size;
+    const std::vector<uint8_t> tb = gpu.triangles().download(), ib = gpu.index_buffer().download(), eb = gpu.emissive().download();
+    // The host's list: every emissive triangle by power, in the scene library's order.
+    double total = 0.0;
+    for (const scenes::EmissiveTriangle& e : placed.emissive_triangles) total += e.power;
+    ASSERT_EQ(gpu.emissive_count(), placed.emissive_triangles.size());
+    std::vector<uint32_t> emissive_of(g.triangle_count, 0);
+    double acc = 0.0;
+    size_t particle_triangles = 0;
+    for (size_t k = 0; k < placed.emissive_triangles.size(); ++k) {
+      const scenes::EmissiveTriangle& e = placed.emissive_triangles[k];
+      const uint32_t tri = g.mesh_first_triangle[e.mesh] + e.triangle;
+      emissive_of[tri] = uint32_t(k + 1);
+      acc += e.power;
+      gpu::GpuEmissive r;
+      std::memcpy(&r, eb.data() + k * sizeof(r), sizeof(r));
+      ASSERT_EQ(r.triangle.x, tri) << "frame " << frame << ", emissive " << k;
+      EXPECT_EQ(glm::vec3(r.radiance), e.radiance) << "emissive " << k;
+      EXPECT_NEAR(r.radiance.w, e.area, rel * e.area) << "emissive " << k;
+      EXPECT_NEAR(r.sampling.x, k + 1 == placed.emissive_triangles.size() ? 1.0 : acc / total, rel) << "emissive " << k;
+      EXPECT_NEAR(r.sampling.y, e.power / total, rel * e.power / total) << "emissive " << k;
+      particle_triangles += placed.meshes[e.mesh].emitter >= 0;
+    }
+    EXPECT_GT(particle_triangles, 1000u) << "frame " << frame;
+    for (size_t m = 0; m < placed.meshes.size(); ++m) {
+      const scenes::Mesh& mesh = placed.meshes[m];
+      if (mesh.emitter < 0) continue;
+      for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const uint32_t tri = g.mesh_first_triangle[m] + uint32_t(t);
+        gpu::GpuTriangle r;
+        std::memcpy(&r, tb.data() + tri * sizeof(r), sizeof(r));
+        const glm::uvec3 v = g.triangles[tri];
+        ASSERT_EQ(r.v, glm::uvec4(v, uint32_t(mesh.material))) << "frame " << frame << ", triangle " << tri;
+        ASSERT_EQ(r.extra, glm::uvec4(emissive_of[tri], mesh.object_id, GIQ_TRIANGLE_HAS_NORMALS, 0u)) << "triangle " << tri;
+        uint32_t idx[3];
+        std::memcpy(idx, ib.data() + 3 * sizeof(uint32_t) * tri, sizeof(idx));
+        ASSERT_EQ(glm::uvec3(idx[0], idx[1], idx[2]), v) << "triangle " << tri;
+      }
+    }
+  }
+}
+
+// A scene that only counted its particles, completed from where the GPU drew them, has the
+// area lights and bounds of the same scene placed by the scene library: each stage's centroid
+// and extent, and the box. The GPU's corners are within corner_bound of the library's (B,
+// the stage's largest); a centroid of n particles then within B plus its sums' rounding, a few
+// dozen roundings of its coordinates on the GPU (a loop of 16, a tree of 256) and one an
+// addend on the host's float sum over 8n triangles; an extent within that plus B. `dynamic`,
+// and the fountain emitting 100 times as fast, whose stages hold more particles than the
+// GPU reduces in one chunk (4096).
+// `most`: the most particles a stage held.
+void expect_completed_like_placed(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& scene, const std::vector<int>& frames,
+                                  uint32_t& most) {
+  const scenes::Emitter& e = scene.emitters.at(0);
+  scenes::Scene counted = scene.at_frame(frames[0], scenes::ParticleDetail::Counted);
+  SceneGpu gpu(ctx, compiler, counted);
+  most = 0;
+  for (int frame : frames) {
+    if (frame != frames[0]) {
+      counted = scene.at_frame(frame, scenes::ParticleDetail::Counted);
+      gpu.update(counted);
+    }
+    gpu.complete(counted);
+    const scenes::Scene placed = scene.at_frame(frame);
+    const double t = placed.time, dt = 1.0 / placed.sequence.fps;
+    const scenes::AliveRange alive = scenes::alive_range(e, t);
+    double bound = 0.0;
+    for (uint64_t id = alive.first; id < alive.end; ++id) bound = std::max(bound, corner_bound(e, uint32_t(id), t, dt));
+    ASSERT_EQ(counted.area_lights.size(), placed.area_lights.size());
+    size_t stages = 0;
+    for (size_t i = 0; i < placed.area_lights.size(); ++i) {
+      const scenes::AreaLight &p = placed.area_lights[i], &c = counted.area_lights[i];
+      const scenes::Mesh& mesh = placed.meshes[p.mesh];
+      if (mesh.emitter < 0 || mesh.particles == 0) {
+        EXPECT_EQ(c.centroid, p.centroid) << "light " << i;
+        continue;
+      }
+      float reach = 0.0f;
+      for (const glm::vec3& v : mesh.positions) reach = std::max(reach, glm::length(v));
+      const double tol = bound + (64.0 + 8.0 * mesh.particles) * kU * reach;
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(c.centroid[k], p.centroid[k], tol) << "frame " << frame << ", light " << i;
+        EXPECT_NEAR(c.representative[k], p.representative[k], tol) << "frame " << frame << ", light " << i;
+      }
+      EXPECT_NEAR(c.extent, p.extent, tol + bound + 4.0 * kU * p.extent) << "frame " << frame << ", light " << i;
+      EXPECT_GT(c.extent, 0.0f);
+      most = std::max(most, mesh.particles);
+      ++stages;
+    }
+    EXPECT_GE(stages, 2u) << "frame " << frame;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(counted.bounds.lo[k], placed.bounds.lo[k], bound) << "frame " << frame;
+      EXPECT_NEAR(counted.bounds.hi[k], placed.bounds.hi[k], bound) << "frame " << frame;
+    }
+    EXPECT_EQ(gpu.bounds().lo, counted.bounds.lo);
+    EXPECT_EQ(gpu.bounds().hi, counted.bounds.hi);
+  }
+}
+
+TEST_F(ParticleSystemTest, ACountedSceneIsCompletedFromTheGpusParticles) {
+  uint32_t most = 0;
+  expect_completed_like_placed(*ctx, *compiler, scenes::load(std::filesystem::path(GIQ_SCENES_DIR) / "dynamic.gltf"), {40, 41, 75}, most);
+  scenes::Scene fountain = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "fountain.gltf");
+  scenes::Emitter& e = fountain.emitters.at(0);
+  e.rate *= 100.0;
+  e.max_particles = uint32_t(std::floor(e.rate * e.lifetime) + 1.0);
+  expect_completed_like_placed(*ctx, *compiler, fountain, {90, 91}, most);
+  EXPECT_GT(most, 4096u);
 }
 
 }  // namespace

@@ -40,8 +40,15 @@ inline void expect_tree_exact(const realtime::SceneGpu& gpu, const std::string& 
   std::memcpy(prims.data(), pb.data(), prims.size() * sizeof(uint32_t));
   std::vector<glm::vec3> positions;
   for (const realtime::gpu::GpuVertex& v : vertex_rows(gpu.vertices())) positions.emplace_back(v.position);
-  const auto& triangles = gpu.geometry().triangles;
-  ASSERT_EQ(triangles.size(), gpu.triangle_count()) << what;
+  // The triangles as the GPU holds them: the host's and the particles' the GPU wrote.
+  const std::vector<uint8_t> tb = gpu.triangles().download();
+  ASSERT_GE(tb.size(), gpu.triangle_count() * sizeof(realtime::gpu::GpuTriangle)) << what;
+  std::vector<glm::uvec3> triangles(gpu.triangle_count());
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    realtime::gpu::GpuTriangle r;
+    std::memcpy(&r, tb.data() + t * sizeof(r), sizeof(r));
+    triangles[t] = glm::uvec3(r.v);
+  }
 
   const realtime::Bvh& cpu = gpu.bvh();
   const uint32_t offset = gpu.cpu_tree_offset();

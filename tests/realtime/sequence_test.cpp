@@ -129,7 +129,7 @@ TEST_F(SequenceTest, MotionVectorsFollowMovingGeometry) {
 // more than 1 cm.
 std::vector<int> expect_motion_follows_vertices(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& before,
                                                 const scenes::Scene& after, const scenes::Camera& cam, const std::vector<glm::vec3>& was) {
-  const FlatGeometry now = flatten(after);
+  const FlatGeometry now = flatten(after, true);
   std::vector<int> moved;
   for (bool ray_traced : {false, true}) {
     SCOPED_TRACE(ray_traced ? "ray traced" : "rasterised");
@@ -186,7 +186,7 @@ TEST_F(SequenceTest, MotionVectorsFollowParticles) {
   scenes::Scene fountain = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "fountain.gltf");
   fountain.emitters[0].size = 0.1;
   const scenes::Scene before = fountain.at_frame(19), after = fountain.at_frame(20);
-  const FlatGeometry now = flatten(after);
+  const FlatGeometry now = flatten(after, true);
   std::vector<glm::vec3> was(now.positions);
   for (size_t m = 0; m < after.meshes.size(); ++m)
     for (size_t i = 0; i < after.meshes[m].previous_positions.size(); ++i) was[now.mesh_first_vertex[m] + i] = after.meshes[m].previous_positions[i];

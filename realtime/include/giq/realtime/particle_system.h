@@ -25,6 +25,9 @@
 
 namespace giq::realtime {
 
+namespace gpu {
+struct GpuParticleStage;  // shaders/particles_shared.h
+}
 class Context;
 class GpuTimer;
 class ShaderCompiler;
@@ -40,13 +43,20 @@ class ParticleSystem {
   // timed by `timer` when given as "particle simulation" (the first two) and "particle
   // emission" (the rest).
   void record(VkCommandBuffer cmd, GpuTimer* timer = nullptr);
+  // The scene's arrays the particles are written into (SceneGpu's): gpu::GpuVertex rows now
+  // and a frame earlier, gpu::GpuTriangle records, the index buffer and gpu::GpuEmissive.
+  struct SceneArrays {
+    const Buffer &vertices, &previous, &triangles, &indices, &emissive;
+  };
   // After record(): writes this frame's alive particles as the scene library's octahedra into
-  // `vertices` (gpu::GpuVertex), and where each was `frame_seconds` earlier into `previous`
-  // (shaders/particles_vertices.comp). Stage s's particles go to the vertices from
-  // stage_first_vertex[s] on, ids ascending, as scenes::Scene::at places them in its stage's
-  // mesh.
-  void record_vertices(VkCommandBuffer cmd, const Buffer& vertices, const Buffer& previous,
-                       const std::vector<uint32_t>& stage_first_vertex, double frame_seconds);
+  // `scene`, where each was `frame_seconds` earlier into its previous vertices
+  // (shaders/particles_vertices.comp). Stage s's particles go where stages[s] says (its
+  // lowest id filled in here), ids ascending, as scenes::Scene::at places them in its
+  // stage's mesh.
+  void record_vertices(VkCommandBuffer cmd, const SceneArrays& scene, const std::vector<gpu::GpuParticleStage>& stages,
+                       double frame_seconds);
+  // The particles of each stage of life at the prepared time.
+  const std::vector<uint32_t>& stage_counts() const { return stage_count_; }
 
   struct Counts {
     uint32_t alive = 0, dead = 0, emitted = 0;
@@ -75,6 +85,7 @@ class ParticleSystem {
   Buffer particles_, dead_, alive_[2], counters_, indirect_, emitter_buffer_, frame_, surface_, choice_, stages_;
   uint64_t alive_count_ = 0;               // alive at the prepared time
   std::vector<uint32_t> stage_lowest_id_;  // the lowest id of each stage then (when it has any)
+  std::vector<uint32_t> stage_count_;
   int out_ = 1;  // the alive list written this frame
   double last_t_ = -1.0;
   uint64_t emitted_end_ = 0;  // ids below were emitted (or skipped, dead before their frame)

@@ -7,10 +7,12 @@
 // or rebuilt when geometry moved), so pipelines must take descriptors() when they record,
 // never keep them across frames. Skinned and morphing meshes are deformed on the GPU
 // (Deformer) from their rest pose each frame; each emitter's particles are simulated on the GPU
-// (ParticleSystem) and written there as the octahedra every pass draws and traces, with a tree
-// of their own built there each frame (LinearBvh) beside the CPU's tree of the other triangles,
-// whose bounds are refitted there after the deformation (BvhRefitter). The CPU still poses the
-// particles too, for their triangles' places and the emissive triangles' list.
+// (ParticleSystem) and written there as the octahedra every pass draws and traces (their
+// vertices, triangles, indices and emissive triangles), with a tree of their own built there
+// each frame (LinearBvh) beside the CPU's tree of the other triangles, whose bounds are
+// refitted there after the deformation (BvhRefitter). The host needs only each stage's
+// particle count (a scene posed with scenes::ParticleDetail::Counted); where a stage's
+// particles are comes back from the GPU (ParticleBounds, complete()).
 //
 // All meshes are concatenated in Scene::meshes order; a triangle's global index (reported by
 // ray queries) is its mesh's offset plus its index in the mesh.
@@ -23,6 +25,7 @@
 #include "giq/realtime/bvh_refitter.h"
 #include "giq/realtime/deformer.h"
 #include "giq/realtime/linear_bvh.h"
+#include "giq/realtime/particle_bounds.h"
 #include "giq/realtime/particle_system.h"
 #include "giq/realtime/pipeline.h"
 #include "giq/realtime/resources.h"
@@ -33,16 +36,21 @@ namespace giq::realtime {
 
 class Context;
 
+// The scene's meshes in the GPU's arrays. The file's meshes' vertices and triangles are here;
+// the particles' (the stage meshes, which come after them: Mesh::particles, six vertices and
+// eight triangles each) only have their places, since the GPU writes them, unless asked for
+// (`placed`: a scene that placed its particles, the CPU's counterpart of what the GPU holds).
 struct FlatGeometry {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
   std::vector<glm::uvec3> triangles;  // global vertex indices
   std::vector<uint32_t> material;     // per triangle
   std::vector<uint32_t> object_id;    // per triangle
-  std::vector<uint32_t> mesh_first_triangle;
+  std::vector<uint32_t> mesh_first_triangle;  // every mesh's, the particle stages' too
   std::vector<uint32_t> mesh_first_vertex;
+  uint32_t vertex_count = 0, triangle_count = 0;  // with the particles'
 };
-FlatGeometry flatten(const scenes::Scene& scene);
+FlatGeometry flatten(const scenes::Scene& scene, bool placed = false);
 // What the views from an area light's representative point (its shadow cube, its reflective
 // shadow map) leave out, as vertices [x, x + y) and triangles [z, z + w) of `g`: the light's
 // own mesh, whose faces would hide a closed emitter's light from its centre; for a stage of
@@ -74,10 +82,17 @@ class SceneGpu {
   // Textures whose sampler asks for mip maps get their levels made on the GPU
   // (shaders/texture_mips.comp), hence the compiler.
   SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& scene);
+  ~SceneGpu();  // where gpu::GpuParticleStage is complete
 
   // Brings the buffers to `posed` (the same scene at another time: same meshes, materials and
   // lights, moved) and says what moved. The vertices before the call become previous_vertices().
   SceneChange update(const scenes::Scene& posed);
+  // Gives `posed`, the scene of the last update (or of the constructor), what its particles'
+  // places decide and only the GPU knows when the scene counted them: each glowing stage's
+  // area light at the centroid of its particles as drawn, with the extent that holds them
+  // (scenes::AreaLight::centroid, representative, extent), and the bounds grown to hold
+  // them. Placed particles get the same, from the GPU's octahedra. Nothing without emitters.
+  void complete(scenes::Scene& posed);
 
   static std::vector<VkDescriptorType> binding_types();  // GIQ_SCENE_BINDING_COUNT storage buffers
   std::vector<Descriptor> descriptors() const;
@@ -105,6 +120,8 @@ class SceneGpu {
   // the CPU's). With particles, node 0 is a root over the CPU's tree, from node
   // cpu_tree_offset() = 1 on, and the particles' tree, built on the GPU (LinearBvh).
   const Buffer& vertices() const { return vertices_; }
+  const Buffer& triangles() const { return triangles_; }  // GpuTriangle
+  const Buffer& emissive() const { return emissive_; }    // GpuEmissive
   const Buffer& vertex_extra() const { return vertex_extra_; }
   const Buffer& bvh_nodes() const { return nodes_; }
   const Buffer& bvh_prims() const { return prims_; }
@@ -137,21 +154,20 @@ class SceneGpu {
   // The deformer for `scene`'s deforming meshes (none without), the vertex ranges of the
   // other meshes, and the GPU refit of the BVH (made once).
   void make_deformer(const scenes::Scene& scene);
-  // The first of `scene`'s particle meshes (the mesh count without).
-  static size_t first_particle_mesh(const scenes::Scene& scene);
-  // GpuVertex rows of `g`; the bytes of its vertex array that no deformation writes.
+  // GpuVertex rows of `g`'s vertices (the particles' are the GPU's); the bytes of the vertex
+  // array that no deformation writes.
   static std::vector<glm::vec4> vertex_rows(const FlatGeometry& g);
-  // The same with the particles' vertices where they were a frame earlier
-  // (Mesh::previous_positions).
-  static std::vector<glm::vec4> previous_rows(const scenes::Scene& scene, const FlatGeometry& g);
   static std::vector<VkBufferCopy> rigid_ranges(const scenes::Scene& scene, const FlatGeometry& g);
   // Grows a vertex buffer to hold `bytes`, keeping its deformed vertices.
   void reserve(Buffer& buffer, uint64_t bytes);
+  // Where the GPU writes each stage's particles (gpu::GpuParticleStage), given the emissive
+  // triangles the host lists, `fixed` of them with `power` in all: the stages' CDF runs on
+  // from the host's. Sets emissive_count_; returns the power of all emissive triangles.
+  double place_particle_stages(const scenes::Scene& scene, uint32_t fixed, double power);
   bool upload_lights(const scenes::Scene& scene);  // false when nothing changed
-  // Brings each emitter's GPU particles to `posed`'s time and records their vertices over the
-  // ones the CPU uploaded (the same particles, to float rounding).
+  // Brings each emitter's GPU particles to `posed`'s time.
   void prepare_particles(const scenes::Scene& posed);
-  // The particle passes, then their tree (LinearBvh).
+  // The particle passes, then their tree (LinearBvh) and their stages' bounds (ParticleBounds).
   void record_particles(VkCommandBuffer cmd);
 
   Context* ctx_;
@@ -160,8 +176,10 @@ class SceneGpu {
   std::unique_ptr<BvhRefitter> refitter_;
   std::vector<std::unique_ptr<ParticleSystem>> particles_;  // one per emitter
   std::unique_ptr<LinearBvh> particle_bvh_;                 // with emitters
+  std::unique_ptr<ParticleBounds> particle_bounds_;         // with emitters
   uint32_t fixed_triangles_ = 0;  // the triangles before the particles', in the CPU's tree
-  std::vector<std::vector<uint32_t>> stage_first_vertex_;   // per emitter, of each stage's mesh
+  std::vector<std::vector<gpu::GpuParticleStage>> stages_;  // per emitter, of each stage's mesh
+  std::vector<uint32_t> stage_mesh_;                        // the mesh of each stage, emitter by emitter
   double frame_seconds_ = 0.0;
   uint32_t particle_vertices_ = 0;
   std::vector<VkBufferCopy> rigid_ranges_;  // bytes of the GpuVertex array that no deformation writes
