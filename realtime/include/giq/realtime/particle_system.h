@@ -85,7 +85,7 @@ class ParticleSystem {
   Buffer particles_, dead_, alive_[2], counters_, indirect_, emitter_buffer_, frame_, surface_, choice_, stages_;
   uint64_t alive_count_ = 0;               // alive at the prepared time
   std::vector<uint32_t> stage_lowest_id_;  // the lowest id of each stage then (when it has any)
-  std::vector<uint32_t> stage_count_;
+  std::vector<uint32_t> stage_count_;      // the particles in each stage then
   int out_ = 1;  // the alive list written this frame
   double last_t_ = -1.0;
   uint64_t emitted_end_ = 0;  // ids below were emitted (or skipped, dead before their frame)
