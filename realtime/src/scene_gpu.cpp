@@ -17,6 +17,16 @@ namespace giq::realtime {
 
 FlatGeometry flatten(const scenes::Scene& scene, bool placed) {
   FlatGeometry g;
+  // Allocated once: a large file's arrays would otherwise spend their time regrowing, every
+  // frame the scene is posed.
+  size_t vertices = 0, triangles = 0;
+  for (const auto& m : scene.meshes)
+    if (m.emitter < 0 || placed) vertices += m.positions.size(), triangles += m.triangles.size();
+  g.positions.reserve(vertices);
+  g.normals.reserve(vertices);
+  g.triangles.reserve(triangles);
+  g.material.reserve(triangles);
+  g.object_id.reserve(triangles);
   for (const auto& m : scene.meshes) {
     const uint32_t base = g.vertex_count;
     g.mesh_first_triangle.push_back(g.triangle_count);
@@ -69,15 +79,6 @@ bool needs_textures(const scenes::FeatureSet& f) {
   return f.textures || f.normal_maps || f.alpha_mask || f.vertex_colors || f.environment_map;
 }
 
-// A storage buffer of `bytes` (at least 16) whose first bytes are `v`'s; the GPU writes the
-// rest (the particles').
-template <class T>
-Buffer leading(Context& ctx, const std::vector<T>& v, uint64_t bytes, VkBufferUsageFlags extra = 0) {
-  Buffer b(ctx, std::max<uint64_t>(bytes, 16), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | extra);
-  if (!v.empty()) b.upload(v.data(), v.size() * sizeof(T));
-  return b;
-}
-
 }  // namespace
 
 TexelPacking pack_texels(const std::vector<uint64_t>& words, uint64_t chunk_words) {
@@ -120,7 +121,7 @@ SceneGpu::SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& 
     particle_bounds_ = std::make_unique<ParticleBounds>(ctx, compiler);
   }
   upload_geometry(scene, flatten(scene));
-  reserve(previous_vertices_, uint64_t(geometry_.vertex_count) * sizeof(gpu::GpuVertex));
+  grow(previous_vertices_, uint64_t(geometry_.vertex_count) * sizeof(gpu::GpuVertex), 0);
   if (!vertices_host_.empty()) previous_vertices_.upload(vertices_host_.data(), vertices_host_.size() * sizeof(glm::vec4));
   make_deformer(scene);
   prepare_particles(scene);
@@ -138,9 +139,11 @@ SceneGpu::~SceneGpu() = default;
 SceneChange SceneGpu::update(const scenes::Scene& posed) {
   SceneChange change = SceneChange::None;
   FlatGeometry g = flatten(posed);
-  // Particles move whenever there are any (the GPU places them).
+  // What moved: the file's meshes, and the particles, which move whenever there are any (the
+  // GPU places them). When only they did, the host uploads nothing of the file's.
   auto has_particles = [](const FlatGeometry& f) { return f.vertex_count > f.positions.size(); };
-  const bool moved = has_particles(g) || has_particles(geometry_) || g.positions != geometry_.positions || g.normals != geometry_.normals;
+  const bool file_moved = g.positions != geometry_.positions || g.normals != geometry_.normals || g.triangles != geometry_.triangles;
+  const bool moved = file_moved || has_particles(g) || has_particles(geometry_);
   // The deforming meshes keep their places in the vertex array (they keep every vertex) unless
   // a mesh before them changed its vertex count; then the pass is made anew. (Particles, whose
   // count changes every frame, come after every mesh of the file.)
@@ -151,26 +154,30 @@ SceneChange SceneGpu::update(const scenes::Scene& posed) {
   // vertices are where they were keeps its last ones; meshes whose vertex count changed get
   // this frame's, that is no motion. The deformation pass saves its own vertices' before
   // overwriting them, the particle pass writes where each particle was (a particle is not at
-  // the same index from frame to frame).
-  std::vector<glm::vec4> previous = vertex_rows(g);
-  for (size_t m = 0; m < posed.meshes.size() && m < geometry_.mesh_first_vertex.size(); ++m) {
-    if (posed.meshes[m].emitter >= 0) continue;
-    const size_t first = g.mesh_first_vertex[m], count = posed.meshes[m].positions.size();
-    const size_t old_first = geometry_.mesh_first_vertex[m];
-    const size_t old_end = m + 1 < geometry_.mesh_first_vertex.size() ? geometry_.mesh_first_vertex[m + 1] : geometry_.vertex_count;
-    if (old_end - old_first != count) continue;
-    std::copy(vertices_host_.begin() + long(2 * old_first), vertices_host_.begin() + long(2 * (old_first + count)), previous.begin() + long(2 * first));
+  // the same index from frame to frame). Where the file moved neither now nor at the last
+  // update, its previous vertices are already its vertices.
+  grow(previous_vertices_, uint64_t(g.vertex_count) * sizeof(gpu::GpuVertex), g.positions.size() * sizeof(gpu::GpuVertex));
+  if (file_moved || file_moved_last_) {
+    std::vector<glm::vec4> previous = vertex_rows(g);
+    for (size_t m = 0; m < posed.meshes.size() && m < geometry_.mesh_first_vertex.size(); ++m) {
+      if (posed.meshes[m].emitter >= 0) continue;
+      const size_t first = g.mesh_first_vertex[m], count = posed.meshes[m].positions.size();
+      const size_t old_first = geometry_.mesh_first_vertex[m];
+      const size_t old_end = m + 1 < geometry_.mesh_first_vertex.size() ? geometry_.mesh_first_vertex[m + 1] : geometry_.vertex_count;
+      if (old_end - old_first != count) continue;
+      std::copy(vertices_host_.begin() + long(2 * old_first), vertices_host_.begin() + long(2 * (old_first + count)), previous.begin() + long(2 * first));
+    }
+    if (keep_deformed)
+      previous_vertices_.upload_ranges(previous.data(), rigid_ranges_);
+    else if (!previous.empty())
+      previous_vertices_.upload(previous.data(), previous.size() * sizeof(glm::vec4));
   }
-  reserve(previous_vertices_, uint64_t(g.vertex_count) * sizeof(gpu::GpuVertex));
-  if (keep_deformed)
-    previous_vertices_.upload_ranges(previous.data(), rigid_ranges_);
-  else if (!previous.empty())
-    previous_vertices_.upload(previous.data(), previous.size() * sizeof(glm::vec4));
+  file_moved_last_ = file_moved;
 
   if (moved) {
     // The CPU's tree holds every triangle but the particles' (which are not in `g`).
     const bool same_triangles = g.positions.size() == geometry_.positions.size() && g.triangles == geometry_.triangles;
-    upload_geometry(posed, std::move(g), same_triangles, keep_deformed);
+    upload_geometry(posed, std::move(g), same_triangles, keep_deformed, file_moved);
     change = SceneChange::Geometry;
   }
   if (deformer_) {
@@ -182,7 +189,7 @@ SceneChange SceneGpu::update(const scenes::Scene& posed) {
   if (deformer_ || !particles_.empty())
     ctx_->submit_and_wait([&](VkCommandBuffer cmd) {
       record_particles(cmd);
-      record_deformation(cmd, keep_deformed, moved);
+      record_deformation(cmd, keep_deformed, file_moved);
     });
   if (upload_lights(posed) && change == SceneChange::None) change = SceneChange::Lights;
   return change;
@@ -210,20 +217,17 @@ std::vector<VkBufferCopy> SceneGpu::rigid_ranges(const scenes::Scene& scene, con
   return ranges;
 }
 
-void SceneGpu::reserve(Buffer& buffer, uint64_t bytes) {
+bool SceneGpu::grow(Buffer& buffer, uint64_t bytes, uint64_t keep, VkBufferUsageFlags extra) {
   bytes = std::max<uint64_t>(bytes, 16);
-  if (buffer.size() >= bytes) return;
+  if (buffer.size() >= bytes) return false;
   // Twice what is needed when the count may grow again (particles, or a buffer that has
-  // grown), so that it rarely moves; the deformed vertices, which only the GPU holds, go along.
+  // grown), so that it rarely moves.
   const uint64_t size = particles_.empty() && !buffer ? bytes : 2 * bytes;
-  Buffer bigger(*ctx_, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  std::vector<VkBufferCopy> deformed;
-  if (deformer_ && buffer)
-    for (const auto& [first, count] : deformer_->ranges())
-      deformed.push_back({first * sizeof(gpu::GpuVertex), first * sizeof(gpu::GpuVertex), uint64_t(count) * sizeof(gpu::GpuVertex)});
-  if (!deformed.empty())
-    ctx_->submit_and_wait([&](VkCommandBuffer cmd) { vkCmdCopyBuffer(cmd, buffer.handle(), bigger.handle(), uint32_t(deformed.size()), deformed.data()); });
+  Buffer bigger(*ctx_, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | extra);
+  const VkBufferCopy kept{0, 0, std::min(keep, buffer.size())};
+  if (kept.size > 0) ctx_->submit_and_wait([&](VkCommandBuffer cmd) { vkCmdCopyBuffer(cmd, buffer.handle(), bigger.handle(), 1, &kept); });
   buffer = std::move(bigger);
+  return true;
 }
 
 void SceneGpu::make_deformer(const scenes::Scene& scene) {
@@ -337,32 +341,35 @@ void SceneGpu::record_deformation(VkCommandBuffer cmd, bool save_previous, bool 
   if (timer) timer->end(cmd);
 }
 
-void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bool may_refit, bool keep_deformed) {
+void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bool may_refit, bool keep_deformed, bool file_moved) {
   using namespace gpu;
   Context& ctx = *ctx_;
   geometry_ = std::move(flat);
   bounds_ = scene.bounds;
   triangle_count_ = geometry_.triangle_count;
   fixed_triangles_ = uint32_t(geometry_.triangles.size());
-  // Moved triangles keep the tree and refit its bounds, until the motion has made it
-  // kMaxRefitCost times as costly to traverse as a fresh build (bench/results: refit against
-  // build in time and in cost).
-  last_bvh_update_ = BvhUpdate::Built;
-  if (may_refit) {
-    refit_bvh(bvh_, geometry_.positions, geometry_.triangles);
-    if (sah_cost(bvh_) <= kMaxRefitCost * built_cost_) last_bvh_update_ = BvhUpdate::Refitted;
+  const uint64_t fixed_vertices = geometry_.positions.size();
+  if (file_moved) {
+    // Moved triangles keep the tree and refit its bounds, until the motion has made it
+    // kMaxRefitCost times as costly to traverse as a fresh build (bench/results: refit
+    // against build in time and in cost).
+    last_bvh_update_ = BvhUpdate::Built;
+    if (may_refit) {
+      refit_bvh(bvh_, geometry_.positions, geometry_.triangles);
+      if (sah_cost(bvh_) <= kMaxRefitCost * built_cost_) last_bvh_update_ = BvhUpdate::Refitted;
+    }
+    if (last_bvh_update_ == BvhUpdate::Built) {
+      bvh_ = build_bvh(geometry_.positions, geometry_.triangles);
+      built_cost_ = sah_cost(bvh_);
+      if (refitter_) refitter_->set_tree(bvh_, particle_bvh_ ? 1 : 0);
+    }
+    vertices_host_ = vertex_rows(geometry_);
   }
-  if (last_bvh_update_ == BvhUpdate::Built) {
-    bvh_ = build_bvh(geometry_.positions, geometry_.triangles);
-    built_cost_ = sah_cost(bvh_);
-    if (refitter_) refitter_->set_tree(bvh_, particle_bvh_ ? 1 : 0);
-  }
-
-  vertices_host_ = vertex_rows(geometry_);
 
   // Emissive triangles: chosen by power, as the reference does; the CDF is accumulated in
   // double so that a million small lights still end at exactly 1. The particles' come after
-  // the host's, written by the GPU (place_particle_stages).
+  // the host's, written by the GPU (place_particle_stages); their power changes the host's
+  // CDF, so the host's are listed whenever anything moved.
   auto listed = [&](const scenes::EmissiveTriangle& e) { return e.power > 0.0f && scene.meshes[e.mesh].emitter < 0; };
   double host = 0.0;
   uint32_t host_count = 0;
@@ -370,7 +377,7 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
     if (listed(e)) host += e.power, ++host_count;
   const double total = place_particle_stages(scene, host_count, host);
   std::vector<GpuEmissive> emissive;
-  std::vector<uint32_t> emissive_of_triangle(fixed_triangles_, 0);
+  std::vector<uint32_t> emissive_of_triangle(file_moved ? fixed_triangles_ : 0, 0);
   double acc = 0.0;
   for (const auto& e : scene.emissive_triangles) {
     if (!listed(e)) continue;
@@ -381,9 +388,31 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
     g.radiance = glm::vec4(e.radiance, e.area);
     g.sampling = glm::vec4(float(acc / total), float(e.power / total), 0.0f, 0.0f);
     emissive.push_back(g);
-    emissive_of_triangle[tri] = uint32_t(emissive.size());
+    if (file_moved) emissive_of_triangle[tri] = uint32_t(emissive.size());
   }
   if (!emissive.empty() && emissive_count_ == emissive.size()) emissive.back().sampling.x = 1.0f;
+
+  // The arrays grow to hold the particles', keeping the file's part, which the host uploads
+  // only when the file moved (a particle's vertex extras are the defaults, written once).
+  const bool textured = needs_textures(scene.features);
+  grow(vertices_, uint64_t(geometry_.vertex_count) * sizeof(GpuVertex), fixed_vertices * sizeof(GpuVertex));
+  grow(triangles_, uint64_t(triangle_count_) * sizeof(GpuTriangle), uint64_t(fixed_triangles_) * sizeof(GpuTriangle));
+  grow(indices_, 3 * uint64_t(triangle_count_) * sizeof(uint32_t), 3 * uint64_t(fixed_triangles_) * sizeof(uint32_t),
+       VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  grow(emissive_, uint64_t(emissive_count_) * sizeof(GpuEmissive), 0);
+  if (!emissive.empty()) emissive_.upload(emissive.data(), emissive.size() * sizeof(GpuEmissive));
+  const GpuVertexExtra plain{glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(1.0f)};
+  if (textured && grow(vertex_extra_, uint64_t(geometry_.vertex_count) * sizeof(GpuVertexExtra), fixed_vertices * sizeof(GpuVertexExtra))) {
+    const std::vector<GpuVertexExtra> tail(vertex_extra_.size() / sizeof(GpuVertexExtra) - fixed_vertices, plain);
+    if (!tail.empty()) vertex_extra_.upload(tail.data(), tail.size() * sizeof(GpuVertexExtra), fixed_vertices * sizeof(GpuVertexExtra));
+  }
+  if (!textured && !vertex_extra_) vertex_extra_ = Buffer::storage(ctx, std::vector<GpuVertexExtra>{});
+  if (!file_moved) return;
+
+  if (keep_deformed)
+    vertices_.upload_ranges(vertices_host_.data(), rigid_ranges_);
+  else if (!vertices_host_.empty())
+    vertices_.upload(vertices_host_.data(), vertices_host_.size() * sizeof(glm::vec4));
 
   std::vector<GpuTriangle> triangles(fixed_triangles_);
   std::vector<uint32_t> indices;
@@ -405,21 +434,24 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
     const uint32_t first = geometry_.mesh_first_triangle[m];
     for (size_t t = 0; t < mesh.triangles.size(); ++t) triangles[first + t].extra.z = flags;
   }
+  if (!triangles.empty()) {
+    triangles_.upload(triangles.data(), triangles.size() * sizeof(GpuTriangle));
+    indices_.upload(indices.data(), indices.size() * sizeof(uint32_t));
+  }
 
-  // A particle's vertices have no texture coordinates, tangents or colours: the defaults.
-  std::vector<GpuVertexExtra> vertex_extra;
-  if (needs_textures(scene.features)) {
-    vertex_extra.reserve(geometry_.vertex_count);
+  if (textured) {
+    std::vector<GpuVertexExtra> vertex_extra;
+    vertex_extra.reserve(fixed_vertices);
     for (const auto& mesh : scene.meshes)
       for (size_t i = 0; i < mesh.positions.size() && mesh.emitter < 0; ++i) {
-        GpuVertexExtra e{glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(1.0f)};
+        GpuVertexExtra e = plain;
         if (i < mesh.tangents.size()) e.tangent = mesh.tangents[i];
         if (i < mesh.uvs.size()) e.uv.x = mesh.uvs[i].x, e.uv.y = mesh.uvs[i].y;
         if (i < mesh.uvs2.size()) e.uv.z = mesh.uvs2[i].x, e.uv.w = mesh.uvs2[i].y;
         if (i < mesh.colors.size()) e.color = mesh.colors[i];
         vertex_extra.push_back(e);
       }
-    vertex_extra.resize(geometry_.vertex_count, GpuVertexExtra{glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(1.0f)});
+    if (!vertex_extra.empty()) vertex_extra_.upload(vertex_extra.data(), vertex_extra.size() * sizeof(GpuVertexExtra));
   }
 
   std::vector<BvhNode> tree = bvh_.nodes;
@@ -428,18 +460,8 @@ void SceneGpu::upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bo
   std::vector<GpuBvhNode> nodes(tree.size());
   static_assert(sizeof(GpuBvhNode) == sizeof(BvhNode));
   std::memcpy(nodes.data(), tree.data(), nodes.size() * sizeof(GpuBvhNode));
-
-  reserve(vertices_, uint64_t(geometry_.vertex_count) * sizeof(GpuVertex));
-  if (keep_deformed)
-    vertices_.upload_ranges(vertices_host_.data(), rigid_ranges_);
-  else if (!vertices_host_.empty())
-    vertices_.upload(vertices_host_.data(), vertices_host_.size() * sizeof(glm::vec4));
-  triangles_ = leading(ctx, triangles, uint64_t(triangle_count_) * sizeof(GpuTriangle));
   nodes_ = Buffer::storage(ctx, nodes);
   prims_ = Buffer::storage(ctx, prims);
-  emissive_ = leading(ctx, emissive, uint64_t(emissive_count_) * sizeof(GpuEmissive));
-  indices_ = leading(ctx, indices, 3 * uint64_t(triangle_count_) * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-  vertex_extra_ = Buffer::storage(ctx, vertex_extra);
 }
 
 // Materials and textures do not move: uploaded once.

@@ -105,9 +105,10 @@ class SceneGpu {
   // deforming meshes, the GPU's copy has the same topology and bounds refitted to the vertices
   // the GPU deformed.
   const Bvh& bvh() const { return bvh_; }
-  // How the last geometry change reached the BVH: built anew, or refitted (the same triangles
-  // moved: skinning, morph targets, rigid animation) while the refitted tree's SAH cost stays
-  // within kMaxRefitCost of the cost it had when built.
+  // How the last change of the file's geometry (not the particles') reached the BVH: built
+  // anew, or refitted (the same triangles moved: skinning, morph targets, rigid animation)
+  // while the refitted tree's SAH cost stays within kMaxRefitCost of the cost it had when
+  // built.
   enum class BvhUpdate { Built, Refitted };
   BvhUpdate last_bvh_update() const { return last_bvh_update_; }
   double bvh_cost_growth() const { return built_cost_ > 0.0 ? sah_cost(bvh_) / built_cost_ : 1.0; }
@@ -149,8 +150,11 @@ class SceneGpu {
   void make_mips(ShaderCompiler& compiler, const scenes::Scene& scene, const std::vector<uint32_t>& mip_levels);
   // `may_refit`: the triangles are those of the BVH already built, only moved. `keep_deformed`:
   // the deforming meshes' vertices stay where they are in the buffers (the deformation pass
-  // writes them), only the others are uploaded.
-  void upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bool may_refit = false, bool keep_deformed = false);
+  // writes them), only the others are uploaded. `file_moved` false: only the particles moved,
+  // so the file's vertices, triangles and tree stay as they are on both sides (its emissive
+  // triangles' CDF, which the particles' power changes, is uploaded again).
+  void upload_geometry(const scenes::Scene& scene, FlatGeometry flat, bool may_refit = false, bool keep_deformed = false,
+                       bool file_moved = true);
   // The deformer for `scene`'s deforming meshes (none without), the vertex ranges of the
   // other meshes, and the GPU refit of the BVH (made once).
   void make_deformer(const scenes::Scene& scene);
@@ -158,8 +162,10 @@ class SceneGpu {
   // array that no deformation writes.
   static std::vector<glm::vec4> vertex_rows(const FlatGeometry& g);
   static std::vector<VkBufferCopy> rigid_ranges(const scenes::Scene& scene, const FlatGeometry& g);
-  // Grows a vertex buffer to hold `bytes`, keeping its deformed vertices.
-  void reserve(Buffer& buffer, uint64_t bytes);
+  // Grows `buffer` to hold `bytes` (twice that where counts change: with particles, or once it
+  // has grown), carrying over its first `keep` bytes (what the GPU wrote there, the deformed
+  // vertices, or what the host will not upload again); true when it made a new buffer.
+  bool grow(Buffer& buffer, uint64_t bytes, uint64_t keep, VkBufferUsageFlags extra = 0);
   // Where the GPU writes each stage's particles (gpu::GpuParticleStage), given the emissive
   // triangles the host lists, `fixed` of them with `power` in all: the stages' CDF runs on
   // from the host's. Sets emissive_count_; returns the power of all emissive triangles.
@@ -189,6 +195,7 @@ class SceneGpu {
   Bvh bvh_;
   double built_cost_ = 0.0;  // sah_cost(bvh_) when last built
   BvhUpdate last_bvh_update_ = BvhUpdate::Built;
+  bool file_moved_last_ = false;  // the file's meshes moved at the last update
   // What the vertex and light buffers hold (gpu::GpuVertex, gpu::GpuLight as vec4 rows).
   std::vector<glm::vec4> vertices_host_, lights_host_;
   Buffer vertices_, triangles_, materials_, nodes_, prims_, lights_, emissive_, indices_, previous_vertices_;
