@@ -37,8 +37,8 @@ void main() {
   vec3 was, v;
   particle_state(birth.xyz, particles[slot].birth_velocity.xyz, position.w - frame_seconds, was, v);
   GpuParticleStage st = stages[stage];
-  uint k = id - st.first.y;  // the particle's place in its stage
-  uint first = st.first.x + 6u * k;
+  uint place = id - st.first.y;  // the particle's place in its stage
+  uint first = st.first.x + 6u * place;
   float size = emitter.motion.w;
   for (uint k = 0u; k < 6u; ++k) {
     vec3 axis = kParticleAxes[k];
@@ -49,16 +49,16 @@ void main() {
     previous[row + 1u] = vec4(axis, 0.0);
   }
   for (uint f = 0u; f < 8u; ++f) {
-    uint tri = st.first.z + 8u * k + f;
+    uint tri = st.first.z + 8u * place + f;
     uvec3 v = kParticleFaces[f] + first;
-    uint e = st.first.w == 0u ? 0u : st.first.w + 8u * k + f;  // emissive index + 1
+    uint e = st.first.w == 0u ? 0u : st.first.w + 8u * place + f;  // emissive index + 1
     triangles[tri].v = uvec4(v, st.triangle.x);
     triangles[tri].extra = uvec4(e, st.triangle.y, st.triangle.z, 0u);
     indices[3u * tri] = v.x;
     indices[3u * tri + 1u] = v.y;
     indices[3u * tri + 2u] = v.z;
     if (e == 0u) continue;
-    uint j = 8u * k + f;  // the stage's j-th emissive triangle
+    uint j = 8u * place + f;  // the stage's j-th emissive triangle
     emissive[e - 1u].triangle = uvec4(tri, 0u, 0u, 0u);
     emissive[e - 1u].radiance = st.radiance;
     emissive[e - 1u].sampling = vec4(e == st.triangle.w ? 1.0 : min(st.sampling.x + float(j + 1u) * st.sampling.y, 1.0), st.sampling.y, 0.0, 0.0);
