@@ -66,7 +66,7 @@ nlohmann::json render_sequence(Context& ctx, ShaderCompiler& compiler, const sce
   for (int f = 0; f < total; ++f) {
     SceneChange change = SceneChange::None;
     if (f > 0 && scene.features.animation) {
-      posed = scene.at_frame(f, scenes::ParticleDetail::Counted);
+      scene.at(f / scene.sequence.fps, scenes::ParticleDetail::Counted, posed);
       change = scene_gpu.update(posed);
       scene_gpu.complete(posed);
     }

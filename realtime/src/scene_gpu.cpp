@@ -14,6 +14,18 @@
 
 namespace giq::realtime {
 
+namespace {
+
+// A stage of particles that the GPU writes: its places in the arrays, after the meshes before it.
+void add_stage_places(const scenes::Mesh& m, FlatGeometry& g) {
+  g.mesh_first_triangle.push_back(g.triangle_count);
+  g.mesh_first_vertex.push_back(g.vertex_count);
+  g.vertex_count += scenes::kParticleVertices * m.particles;
+  g.triangle_count += scenes::kParticleTriangles * m.particles;
+}
+
+}  // namespace
+
 FlatGeometry flatten(const scenes::Scene& scene, bool placed) {
   FlatGeometry g;
   // Allocated once: a large file's arrays would otherwise spend their time regrowing, every
@@ -27,14 +39,13 @@ FlatGeometry flatten(const scenes::Scene& scene, bool placed) {
   g.material.reserve(triangles);
   g.object_id.reserve(triangles);
   for (const auto& m : scene.meshes) {
+    if (m.emitter >= 0 && !placed) {
+      add_stage_places(m, g);
+      continue;
+    }
     const uint32_t base = g.vertex_count;
     g.mesh_first_triangle.push_back(g.triangle_count);
     g.mesh_first_vertex.push_back(base);
-    if (m.emitter >= 0 && !placed) {
-      g.vertex_count += scenes::kParticleVertices * m.particles;
-      g.triangle_count += scenes::kParticleTriangles * m.particles;
-      continue;
-    }
     g.vertex_count += uint32_t(m.positions.size());
     g.triangle_count += uint32_t(m.triangles.size());
     for (size_t i = 0; i < m.positions.size(); ++i) {
@@ -135,14 +146,54 @@ SceneGpu::SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& 
 
 SceneGpu::~SceneGpu() = default;
 
+bool SceneGpu::holds_file(const scenes::Scene& posed) const {
+  const FlatGeometry& g = geometry_;
+  if (g.mesh_first_vertex.size() != posed.meshes.size()) return false;
+  size_t v = 0, t = 0, m = 0;
+  for (; m < posed.meshes.size() && posed.meshes[m].emitter < 0; ++m) {
+    const scenes::Mesh& mesh = posed.meshes[m];
+    const size_t n = mesh.positions.size(), k = mesh.triangles.size();
+    if (m >= g.mesh_first_vertex.size() || g.mesh_first_vertex[m] != v || g.mesh_first_triangle[m] != t ||
+        v + n > g.positions.size() || t + k > g.triangles.size())
+      return false;
+    if (!std::equal(mesh.positions.begin(), mesh.positions.end(), g.positions.begin() + long(v))) return false;
+    // flatten's normals: the mesh's, or 0 for a mesh without.
+    for (size_t i = 0; i < n; ++i)
+      if (g.normals[v + i] != (i < mesh.normals.size() ? mesh.normals[i] : glm::vec3(0.0f))) return false;
+    for (size_t i = 0; i < k; ++i)
+      if (g.triangles[t + i] != mesh.triangles[i] + glm::uvec3(uint32_t(v)) || g.material[t + i] != uint32_t(mesh.material) ||
+          g.object_id[t + i] != mesh.object_id)
+        return false;
+    v += n, t += k;
+  }
+  // No vertex or triangle of the file more than before.
+  return v == g.positions.size() && t == g.triangles.size();
+}
+
 SceneChange SceneGpu::update(const scenes::Scene& posed) {
   SceneChange change = SceneChange::None;
-  FlatGeometry g = flatten(posed);
   // What moved: the file's meshes, and the particles, which move whenever there are any (the
-  // GPU places them). When only they did, the host uploads nothing of the file's.
+  // GPU places them). When only they did, the host uploads nothing of the file's, and its
+  // flattened arrays stay as they are (compared in place, not copied: a still file of a
+  // million triangles costs a read instead of 0.3 s of copies a frame); only the particles'
+  // places after them are counted again.
   auto has_particles = [](const FlatGeometry& f) { return f.vertex_count > f.positions.size(); };
-  const bool file_moved = g.positions != geometry_.positions || g.normals != geometry_.normals || g.triangles != geometry_.triangles;
-  const bool moved = file_moved || has_particles(g) || has_particles(geometry_);
+  const bool file_moved = !holds_file(posed);
+  const bool had_particles = has_particles(geometry_);
+  FlatGeometry moved_file;
+  if (file_moved) {
+    moved_file = flatten(posed);
+  } else {
+    size_t file_meshes = 0;
+    while (file_meshes < posed.meshes.size() && posed.meshes[file_meshes].emitter < 0) ++file_meshes;
+    geometry_.mesh_first_vertex.resize(file_meshes);
+    geometry_.mesh_first_triangle.resize(file_meshes);
+    geometry_.vertex_count = uint32_t(geometry_.positions.size());
+    geometry_.triangle_count = uint32_t(geometry_.triangles.size());
+    for (size_t m = file_meshes; m < posed.meshes.size(); ++m) add_stage_places(posed.meshes[m], geometry_);
+  }
+  const FlatGeometry& g = file_moved ? moved_file : geometry_;
+  const bool moved = file_moved || has_particles(g) || had_particles;
   // The deforming meshes keep their places in the vertex array (they keep every vertex) unless
   // a mesh before them changed its vertex count; then the pass is made anew. (Particles, whose
   // count changes every frame, come after every mesh of the file.)
@@ -153,19 +204,25 @@ SceneChange SceneGpu::update(const scenes::Scene& posed) {
   // vertices are where they were keeps its last ones; meshes whose vertex count changed get
   // this frame's, that is no motion. The deformation pass saves its own vertices' before
   // overwriting them, the particle pass writes where each particle was (a particle is not at
-  // the same index from frame to frame). Where the file moved neither now nor at the last
-  // update, its previous vertices are already its vertices.
+  // the same index from frame to frame). Where the file moved at the last update but not
+  // now, its previous vertices are its vertices; where it moved neither now nor then, they
+  // already are.
   grow(previous_vertices_, uint64_t(g.vertex_count) * sizeof(gpu::GpuVertex), g.positions.size() * sizeof(gpu::GpuVertex));
-  if (file_moved || file_moved_last_) {
-    std::vector<glm::vec4> previous = vertex_rows(g);
+  std::vector<glm::vec4> moved_previous;
+  if (file_moved) {
+    moved_previous = vertex_rows(g);
     for (size_t m = 0; m < posed.meshes.size() && m < geometry_.mesh_first_vertex.size(); ++m) {
       if (posed.meshes[m].emitter >= 0) continue;
       const size_t first = g.mesh_first_vertex[m], count = posed.meshes[m].positions.size();
       const size_t old_first = geometry_.mesh_first_vertex[m];
       const size_t old_end = m + 1 < geometry_.mesh_first_vertex.size() ? geometry_.mesh_first_vertex[m + 1] : geometry_.vertex_count;
       if (old_end - old_first != count) continue;
-      std::copy(vertices_host_.begin() + long(2 * old_first), vertices_host_.begin() + long(2 * (old_first + count)), previous.begin() + long(2 * first));
+      std::copy(vertices_host_.begin() + long(2 * old_first), vertices_host_.begin() + long(2 * (old_first + count)),
+                moved_previous.begin() + long(2 * first));
     }
+  }
+  if (file_moved || file_moved_last_) {
+    const std::vector<glm::vec4>& previous = file_moved ? moved_previous : vertices_host_;
     if (keep_deformed)
       previous_vertices_.upload_ranges(previous.data(), rigid_ranges_);
     else if (!previous.empty())
@@ -175,8 +232,8 @@ SceneChange SceneGpu::update(const scenes::Scene& posed) {
 
   if (moved) {
     // The CPU's tree holds every triangle but the particles' (which are not in `g`).
-    const bool same_triangles = g.positions.size() == geometry_.positions.size() && g.triangles == geometry_.triangles;
-    upload_geometry(posed, std::move(g), same_triangles, keep_deformed, file_moved);
+    const bool same_triangles = !file_moved || (g.positions.size() == geometry_.positions.size() && g.triangles == geometry_.triangles);
+    upload_geometry(posed, file_moved ? std::move(moved_file) : std::move(geometry_), same_triangles, keep_deformed, file_moved);
     change = SceneChange::Geometry;
   }
   if (deformer_) {

@@ -236,10 +236,16 @@ double Scene::duration() const {
 }
 
 Scene Scene::at(double t, ParticleDetail particles) const {
-  Scene s = *this;
+  Scene s;
+  at(t, particles, s);
+  return s;
+}
+
+void Scene::at(double t, ParticleDetail particles, Scene& s) const {
+  s = *this;  // copy-assigned: each array keeps its storage where it is large enough
   s.time = t;
   const bool animated = source_ && sequence.animation >= 0;
-  if (!animated && emitters.empty()) return s;
+  if (!animated && emitters.empty()) return;
   if (animated) {
     pose(*source_, pose_nodes(*source_, sequence.animation, t), s);
     s.lights.insert(s.lights.end(), added_lights_.begin(), added_lights_.end());
@@ -249,7 +255,6 @@ Scene Scene::at(double t, ParticleDetail particles) const {
   }
   add_particle_meshes(s.emitters, t, 1.0 / sequence.fps, particles, s.meshes, path.string());
   s.derive();
-  return s;
 }
 
 void Scene::add_light(const Light& light, const std::string& description) {

@@ -13,6 +13,7 @@
 #include "giq/realtime/scene_gpu.h"
 #include "giq/realtime/timer.h"
 #include "passes/gbuffer.h"
+#include "scene_gpu_checks.h"
 #include "test_scenes.h"
 
 namespace giq::realtime {
@@ -211,6 +212,36 @@ TEST_F(SequenceTest, UpdateReportsWhatMoved) {
   moved.meshes[kTallBlockFirstMesh].positions[0].y += 0.01f;
   moved.derive();
   EXPECT_EQ(gpu.update(moved), SceneChange::Geometry);
+  // The update compares the file's meshes with what it uploaded in place: a normal, a
+  // material and an object id are each a change too, and the GPU then holds them.
+  const auto& g = gpu.geometry();
+  const uint32_t v = g.mesh_first_vertex[kTallBlockFirstMesh], t = g.mesh_first_triangle[kTallBlockFirstMesh];
+  scenes::Scene turned = moved;
+  const glm::vec3 normal = glm::normalize(glm::vec3(1.0f, 2.0f, 3.0f));
+  ASSERT_NE(moved.meshes[kTallBlockFirstMesh].normals[0], normal);
+  turned.meshes[kTallBlockFirstMesh].normals[0] = normal;
+  EXPECT_EQ(gpu.update(turned), SceneChange::Geometry);
+  EXPECT_EQ(test::vertex_rows(gpu.vertices())[v].normal, glm::vec4(normal, 0.0f));
+  auto triangle = [&] {
+    const std::vector<uint8_t> bytes = gpu.triangles().download();
+    gpu::GpuTriangle tri;
+    std::memcpy(&tri, bytes.data() + t * sizeof(tri), sizeof(tri));
+    return tri;
+  };
+  scenes::Scene recoloured = turned;
+  auto& block = recoloured.meshes[kTallBlockFirstMesh];
+  block.material = block.material == 0 ? 1 : 0;
+  EXPECT_EQ(gpu.update(recoloured), SceneChange::Geometry);
+  EXPECT_EQ(triangle().v.w, uint32_t(block.material));
+  scenes::Scene renamed = recoloured;
+  renamed.meshes[kTallBlockFirstMesh].object_id += 100;
+  EXPECT_EQ(gpu.update(renamed), SceneChange::Geometry);
+  EXPECT_EQ(triangle().extra.y, renamed.meshes[kTallBlockFirstMesh].object_id);
+  // Moved at the last update and not at this one: the previous vertices are the vertices.
+  EXPECT_EQ(gpu.update(lit), SceneChange::Geometry);
+  EXPECT_NE(gpu.previous_vertices().download(), gpu.vertices().download());
+  EXPECT_EQ(gpu.update(lit), SceneChange::None);
+  EXPECT_EQ(gpu.previous_vertices().download(), gpu.vertices().download());
 }
 
 // A technique that lives through the sequence gives, at every frame, what a technique created

@@ -219,5 +219,50 @@ TEST(Particles, CountedPosesHoldTheSameParticlesWithoutVertices) {
   }
 }
 
+// Posing into a scene posed before (Scene::at's third form, whose arrays are reused) gives
+// the scene a fresh pose gives, whatever the earlier pose was: `dynamic` (a skinned figure,
+// animated nodes, the fountain's particles), placed and counted in turn, at frames out of
+// order.
+TEST(Particles, PosingIntoAPosedSceneGivesTheFreshPose) {
+  const Scene s = load(std::filesystem::path(GIQ_SCENES_DIR) / "dynamic.gltf");
+  ASSERT_TRUE(s.features.skinning && s.features.particles && s.features.animation);
+  Scene into = s.at_frame(90);
+  const std::pair<int, ParticleDetail> poses[] = {{3, ParticleDetail::Counted}, {119, ParticleDetail::Counted},
+                                                  {40, ParticleDetail::Placed}, {41, ParticleDetail::Counted},
+                                                  {0, ParticleDetail::Placed}};
+  for (const auto& [frame, detail] : poses) {
+    SCOPED_TRACE("frame " + std::to_string(frame) + (detail == ParticleDetail::Placed ? " placed" : " counted"));
+    const double t = frame / s.sequence.fps;
+    const Scene fresh = s.at(t, detail);
+    s.at(t, detail, into);
+    EXPECT_EQ(into.time, fresh.time);
+    ASSERT_EQ(into.meshes.size(), fresh.meshes.size());
+    for (size_t m = 0; m < fresh.meshes.size(); ++m) {
+      const Mesh &a = into.meshes[m], &b = fresh.meshes[m];
+      EXPECT_TRUE(a.name == b.name && a.node == b.node && a.material == b.material && a.emitter == b.emitter &&
+                  a.particles == b.particles && a.object_id == b.object_id)
+          << "mesh " << m;
+      EXPECT_TRUE(a.positions == b.positions && a.normals == b.normals && a.tangents == b.tangents && a.uvs == b.uvs &&
+                  a.colors == b.colors && a.triangles == b.triangles && a.previous_positions == b.previous_positions)
+          << "mesh " << m;
+      ASSERT_EQ(a.deformation.has_value(), b.deformation.has_value()) << "mesh " << m;
+      if (a.deformation) EXPECT_TRUE(a.deformation->joints == b.deformation->joints && a.deformation->weights == b.deformation->weights);
+    }
+    ASSERT_EQ(into.lights.size(), fresh.lights.size());
+    for (size_t i = 0; i < fresh.lights.size(); ++i)
+      EXPECT_TRUE(into.lights[i].position == fresh.lights[i].position && into.lights[i].direction == fresh.lights[i].direction);
+    ASSERT_EQ(into.views.size(), fresh.views.size());
+    for (size_t i = 0; i < fresh.views.size(); ++i) EXPECT_EQ(into.views[i].camera.position, fresh.views[i].camera.position);
+    ASSERT_EQ(into.area_lights.size(), fresh.area_lights.size());
+    for (size_t i = 0; i < fresh.area_lights.size(); ++i)
+      EXPECT_TRUE(into.area_lights[i].centroid == fresh.area_lights[i].centroid && into.area_lights[i].area == fresh.area_lights[i].area &&
+                  into.area_lights[i].intensity == fresh.area_lights[i].intensity);
+    EXPECT_EQ(into.emissive_triangles.size(), fresh.emissive_triangles.size());
+    EXPECT_TRUE(into.bounds.lo == fresh.bounds.lo && into.bounds.hi == fresh.bounds.hi);
+    EXPECT_EQ(into.features, fresh.features);
+    EXPECT_EQ(into.stats.triangles, fresh.stats.triangles);
+  }
+}
+
 }  // namespace
 }  // namespace giq::scenes

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <limits>
+#include <malloc.h>
 
 #include "command.h"
 #include "giq/base/error.h"
@@ -33,6 +35,15 @@ std::string suggestion(const CLI::App& app) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // giq makes arrays of the same large sizes again and again: a scene posed every frame,
+  // geometry flattened, images. glibc serves a block above 128 KiB with mmap, and gives the
+  // top of the heap back to the kernel past 128 KiB, so each time the arrays' pages are
+  // faulted in anew, 4 KiB at a time (a third of a frame's host time and a second of start-up
+  // with a million-triangle file: bench/results/particle-host-amd-epyc-2vcpu.md). Here blocks
+  // up to glibc's largest mmap threshold (32 MiB on 64-bit) come from the heap, and the heap
+  // keeps what is freed: the process holds on to its peak memory instead.
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
   CLI::App app{"giq: scores real-time global illumination against path-traced ground truth", "giq"};
   app.set_version_flag("--version", std::string("giq ") + giq::version());
   app.require_subcommand(1);

@@ -171,6 +171,9 @@ class SceneGpu {
   // from the host's. Sets emissive_count_; returns the power of all emissive triangles.
   double place_particle_stages(const scenes::Scene& scene, uint32_t fixed, double power);
   bool upload_lights(const scenes::Scene& scene);  // false when nothing changed
+  // Whether `posed`'s file meshes (all but the particles') are those in geometry_: the same
+  // vertices, normals, triangles, materials and object ids in the same places.
+  bool holds_file(const scenes::Scene& posed) const;
   // Brings each emitter's GPU particles to `posed`'s time.
   void prepare_particles(const scenes::Scene& posed);
   // The particle passes, then their tree (LinearBvh) and their stages' bounds (ParticleBounds).

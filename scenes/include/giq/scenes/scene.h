@@ -174,6 +174,10 @@ class Scene {
   // The scene posed at time t in seconds (animations evaluated, lights and cameras moved).
   // Same origin, materials and textures. For a scene without animation, a copy.
   Scene at(double t, ParticleDetail particles = ParticleDetail::Placed) const;
+  // The same into `into`, a scene posed before (not this one), whose arrays are reused: a
+  // renderer posing a large file frame after frame copies it instead of allocating it anew
+  // (fresh pages, which the kernel hands out one fault at a time).
+  void at(double t, ParticleDetail particles, Scene& into) const;
   Scene at_frame(int frame, ParticleDetail particles = ParticleDetail::Placed) const { return at(frame / sequence.fps, particles); }
   double duration() const;  // of the playing animation; 0 when static
 
