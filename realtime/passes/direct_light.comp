@@ -35,6 +35,11 @@ layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 2) readonly buffer AreaLig
 layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 3) readonly buffer AreaTriangles { GpuAreaTriangle area_triangles[]; };
 layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 4) readonly buffer LightShadow { uint light_shadow_layer[]; };
 layout(binding = GIQ_RECEIVER_BINDING_COUNT + 5, rgba32f) uniform writeonly image2D out_direct;
+// The particles' light tree (LinearBvh::LightTree): nodes, each node's particles' centroid and
+// count, each stage's subtree.
+layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 6) readonly buffer ParticleTree { GpuBvhNode particle_tree[]; };
+layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 7) readonly buffer ParticleClusters { vec4 particle_clusters[]; };
+layout(std430, binding = GIQ_RECEIVER_BINDING_COUNT + 8) readonly buffer StageRoots { uint stage_roots[]; };
 
 #include "passes/area_light_parts.glsl"
 
@@ -117,11 +122,58 @@ vec3 particle_light(GpuParticleLight particle, Surface s, vec3 p, vec3 wo) {
   return f * particle.radiance.rgb * e;
 }
 
+// A stage's particles through its subtree of the light tree, a lightcut (Walter et al. 2005,
+// "Lightcuts", section 3): a cluster whose box lies wholly in front of the surface and is
+// smaller than pc.particle_cut times its distance lights as its count of particles at their
+// centroid; a box wholly behind the surface sends nothing (no particle in it reaches above the
+// plane); the others are opened, down to single particles, lit as in the loop. The centroid
+// makes the error second order: the first-order terms of the particles' offsets from it sum
+// to zero, so a cluster's relative error is of order cut^2. The specular part takes the
+// cluster as one particle at its centroid. The walk needs no stack: in the depth-first layout
+// a node of n particles spans the 2n - 1 nodes from it, so the node after them is where the
+// walk goes on when it is not opened, and its first child, the next node, when it is.
+vec3 particle_tree_light(GpuAreaLight l, uint root, Surface s, vec3 p, vec3 wo) {
+  vec3 sum = vec3(0.0);
+  float cut2 = pc.particle_cut * pc.particle_cut;
+  bvec3 up = greaterThanEqual(s.n, vec3(0.0));
+  uint node = root, end = root + 2u * uint(particle_clusters[root].w) - 1u;
+  while (node < end) {
+    GpuBvhNode b = particle_tree[node];
+    vec4 c = particle_clusters[node];
+    uint next = node + 2u * uint(c.w) - 1u;
+    // The box's highest and lowest corner over the surface's plane.
+    vec3 lo = b.lo - p, hi = b.hi - p;
+    if (dot(s.n, mix(lo, hi, up)) > 0.0) {
+      if (b.count > 0u) {
+        sum += particle_light(particle_at_vertex(l, pc.first_particle_vertex + 6u * (b.index / 8u)), s, p, wo);
+      } else {
+        vec3 size = b.hi - b.lo, to = c.xyz - p;
+        if (dot(s.n, mix(hi, lo, up)) > 0.0 && dot(size, size) < cut2 * dot(to, to)) {
+          GpuParticleLight q;
+          q.centre = vec4(c.xyz, l.particle.w);
+          q.radiance = vec4(l.particle.rgb, 0.0);
+          sum += c.w * particle_light(q, s, p, wo);
+        } else {
+          next = node + 1u;  // opened
+        }
+      }
+    }
+    node = next;
+  }
+  return sum;
+}
+
 vec3 area_light(GpuAreaLight l, Surface s, vec3 p, vec3 wo) {
   vec3 sum = vec3(0.0);
   vec3 incident = vec3(0.0);  // sum of radiance x irradiance over the triangles (declared shapes)
   int shape = int(l.shape.w);
-  for (uint k = 0u; k < lit_particles(l); ++k) sum += particle_light(stage_particle(l, k), s, p, wo);
+  uint slot = uint(l.extent.w);
+  if (slot > 0u && lit_particles(l) > 0u) {
+    uint root = stage_roots[slot - 1u];
+    if (root != 0xffffffffu) sum += particle_tree_light(l, root, s, p, wo);
+  } else {
+    for (uint k = 0u; k < lit_particles(l); ++k) sum += particle_light(stage_particle(l, k), s, p, wo);
+  }
   uint triangles = lit_triangles(l);
   for (uint k = 0u; k < triangles; ++k) {
     GpuAreaTriangle t = area_triangle(l, k);

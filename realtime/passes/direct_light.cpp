@@ -25,6 +25,9 @@ std::vector<Parameter> DirectLightPass::parameters() {
           {"particle_lights", 1, 0, 1, true,
            "1: light a stage of glowing particles particle by particle, each face of one 16 circumradii away "
            "as a point (shaders/octahedron_irradiance.glsl); 0: every triangle exactly"},
+          {"particle_cut", 0.05, 0, 1, false,
+           "a cluster of glowing particles lights as one, from its centroid, where its box is smaller than this "
+           "times its distance (relative error of order its square); 0: every particle alone"},
           {"area_shadow_rays", 0, 0, 1024, true,
            "0: an area light casts hard shadows from its representative point (its cube shadow map); N: soft "
            "shadows from N rays a pixel to points on the light, the share of its light they reach"},
@@ -39,6 +42,7 @@ DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
       pcf_radius_(uint32_t(ci.parameters.get_int("pcf_radius"))),
       normal_offset_(float(ci.parameters.get("normal_offset"))),
       particle_lights_(ci.parameters.get_int("particle_lights") != 0),
+      particle_cut_(float(ci.parameters.get("particle_cut"))),
       particle_shadow_size_(uint32_t(ci.parameters.get_int("particle_shadow_map_size"))),
       area_shadow_rays_(uint32_t(ci.parameters.get_int("area_shadow_rays"))),
       shadows_(ci.ctx, ci.compiler, ci.scene_gpu, ci.scene.bounds, uint32_t(ci.parameters.get_int("shadow_map_size")),
@@ -54,7 +58,8 @@ DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
   bindings.insert(bindings.end(), {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+                                   VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
   pipeline_ = Pipeline::compute(
       ci.ctx, ci.compiler.compile("passes/direct_light.comp", feature_defines(ci.scene.features)), bindings,
       sizeof(gpu::DirectPush));
@@ -127,6 +132,11 @@ void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer
   d.push_back(Descriptor::storage(area_triangle_buffer_));
   d.push_back(Descriptor::storage(light_layer_buffer_));
   d.push_back(Descriptor::storage_image(direct_));
+  // Without a light tree no light has a slot in it: any buffer stands in.
+  const LinearBvh::LightTree* tree = scene_gpu_.particle_light_tree();
+  d.push_back(Descriptor::storage(tree ? tree->nodes : area_light_buffer_));
+  d.push_back(Descriptor::storage(tree ? tree->clusters : area_light_buffer_));
+  d.push_back(Descriptor::storage(tree ? tree->stage_roots : area_light_buffer_));
   pipeline_.push_descriptors(in.cmd, d);
   gpu::DirectPush pc{};
   pc.camera = gpu::make_gpu_camera(in.camera);
@@ -137,6 +147,8 @@ void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer
   pc.light_count = scene_gpu_.light_count();
   pc.area_light_count = uint32_t(area_lights_.size());
   pc.area_shadow_rays = area_shadow_rays_;
+  pc.particle_cut = particle_cut_;
+  pc.first_particle_vertex = scene_gpu_.first_particle_vertex();
   pipeline_.push_constants(in.cmd, pc);
   pipeline_.dispatch_2d(in.cmd, width_, height_);
   full_barrier(in.cmd);
@@ -170,6 +182,9 @@ void DirectLightPass::build_area_lights(const scenes::Scene& scene) {
     }
     l.position = glm::vec4(a.representative, 0.0f);
     l.extent = glm::vec4(a.extent, a.two_sided ? 1.0f : 0.0f, l.range.w > 0 && !particle_lights_ ? 1.0f : 0.0f, 0.0f);
+    // Many particles are lit through the light tree, cluster by cluster, where the cut allows.
+    if (l.range.w > 0 && particle_cut_ > 0.0f && scene_gpu_.particle_light_tree())
+      l.extent.w = float(scene_gpu_.particle_light_slot(uint32_t(mesh.material)) + 1);
     static_assert(GIQ_AREA_MESH == int(scenes::AreaShape::Mesh) && GIQ_AREA_TUBE == int(scenes::AreaShape::Tube));
     l.shape = glm::vec4(a.shape_centre, float(int(a.shape)));
     l.shape_u = glm::vec4(a.shape_u, a.shape_radius);

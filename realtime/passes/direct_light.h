@@ -26,7 +26,7 @@ class GBufferPass;
 class DirectLightPass {
  public:
   // The parameters this pass reads (shadow_map_size, pcf_radius, normal_offset,
-  // cascade_split_lambda, cache_static_shadows, particle_lights, area_shadow_rays,
+  // cascade_split_lambda, cache_static_shadows, particle_lights, particle_cut, area_shadow_rays,
   // particle_shadow_map_size, shadow_maps_ray_traced); a technique lists them among its own.
   static std::vector<Parameter> parameters();
 
@@ -62,6 +62,7 @@ class DirectLightPass {
   uint32_t pcf_radius_;
   float normal_offset_;
   bool particle_lights_;          // light particle stages particle by particle
+  float particle_cut_;            // clusters of particles light as one below this size over distance
   uint32_t particle_shadow_size_;  // texels per side of a particle stage's shadow cube
   uint32_t area_shadow_rays_;      // 0: area lights' shadow cubes; else rays a pixel to each
   ShadowMaps shadows_;

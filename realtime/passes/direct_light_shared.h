@@ -19,7 +19,11 @@ struct DirectPush {
   uint light_count;       // punctual lights
   uint area_light_count;  // emissive meshes
   uint area_shadow_rays;  // 0: area lights shadowed by their cube maps; else rays a pixel to each
-  uint pad0;
+  // A cluster of particles lights as one where its box is smaller than this times its
+  // distance (direct_light.comp, particle_tree_light); 0: every particle alone.
+  float particle_cut;
+  uint first_particle_vertex;  // of particle 0, leaf 0 of the particles' light tree
+  uint pad0, pad1, pad2;
 };
 
 // An emissive mesh as one area light: its triangles are integrated exactly, a stage of glowing
@@ -37,7 +41,9 @@ struct GpuAreaLight {
   vec4 particle;  // a particle of the stage: rgb its emitted radiance, w its circumradius
   // x: how far from `position` shadow rays towards it stop (AreaLight::extent); y: 1 when the
   // emitter is double-sided (as GpuAreaTriangle::a.w); z: 1 when a stage of particles is lit
-  // by its triangles rather than particle by particle (area_light_parts.glsl, lit_particles).
+  // by its triangles rather than particle by particle (area_light_parts.glsl, lit_particles);
+  // w: for a stage of particles in the scene's light tree (SceneGpu::particle_light_tree),
+  // its slot there plus 1, else 0.
   vec4 extent;
   // The declared shape for glossy reflections (scenes::AreaLight::shape_*): xyz centre, w the
   // shape (GIQ_AREA_*); u and v: xyz half vectors (rectangle: sides; tube: half segment; disc:

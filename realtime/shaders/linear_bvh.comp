@@ -20,6 +20,13 @@
 //   5 bounds: leaf to root, a node's box made by the second of its children to arrive;
 //   6 flatten: every node to its depth-first place; the root above (node 0) gets the union
 //     of the tree beside it (node 1) and this one.
+//
+// With GIQ_LBVH_LIGHTS the tree is a light tree over the particles, of its own (node 0 its
+// root, no prims: a leaf's index is its leaf's first triangle less first_triangle): the keys
+// put each stage of life first (its material less stage_material, in the top 8 bits, over
+// 24 bits of Morton code), so that each stage's particles are exactly one subtree (a binary
+// radix tree has a node for every shared prefix), whose root's place goes to
+// stage_roots[stage]; and every node gets its particles' centroid and count in `clusters`.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/scene_shared.h"
@@ -41,6 +48,7 @@ struct Inner {
   uvec4 links;
   uvec4 range;
   vec4 lo, hi;
+  vec4 centre;  // xyz: the centroid of its leaves' centres (pass 5)
 };
 layout(std430, binding = 6) coherent buffer Inners { Inner inner[]; };
 // Parents (kNone for the root): sorted leaf k's at k, interior node i's at count + i.
@@ -49,6 +57,11 @@ layout(std430, binding = 7) buffer Parents { uint parents[]; };
 layout(std430, binding = 8) buffer Centres { uint centre_box[6]; };
 // Children of interior node i that have their box (pass 5; zeroed before it).
 layout(std430, binding = 9) buffer Visits { uint visits[]; };
+#ifdef GIQ_LBVH_LIGHTS
+// By depth-first place: xyz the centroid of the node's leaves' centres, w their count.
+layout(std430, binding = 10) writeonly buffer Clusters { vec4 clusters[]; };
+layout(std430, binding = 11) writeonly buffer StageRoots { uint stage_roots[]; };  // kNone: no particle
+#endif
 
 layout(push_constant) uniform Push {
   uint first_triangle;  // of leaf 0
@@ -58,6 +71,7 @@ layout(push_constant) uniform Push {
   uint prim_base;       // where leaf 0's triangles go in `prims`
   uint padded;          // keys, a power of two >= count
   uint k, j;            // the bitonic step (pass 3)
+  uint stage_material;  // GIQ_LBVH_LIGHTS: the material of stage 0
 } pc;
 
 const uint kLeaf = 0x80000000u;
@@ -107,7 +121,9 @@ void main() {
       vec3 p = vertices[v[c]].position.xyz;
       lo = min(lo, p), hi = max(hi, p);
     }
+#ifndef GIQ_LBVH_LIGHTS
     prims[pc.prim_base + i * pc.per_leaf + t] = tri;
+#endif
   }
   leaves[i].lo = vec4(lo, 0.0);
   leaves[i].hi = vec4(hi, 0.0);
@@ -128,7 +144,12 @@ void main() {
   vec3 extent = hi - lo;
   vec3 q = clamp((c - lo) / max(extent, vec3(1e-30)), 0.0, 1.0) * 1023.0;
   uvec3 b = uvec3(q);
-  keys[i] = uvec2(spread(b.x) << 2 | spread(b.y) << 1 | spread(b.z), i);
+  uint code = spread(b.x) << 2 | spread(b.y) << 1 | spread(b.z);
+#ifdef GIQ_LBVH_LIGHTS
+  uint stage = min(triangles[pc.first_triangle + i * pc.per_leaf].v.w - pc.stage_material, 255u);
+  code = stage << 24 | code >> 6;
+#endif
+  keys[i] = uvec2(code, i);
 #elif GIQ_LBVH_PASS == 3
   // Batcher's bitonic sort, one compare-exchange per pair: the partner is i ^ j, and the
   // direction alternates with bit k of i.
@@ -201,23 +222,35 @@ void main() {
     if (atomicAdd(visits[node], 1u) == 0u) return;
     memoryBarrierBuffer();
     vec3 lo = vec3(uintBitsToFloat(0x7f800000u)), hi = -lo;
+    // The centroid as the children's, weighted by their leaves: a mean of means, never a sum
+    // of a million coordinates.
+    vec3 centre[2];
+    float weight[2];
     for (int c = 0; c < 2; ++c) {
       uint child = inner[node].links[c];
       if ((child & kLeaf) != 0u) {
         LeafBox b = leaves[keys[child & ~kLeaf].y];
         lo = min(lo, b.lo.xyz), hi = max(hi, b.hi.xyz);
+        centre[c] = 0.5 * (b.lo.xyz + b.hi.xyz);
+        weight[c] = 1.0;
       } else {
         lo = min(lo, inner[child].lo.xyz), hi = max(hi, inner[child].hi.xyz);
+        centre[c] = inner[child].centre.xyz;
+        weight[c] = float(inner[child].range.y - inner[child].range.x + 1u);
       }
     }
     inner[node].lo = vec4(lo, 0.0);
     inner[node].hi = vec4(hi, 0.0);
+    inner[node].centre = vec4(centre[0] + (centre[1] - centre[0]) * (weight[1] / (weight[0] + weight[1])), 0.0);
     node = parents[pc.count + node];
   }
 #elif GIQ_LBVH_PASS == 6
   // Nodes 0 .. count - 2 are interior, then the leaves; no leaves: an empty leaf of one prim
   // (the first triangle again, which no ray can find closer than itself) so the layout holds.
   if (pc.count == 0u) {
+#ifdef GIQ_LBVH_LIGHTS
+    return;  // no stage has a root
+#endif
     if (i > 0u) return;
     nodes[pc.node_base].lo = vec3(uintBitsToFloat(0x7f800000u));
     nodes[pc.node_base].hi = -vec3(uintBitsToFloat(0x7f800000u));
@@ -255,9 +288,21 @@ void main() {
     node.count = 0u;
   }
   nodes[place] = node;
+#ifdef GIQ_LBVH_LIGHTS
+  uint last = leaf ? first : inner[i].range.y;
+  vec3 centre = leaf ? 0.5 * (node.lo + node.hi) : inner[i].centre.xyz;
+  clusters[place] = vec4(centre, float(last - first + 1u));
+  // The root of its stage's subtree: its leaves are of one stage, its parent's of two.
+  uint parent = pc.count > 1u ? parents[leaf ? first : pc.count + i] : kNone;
+  uint stage = keys[first].x >> 24;
+  if (stage == keys[last].x >> 24 &&
+      (parent == kNone || keys[inner[parent].range.x].x >> 24 != keys[inner[parent].range.y].x >> 24))
+    stage_roots[stage] = place;
+#else
   if (place == pc.node_base) {
     nodes[0].lo = min(nodes[1].lo, node.lo);
     nodes[0].hi = max(nodes[1].hi, node.hi);
   }
+#endif
 #endif
 }

@@ -13,11 +13,12 @@ namespace giq::realtime {
 
 namespace {
 
-constexpr uint32_t kBindings = 10;
+// shaders/linear_bvh.comp's bindings: the scene's tree's, and a light tree's two more.
+constexpr uint32_t kBindings = 10, kLightBindings = 12;
 
 // shaders/linear_bvh.comp's push constants.
 struct Push {
-  uint32_t first_triangle, count, per_leaf, node_base, prim_base, padded, k, j;
+  uint32_t first_triangle, count, per_leaf, node_base, prim_base, padded, k, j, stage_material;
 };
 
 // Invocations per workgroup. Pass 5 (bounds, leaf to root) runs one per workgroup: where a
@@ -30,17 +31,18 @@ constexpr uint32_t kLocal = 2 * group(7);  // the shader's kLocal
 constexpr int kPasses = 7;
 
 // std430 sizes of the shader's LeafBox and Inner.
-constexpr uint64_t kLeafBoxBytes = 32, kInnerBytes = 64;
+constexpr uint64_t kLeafBoxBytes = 32, kInnerBytes = 80;
 
 }  // namespace
 
-LinearBvh::LinearBvh(Context& ctx, ShaderCompiler& compiler, uint32_t max_leaves, uint32_t per_leaf)
-    : max_leaves_(max_leaves), per_leaf_(per_leaf) {
-  const std::vector<VkDescriptorType> bindings(kBindings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-  for (int p = 0; p < kPasses; ++p)
-    passes_[p] = Pipeline::compute(ctx, compiler.compile("shaders/linear_bvh.comp", {{"GIQ_LBVH_PASS", std::to_string(p + 1)},
-                                                                                  {"GIQ_LBVH_GROUP", std::to_string(group(p + 1))}}),
-                                   bindings, sizeof(Push));
+LinearBvh::LinearBvh(Context& ctx, ShaderCompiler& compiler, uint32_t max_leaves, uint32_t per_leaf, bool lights)
+    : max_leaves_(max_leaves), per_leaf_(per_leaf), lights_(lights) {
+  const std::vector<VkDescriptorType> bindings(lights ? kLightBindings : kBindings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  for (int p = 0; p < kPasses; ++p) {
+    std::vector<ShaderDefine> defines = {{"GIQ_LBVH_PASS", std::to_string(p + 1)}, {"GIQ_LBVH_GROUP", std::to_string(group(p + 1))}};
+    if (lights) defines.push_back({"GIQ_LBVH_LIGHTS", "1"});
+    passes_[p] = Pipeline::compute(ctx, compiler.compile("shaders/linear_bvh.comp", defines), bindings, sizeof(Push));
+  }
   const uint64_t n = std::max<uint32_t>(max_leaves, 1);
   constexpr VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   keys_ = Buffer(ctx, std::bit_ceil(n) * 2 * sizeof(uint32_t), usage);
@@ -49,6 +51,13 @@ LinearBvh::LinearBvh(Context& ctx, ShaderCompiler& compiler, uint32_t max_leaves
   parents_ = Buffer(ctx, 2 * n * sizeof(uint32_t), usage);
   centres_ = Buffer(ctx, 6 * sizeof(uint32_t), usage);
   visits_ = Buffer(ctx, n * sizeof(uint32_t), usage);
+}
+
+LinearBvh::LightTree LinearBvh::make_light_tree(Context& ctx) const {
+  const uint64_t nodes = std::max<uint64_t>(2 * uint64_t(max_leaves_), 2) - 1;
+  constexpr VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  return {Buffer(ctx, nodes * sizeof(BvhNode), usage), Buffer(ctx, nodes * 4 * sizeof(float), usage),
+          Buffer(ctx, kLightStages * sizeof(uint32_t), usage)};
 }
 
 void LinearBvh::place_beside(std::vector<BvhNode>& nodes, std::vector<uint32_t>& prims) {
@@ -69,12 +78,28 @@ void LinearBvh::place_beside(std::vector<BvhNode>& nodes, std::vector<uint32_t>&
 
 void LinearBvh::record(VkCommandBuffer cmd, const Buffer& vertices, const Buffer& triangles, const Buffer& nodes,
                        const Buffer& prims, uint32_t first_triangle, uint32_t leaves, GpuTimer* timer) const {
+  build(cmd, {Descriptor::storage(vertices), Descriptor::storage(triangles), Descriptor::storage(nodes), Descriptor::storage(prims)},
+        first_triangle, leaves, 0, timer);
+}
+
+void LinearBvh::record_lights(VkCommandBuffer cmd, const Buffer& vertices, const Buffer& triangles, const LightTree& tree,
+                              uint32_t first_triangle, uint32_t leaves, uint32_t stage_material) const {
+  vkCmdFillBuffer(cmd, tree.stage_roots.handle(), 0, VK_WHOLE_SIZE, 0xffffffffu);
+  full_barrier(cmd);
+  // No prims: the shader writes none, so the roots' buffer stands in at binding 3.
+  build(cmd, {Descriptor::storage(vertices), Descriptor::storage(triangles), Descriptor::storage(tree.nodes),
+              Descriptor::storage(tree.stage_roots)},
+        first_triangle, leaves, stage_material, nullptr, {Descriptor::storage(tree.clusters), Descriptor::storage(tree.stage_roots)});
+}
+
+void LinearBvh::build(VkCommandBuffer cmd, std::vector<Descriptor> d, uint32_t first_triangle, uint32_t leaves,
+                      uint32_t stage_material, GpuTimer* timer, const std::vector<Descriptor>& light_outputs) const {
   leaves = std::min(leaves, max_leaves_);
-  const std::vector<Descriptor> d = {Descriptor::storage(vertices), Descriptor::storage(triangles), Descriptor::storage(nodes),
-                                     Descriptor::storage(prims),    Descriptor::storage(keys_),     Descriptor::storage(leaves_),
-                                     Descriptor::storage(inner_),   Descriptor::storage(parents_), Descriptor::storage(centres_),
-                                     Descriptor::storage(visits_)};
-  Push push{first_triangle, leaves, per_leaf_, node_base_, prim_base_, std::bit_ceil(std::max(leaves, 1u)), 0, 0};
+  d.insert(d.end(), {Descriptor::storage(keys_), Descriptor::storage(leaves_), Descriptor::storage(inner_),
+                     Descriptor::storage(parents_), Descriptor::storage(centres_), Descriptor::storage(visits_)});
+  d.insert(d.end(), light_outputs.begin(), light_outputs.end());
+  const uint32_t node_base = lights_ ? 0 : node_base_, prim_base = lights_ ? 0 : prim_base_;
+  Push push{first_triangle, leaves, per_leaf_, node_base, prim_base, std::bit_ceil(std::max(leaves, 1u)), 0, 0, stage_material};
   auto run = [&](int pass, uint64_t threads) {
     passes_[pass - 1].bind(cmd);
     passes_[pass - 1].push_descriptors(cmd, d);

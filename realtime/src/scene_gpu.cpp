@@ -129,6 +129,18 @@ SceneGpu::SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& 
   if (!particles_.empty()) {
     particle_bvh_ = std::make_unique<LinearBvh>(ctx, compiler, most_particles, scenes::kParticleTriangles);
     particle_bounds_ = std::make_unique<ParticleBounds>(ctx, compiler);
+    // The stages' materials follow one another, emitter by emitter (scenes::complete_emitter).
+    bool glows = false;
+    uint32_t stages = 0;
+    for (const scenes::Emitter& e : scene.emitters) {
+      for (int s = 0; s < e.stages; ++s) glows |= scene.materials[size_t(e.first_material + s)].is_emissive();
+      stages += uint32_t(e.stages);
+    }
+    stage_material_ = uint32_t(scene.emitters.front().first_material);
+    if (glows && stages <= LinearBvh::kLightStages) {
+      light_bvh_ = std::make_unique<LinearBvh>(ctx, compiler, most_particles, scenes::kParticleTriangles, true);
+      light_tree_ = light_bvh_->make_light_tree(ctx);
+    }
   }
   upload_geometry(scene, flatten(scene));
   grow(previous_vertices_, uint64_t(geometry_.vertex_count) * sizeof(gpu::GpuVertex), 0);

@@ -73,8 +73,9 @@ void SceneGpu::record_particles(VkCommandBuffer cmd) {
     const std::vector<uint32_t>& counts = particles_[e]->stage_counts();
     for (size_t s = 0; s < stages_[e].size() && s < counts.size(); ++s) ranges.push_back({stages_[e][s].first.x, counts[s]});
   }
-  particle_bvh_->record(cmd, vertices_, triangles_, nodes_, prims_, fixed_triangles_,
-                        (triangle_count_ - fixed_triangles_) / scenes::kParticleTriangles);
+  const uint32_t particles = (triangle_count_ - fixed_triangles_) / scenes::kParticleTriangles;
+  particle_bvh_->record(cmd, vertices_, triangles_, nodes_, prims_, fixed_triangles_, particles);
+  if (light_bvh_) light_bvh_->record_lights(cmd, vertices_, triangles_, light_tree_, fixed_triangles_, particles, stage_material_);
   particle_bounds_->record(cmd, vertices_, ranges);
 }
 

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "giq/realtime/scene_gpu.h"
 #include "passes/direct_light.h"
 #include "polygon_irradiance.h"
+#include "scene_gpu_checks.h"
 #include "test_scenes.h"
 
 namespace giq::realtime {
@@ -50,7 +52,7 @@ TEST_F(ParticleLightsTest, ParticlesLitOneByOneAgreeWithTheirTriangles) {
     if (m.emitter >= 0) particles += m.positions.size() / 6;
   ASSERT_GT(particles, 50u);
   const int size = 64;
-  const image::Image fast = render(s, "direct", size, {"shadow_map_size=256", "particle_lights=1"});
+  const image::Image fast = render(s, "direct", size, {"shadow_map_size=256", "particle_lights=1", "particle_cut=0"});
   const image::Image exact = render(s, "direct", size, {"shadow_map_size=256", "particle_lights=0"});
   size_t lit = 0;
   for (int y = 0; y < size; ++y)
@@ -254,6 +256,139 @@ TEST_F(ParticleLightsTest, ACubeInTheCornerOfLargerLayersGivesTheSameBits) {
     sum += own.channel("R")[i];
   }
   EXPECT_GT(sum, 0.0);
+}
+
+// Particles lit cluster by cluster through the light tree (direct_light.comp,
+// particle_tree_light) against one by one (particle_cut=0), on the fountain at 10 times its
+// rate (about 1,300 particles at frame 20), lit by nothing else. A cut of 1e-6 opens every
+// cluster but those of coinciding particles: the same sum in another order, within float
+// rounding (1e-5 of a pixel's light). With a cut c, a cluster of particles in a box of
+// diagonal D < c d, d from its centroid, lights as all of them at the centroid, whose
+// first-order error cancels. The second-order remainder of a point's irradiance cos / r^2,
+// whose Hessian is at most 13 / r^4 times its projected area, with r >= d (1 - c) and a mean
+// squared distance from the centroid of at most D^2 / 4, bounds each cluster's relative error,
+// and so a pixel's, by 13/8 c^2 / (1 - c)^4. (The centroids themselves are checked in
+// TheLightTreeHoldsEveryStagesParticles.)
+// The particles are 2 mm across and no more than this many because lavapipe ends every loop
+// of a shader invocation once 65,535 iterations have run in all of them (llvmpipe's
+// LP_MAX_TGSI_LOOP_ITERATIONS): the walk over the stages' trees, the particle loop, and the
+// face loops of the particles nearer than 16 radii all draw on that one budget.
+TEST_F(ParticleLightsTest, ClustersOfParticlesErrOnlyInTheSecondOrder) {
+  scenes::Scene fountain = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "fountain.gltf");
+  scenes::Emitter& e = fountain.emitters[0];
+  e.rate *= 10.0;
+  e.max_particles = uint32_t(std::floor(e.rate * e.lifetime) + 1.0);
+  e.size = 0.002;
+  scenes::Scene s = fountain.at_frame(20, scenes::ParticleDetail::Counted);
+  for (scenes::Material& m : s.materials) m.metallic = 0.0f, m.specular = 0.0f;
+  s.derive();
+  s.features.animation = false;  // this frame alone
+  ASSERT_FALSE(s.features.specular);
+  const int size = 64;
+  auto direct = [&](const std::string& cut) {
+    return render(s, "direct", size, {"shadow_map_size=256", "area_shadow_rays=0", "particle_cut=" + cut});
+  };
+  const image::Image exact = direct("0"), opened = direct("0.000001"), coarse = direct("0.2"), fine = direct("0.1");
+  double error_coarse = 0.0, error_fine = 0.0;
+  size_t lit = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x)
+      for (const char* c : {"R", "G", "B"}) {
+        const float b = exact.at(c, x, y);
+        EXPECT_LE(std::abs(opened.at(c, x, y) - b), 1e-5f * b + 1e-9f) << c << " at " << x << "," << y;
+        for (auto [cut, image, sum] : {std::tuple{0.2, &coarse, &error_coarse}, std::tuple{0.1, &fine, &error_fine}}) {
+          const double err = std::abs(double(image->at(c, x, y)) - double(b));
+          EXPECT_LE(err, 13.0 / 8.0 * cut * cut / std::pow(1.0 - cut, 4.0) * b + 1e-9) << c << " at " << x << "," << y << " cut " << cut;
+          *sum += err;
+        }
+        lit += c[0] == 'G' && b > 1e-4f;
+      }
+  EXPECT_GT(lit, size_t(size * size / 4));
+  EXPECT_GT(error_fine, 0.0);  // clusters were taken whole
+  EXPECT_GT(error_coarse, error_fine);
+}
+
+// The light tree over the fountain's particles at 100 times its rate (about 13,000 at frame
+// 20, several stages; LinearBvh::record_lights) as the GPU built it: each stage's subtree
+// holds exactly the particles whose triangles have the stage's material, each once; every
+// node's box holds its particles' octahedra and its count is theirs; and its centroid is the
+// mean of their centres (vertices 0 and 1 of each octahedron, as the direct pass reads them).
+// The centroid is a mean of the children's means, one rounding a level: within 2^-20 of the
+// fountain's extent at its depth. Writing the box's centre, or a count one off, fails it.
+TEST_F(ParticleLightsTest, TheLightTreeHoldsEveryStagesParticles) {
+  scenes::Scene fountain = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "fountain.gltf");
+  scenes::Emitter& e = fountain.emitters[0];
+  e.rate *= 100.0;
+  e.max_particles = uint32_t(std::floor(e.rate * e.lifetime) + 1.0);
+  const scenes::Scene s = fountain.at_frame(20, scenes::ParticleDetail::Counted);
+  SceneGpu gpu(*ctx, *compiler, s);
+  const LinearBvh::LightTree* tree = gpu.particle_light_tree();
+  ASSERT_NE(tree, nullptr);
+  auto words = [](const Buffer& b) {
+    const std::vector<uint8_t> bytes = b.download();
+    std::vector<uint32_t> w(bytes.size() / 4);
+    std::memcpy(w.data(), bytes.data(), w.size() * 4);
+    return w;
+  };
+  const std::vector<uint32_t> roots = words(tree->stage_roots);
+  const std::vector<uint8_t> node_bytes = tree->nodes.download(), cluster_bytes = tree->clusters.download();
+  std::vector<BvhNode> nodes(node_bytes.size() / sizeof(BvhNode));
+  std::memcpy(nodes.data(), node_bytes.data(), nodes.size() * sizeof(BvhNode));
+  std::vector<glm::vec4> clusters(cluster_bytes.size() / sizeof(glm::vec4));
+  std::memcpy(clusters.data(), cluster_bytes.data(), clusters.size() * sizeof(glm::vec4));
+  const std::vector<gpu::GpuVertex> vertices = test::vertex_rows(gpu.vertices());
+  const std::vector<uint8_t> triangle_bytes = gpu.triangles().download();
+  const uint32_t first_vertex = gpu.first_particle_vertex(), first_triangle = gpu.geometry().mesh_first_triangle[2];
+  auto centre = [&](uint32_t j) {
+    return 0.5f * (glm::vec3(vertices[first_vertex + 6 * j].position) + glm::vec3(vertices[first_vertex + 6 * j + 1].position));
+  };
+  auto material = [&](uint32_t j) {
+    gpu::GpuTriangle t;
+    std::memcpy(&t, triangle_bytes.data() + (first_triangle + 8 * size_t(j)) * sizeof(t), sizeof(t));
+    return t.v.w;
+  };
+  const float tolerance = 0x1p-20f * glm::length(s.bounds.extent());
+  size_t stages = 0, particles = 0;
+  for (size_t m = 0; m < s.meshes.size(); ++m) {
+    const scenes::Mesh& mesh = s.meshes[m];
+    if (mesh.emitter < 0) continue;
+    const uint32_t root = roots.at(gpu.particle_light_slot(uint32_t(mesh.material)));
+    if (mesh.particles == 0) {
+      EXPECT_EQ(root, 0xffffffffu) << "mesh " << m;
+      continue;
+    }
+    ++stages;
+    particles += mesh.particles;
+    // The subtree's nodes in depth-first order; each node's particles.
+    std::vector<int> seen(size_t(gpu.particle_vertex_count() / 6), 0);
+    std::function<std::vector<uint32_t>(uint32_t, uint32_t)> walk = [&](uint32_t i, uint32_t depth) -> std::vector<uint32_t> {
+      const BvhNode& n = nodes.at(i);
+      std::vector<uint32_t> leaves;
+      if (n.count > 0) {
+        leaves = {n.index / 8};
+        ++seen.at(leaves[0]);
+        EXPECT_EQ(material(leaves[0]), uint32_t(mesh.material)) << "particle " << leaves[0];
+      } else {
+        leaves = walk(i + 1, depth + 1);
+        const std::vector<uint32_t> right = walk(n.index, depth + 1);
+        leaves.insert(leaves.end(), right.begin(), right.end());
+      }
+      glm::dvec3 mean(0.0);
+      for (uint32_t j : leaves) {
+        const glm::vec3 c = centre(j);
+        mean += glm::dvec3(c);
+        EXPECT_TRUE(glm::all(glm::lessThanEqual(n.lo, c)) && glm::all(glm::lessThanEqual(c, n.hi))) << "node " << i;
+      }
+      mean /= double(leaves.size());
+      EXPECT_EQ(clusters[i].w, float(leaves.size())) << "node " << i;
+      EXPECT_LE(glm::length(glm::dvec3(clusters[i]) - mean), double(tolerance) * (depth + 1)) << "node " << i;
+      return leaves;
+    };
+    EXPECT_EQ(walk(root, 0).size(), size_t(mesh.particles)) << "mesh " << m;
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), long(mesh.particles)) << "mesh " << m;
+  }
+  EXPECT_GE(stages, 3u);
+  EXPECT_GT(particles, 10000u);
 }
 
 }  // namespace

@@ -22,8 +22,9 @@ class ShaderCompiler;
 
 class LinearBvh {
  public:
-  // Room for `max_leaves` leaves of `per_leaf` triangles each.
-  LinearBvh(Context& ctx, ShaderCompiler& compiler, uint32_t max_leaves, uint32_t per_leaf);
+  // Room for `max_leaves` leaves of `per_leaf` triangles each; `lights`: the light tree's
+  // builder (record_lights), not the scene's.
+  LinearBvh(Context& ctx, ShaderCompiler& compiler, uint32_t max_leaves, uint32_t per_leaf, bool lights = false);
 
   // Makes `nodes` and `prims` (a tree in shaders/bvh.glsl's layout, possibly empty) the
   // arrays both trees live in: a root at node 0 over that tree, moved to node 1 on (its right
@@ -40,8 +41,31 @@ class LinearBvh {
   void record(VkCommandBuffer cmd, const Buffer& vertices, const Buffer& triangles, const Buffer& nodes, const Buffer& prims,
               uint32_t first_triangle, uint32_t leaves, GpuTimer* timer = nullptr) const;
 
+  // A light tree over the particles (GIQ_LBVH_LIGHTS in shaders/linear_bvh.comp): one
+  // subtree per stage of life, each stage's root at stage_roots[its material - stage_material]
+  // (0xffffffff for a stage without particles; at most kLightStages stages), and each node's
+  // particles' centroid and count, by node, in `clusters` (vec4). Nodes in shaders/bvh.glsl's
+  // layout from node 0, a leaf's index its particle's first triangle less first_triangle.
+  static constexpr uint32_t kLightStages = 256;
+  struct LightTree {
+    Buffer nodes;        // 2 max_leaves - 1 GpuBvhNode
+    Buffer clusters;     // 2 max_leaves - 1 vec4
+    Buffer stage_roots;  // kLightStages uint
+  };
+  LightTree make_light_tree(Context& ctx) const;
+  // Builds `tree` over the same leaves as record() (vertices, triangles, first_triangle,
+  // leaves), with barriers between the passes and after the last.
+  void record_lights(VkCommandBuffer cmd, const Buffer& vertices, const Buffer& triangles, const LightTree& tree,
+                     uint32_t first_triangle, uint32_t leaves, uint32_t stage_material) const;
+
  private:
+  // record()'s passes over descriptors 0..3 (vertices, triangles, nodes, prims), then the
+  // light tree's outputs with lights_.
+  void build(VkCommandBuffer cmd, std::vector<Descriptor> d, uint32_t first_triangle, uint32_t leaves,
+             uint32_t stage_material, GpuTimer* timer, const std::vector<Descriptor>& light_outputs = {}) const;
+
   uint32_t max_leaves_, per_leaf_;
+  bool lights_;
   uint32_t node_base_ = 0, prim_base_ = 0;  // where place_beside() left room
   Pipeline passes_[7];
   Buffer keys_, leaves_, inner_, parents_, centres_, visits_;

@@ -9,7 +9,8 @@
 // (Deformer) from their rest pose each frame; each emitter's particles are simulated on the GPU
 // (ParticleSystem) and written there as the octahedra every pass draws and traces (their
 // vertices, triangles, indices and emissive triangles), with a tree of their own built there
-// each frame (LinearBvh) beside the CPU's tree of the other triangles, whose bounds are
+// each frame (LinearBvh), and a light tree over them for the passes that light by cluster of
+// particles, beside the CPU's tree of the other triangles, whose bounds are
 // refitted there after the deformation (BvhRefitter). The host needs only each stage's
 // particle count (a scene posed with scenes::ParticleDetail::Counted); where a stage's
 // particles are comes back from the GPU (ParticleBounds, complete()).
@@ -136,6 +137,13 @@ class SceneGpu {
   void record_deformation(VkCommandBuffer cmd, bool save_previous, bool refit, GpuTimer* timer = nullptr) const;
   // Particles written by the GPU's simulation each update (0 without emitters).
   uint32_t particle_vertex_count() const { return particle_vertices_; }
+  uint32_t first_particle_vertex() const { return uint32_t(geometry_.positions.size()); }
+  // The light tree over the glowing particles, built on the GPU each update (LinearBvh's
+  // LightTree, leaf j the particle at first_particle_vertex() + 6 j), for the passes that
+  // light by cluster of particles; null when no stage glows, or when there are more stages
+  // than it holds. A stage's subtree is at stage_roots[particle_light_slot(its material)].
+  const LinearBvh::LightTree* particle_light_tree() const { return light_bvh_ ? &light_tree_ : nullptr; }
+  uint32_t particle_light_slot(uint32_t material) const { return material - stage_material_; }
   const FlatGeometry& geometry() const { return geometry_; }
   const scenes::Bounds& bounds() const { return bounds_; }  // of the geometry now uploaded
   // The FeatureSet the scene was uploaded for; passes compile their shaders with its defines.
@@ -186,6 +194,9 @@ class SceneGpu {
   std::vector<std::unique_ptr<ParticleSystem>> particles_;  // one per emitter
   std::unique_ptr<LinearBvh> particle_bvh_;                 // with emitters
   std::unique_ptr<ParticleBounds> particle_bounds_;         // with emitters
+  std::unique_ptr<LinearBvh> light_bvh_;                    // with glowing particles
+  LinearBvh::LightTree light_tree_;
+  uint32_t stage_material_ = 0;  // the material of the first emitter's first stage
   uint32_t fixed_triangles_ = 0;  // the triangles before the particles', in the CPU's tree
   std::vector<std::vector<gpu::GpuParticleStage>> stages_;  // per emitter, of each stage's mesh
   std::vector<uint32_t> stage_mesh_;                        // the mesh of each stage, emitter by emitter
