@@ -10,17 +10,15 @@
 
 #include "shaders/particle_octahedron.glsl"
 
-// The particle of light l's stage whose octahedron starts at vertex v: its centre midway
-// between its +x and -x corners (vertices 0 and 1, as scenes::particle_centres reads them).
-GpuParticleLight particle_at_vertex(GpuAreaLight l, uint v) {
+// Particle k of a stage: its centre midway between its +x and -x corners (vertices 0 and 1,
+// as scenes::particle_centres reads them).
+GpuParticleLight stage_particle(GpuAreaLight l, uint k) {
+  uint v = l.range.z + 6u * k;
   GpuParticleLight q;
   q.centre = vec4(0.5 * (scene_vertices[v].position.xyz + scene_vertices[v + 1u].position.xyz), l.particle.w);
   q.radiance = vec4(l.particle.rgb, 0.0);
   return q;
 }
-
-// Particle k of a stage.
-GpuParticleLight stage_particle(GpuAreaLight l, uint k) { return particle_at_vertex(l, l.range.z + 6u * k); }
 
 // The particles a pass lights particle by particle, and the triangles it integrates one by
 // one: a stage's particles unless it asks for its triangles (extent.z), another light's

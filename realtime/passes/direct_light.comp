@@ -12,6 +12,7 @@
 // light is shadowed by its cube shadow map from the representative point (hard shadows) or,
 // with area_shadow_rays, by rays to points on it (soft shadows: area_visibility).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_vote : require
 
 #include "shaders/scene.glsl"
 #include "shaders/bvh.glsl"
@@ -129,9 +130,14 @@ vec3 particle_light(GpuParticleLight particle, Surface s, vec3 p, vec3 wo) {
 // plane); the others are opened, down to single particles, lit as in the loop. The centroid
 // makes the error second order: the first-order terms of the particles' offsets from it sum
 // to zero, so a cluster's relative error is of order cut^2. The specular part takes the
-// cluster as one particle at its centroid. The walk needs no stack: in the depth-first layout
-// a node of n particles spans the 2n - 1 nodes from it, so the node after them is where the
-// walk goes on when it is not opened, and its first child, the next node, when it is.
+// cluster as one particle at its centroid, and a leaf is its particle at its box's centre.
+// The walk needs no stack: in the depth-first layout a node of n particles spans the 2n - 1
+// nodes from it, so the node after them is where the walk goes on when it is not opened, and
+// its first child, the next node, when it is. A subgroup walks one cut, the union of its
+// pixels' (a node is opened unless each pixel takes it whole or sees none of it): each pixel
+// still lights only clusters that meet its own criterion, so the bound holds per pixel, and
+// the invocations load the same node together instead of scattering over the tree (on an
+// H100 a third less time at 100k particles, bench/results/particle-tree-h100.md).
 vec3 particle_tree_light(GpuAreaLight l, uint root, Surface s, vec3 p, vec3 wo) {
   vec3 sum = vec3(0.0);
   float cut2 = pc.particle_cut * pc.particle_cut;
@@ -143,20 +149,24 @@ vec3 particle_tree_light(GpuAreaLight l, uint root, Surface s, vec3 p, vec3 wo) 
     uint next = node + 2u * uint(c.w) - 1u;
     // The box's highest and lowest corner over the surface's plane.
     vec3 lo = b.lo - p, hi = b.hi - p;
-    if (dot(s.n, mix(lo, hi, up)) > 0.0) {
-      if (b.count > 0u) {
-        sum += particle_light(particle_at_vertex(l, pc.first_particle_vertex + 6u * (b.index / 8u)), s, p, wo);
+    bool seen = dot(s.n, mix(lo, hi, up)) > 0.0;
+    float count = 0.0;  // of particles lit at c.xyz
+    if (b.count > 0u) {
+      if (seen) count = 1.0;
+    } else {
+      vec3 size = b.hi - b.lo, to = c.xyz - p;
+      bool whole = seen && dot(s.n, mix(hi, lo, up)) > 0.0 && dot(size, size) < cut2 * dot(to, to);
+      if (subgroupAll(whole || !seen)) {
+        if (whole) count = c.w;
       } else {
-        vec3 size = b.hi - b.lo, to = c.xyz - p;
-        if (dot(s.n, mix(hi, lo, up)) > 0.0 && dot(size, size) < cut2 * dot(to, to)) {
-          GpuParticleLight q;
-          q.centre = vec4(c.xyz, l.particle.w);
-          q.radiance = vec4(l.particle.rgb, 0.0);
-          sum += c.w * particle_light(q, s, p, wo);
-        } else {
-          next = node + 1u;  // opened
-        }
+        next = node + 1u;  // opened
       }
+    }
+    if (count > 0.0) {
+      GpuParticleLight q;
+      q.centre = vec4(c.xyz, l.particle.w);
+      q.radiance = vec4(l.particle.rgb, 0.0);
+      sum += count * particle_light(q, s, p, wo);
     }
     node = next;
   }

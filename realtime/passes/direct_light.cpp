@@ -148,7 +148,6 @@ void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer
   pc.area_light_count = uint32_t(area_lights_.size());
   pc.area_shadow_rays = area_shadow_rays_;
   pc.particle_cut = particle_cut_;
-  pc.first_particle_vertex = scene_gpu_.first_particle_vertex();
   pipeline_.push_constants(in.cmd, pc);
   pipeline_.dispatch_2d(in.cmd, width_, height_);
   full_barrier(in.cmd);

@@ -22,8 +22,7 @@ struct DirectPush {
   // A cluster of particles lights as one where its box is smaller than this times its
   // distance (direct_light.comp, particle_tree_light); 0: every particle alone.
   float particle_cut;
-  uint first_particle_vertex;  // of particle 0, leaf 0 of the particles' light tree
-  uint pad0, pad1, pad2;
+  uint pad0, pad1, pad2, pad3;
 };
 
 // An emissive mesh as one area light: its triangles are integrated exactly, a stage of glowing
