@@ -137,7 +137,7 @@ vec3 particle_light(GpuParticleLight particle, Surface s, vec3 p, vec3 wo) {
 // pixels' (a node is opened unless each pixel takes it whole or sees none of it): each pixel
 // still lights only clusters that meet its own criterion, so the bound holds per pixel, and
 // the invocations load the same node together instead of scattering over the tree (on an
-// H100 a third less time at 100k particles, bench/results/particle-tree-h100.md).
+// H100 a third less time at 48k particles, bench/results/particle-tree-h100.md).
 vec3 particle_tree_light(GpuAreaLight l, uint root, Surface s, vec3 p, vec3 wo) {
   vec3 sum = vec3(0.0);
   float cut2 = pc.particle_cut * pc.particle_cut;

@@ -132,11 +132,7 @@ void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer
   d.push_back(Descriptor::storage(area_triangle_buffer_));
   d.push_back(Descriptor::storage(light_layer_buffer_));
   d.push_back(Descriptor::storage_image(direct_));
-  // Without a light tree no light has a slot in it: any buffer stands in.
-  const LinearBvh::LightTree* tree = scene_gpu_.particle_light_tree();
-  d.push_back(Descriptor::storage(tree ? tree->nodes : area_light_buffer_));
-  d.push_back(Descriptor::storage(tree ? tree->clusters : area_light_buffer_));
-  d.push_back(Descriptor::storage(tree ? tree->stage_roots : area_light_buffer_));
+  for (const Descriptor& x : particle_tree_descriptors()) d.push_back(x);
   pipeline_.push_descriptors(in.cmd, d);
   gpu::DirectPush pc{};
   pc.camera = gpu::make_gpu_camera(in.camera);
@@ -152,6 +148,14 @@ void DirectLightPass::record_lighting(const FrameInput& in, GBufferPass& gbuffer
   pipeline_.dispatch_2d(in.cmd, width_, height_);
   full_barrier(in.cmd);
   in.timer.end(in.cmd);
+}
+
+std::array<Descriptor, 3> DirectLightPass::particle_tree_descriptors() const {
+  // Without a light tree no light has a slot in it: any buffer stands in.
+  const LinearBvh::LightTree* tree = scene_gpu_.particle_light_tree();
+  return {Descriptor::storage(tree ? tree->nodes : area_light_buffer_),
+          Descriptor::storage(tree ? tree->clusters : area_light_buffer_),
+          Descriptor::storage(tree ? tree->stage_roots : area_light_buffer_)};
 }
 
 // One area light per emissive mesh (the scene's AreaLight), its triangles integrated exactly,

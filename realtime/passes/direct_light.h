@@ -9,6 +9,7 @@
 // area light, integrated exactly when unshadowed and shadowed from a representative point
 // (hard shadows) or, with `area_shadow_rays`, by rays to points on it (soft shadows).
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -48,6 +49,9 @@ class DirectLightPass {
   // them when recording, after record_shadows().
   const Buffer& area_light_buffer() const { return area_light_buffer_; }
   const Buffer& area_triangle_buffer() const { return area_triangle_buffer_; }
+  // The particles' light tree (LinearBvh::LightTree: nodes, clusters, stage roots) for passes
+  // that weigh a stage of particles by cluster, as an area light's extent.w says.
+  std::array<Descriptor, 3> particle_tree_descriptors() const;
 
  private:
   void build_area_lights(const scenes::Scene& scene);

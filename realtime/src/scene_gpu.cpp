@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 #include "giq/base/error.h"
 #include "giq/realtime/context.h"
@@ -38,7 +39,12 @@ FlatGeometry flatten(const scenes::Scene& scene, bool placed) {
   g.triangles.reserve(triangles);
   g.material.reserve(triangles);
   g.object_id.reserve(triangles);
+  bool stages = false;
   for (const auto& m : scene.meshes) {
+    // The GPU writes the particles after the file's part of every array (SceneGpu::update).
+    if (m.emitter < 0 && stages)
+      throw std::logic_error("flatten: mesh '" + m.name + "' follows the particles' stages; a posed scene lists them last (scenes::Scene::at)");
+    stages = stages || m.emitter >= 0;
     if (m.emitter >= 0 && !placed) {
       add_stage_places(m, g);
       continue;

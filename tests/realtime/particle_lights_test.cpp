@@ -312,7 +312,7 @@ TEST_F(ParticleLightsTest, ClustersOfParticlesErrOnlyInTheSecondOrder) {
 // 20, several stages; LinearBvh::record_lights) as the GPU built it: each stage's subtree
 // holds exactly the particles whose triangles have the stage's material, each once; every
 // node's box holds its particles' octahedra and its count is theirs; and its centroid is the
-// mean of their centres (vertices 0 and 1 of each octahedron, as the direct pass reads them).
+// mean of their centres (vertices 0 and 1 of each octahedron).
 // The centroid is a mean of the children's means, one rounding a level: within 2^-20 of the
 // fountain's extent at its depth. Writing the box's centre, or a count one off, fails it.
 TEST_F(ParticleLightsTest, TheLightTreeHoldsEveryStagesParticles) {
@@ -389,6 +389,108 @@ TEST_F(ParticleLightsTest, TheLightTreeHoldsEveryStagesParticles) {
   }
   EXPECT_GE(stages, 3u);
   EXPECT_GT(particles, 10000u);
+}
+
+// `gi1`'s light grid weighs a stage of glowing particles through the light tree
+// (techniques/gi1/gi1_particle_importance.glsl), here at points of a 5 x 5 x 5 lattice over
+// the fountain at 100 times its rate (some among the particles, most around them) against the
+// particles' sum in double precision, each particle its mean projected area sqrt(3) r^2 over
+// its squared distance. A cut of 1e-6 opens every cluster: the same sum within float rounding
+// (2^-23 a particle: each term's and each addition's). At the grid's cut each cluster, and so
+// the sum of the positive terms, errs by at most c^2 + c^2 (2 + c)^2 / (1 - c)^2. A particle
+// lost or counted twice moves a sum by its whole share.
+TEST_F(ParticleLightsTest, GridImportanceOfParticlesByCluster) {
+  scenes::Scene fountain = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "fountain.gltf");
+  scenes::Emitter& e = fountain.emitters[0];
+  e.rate *= 100.0;
+  e.max_particles = uint32_t(std::floor(e.rate * e.lifetime) + 1.0);
+  const scenes::Scene s = fountain.at_frame(20, scenes::ParticleDetail::Counted);
+  SceneGpu gpu(*ctx, *compiler, s);
+  ASSERT_NE(gpu.particle_light_tree(), nullptr);
+  const ParameterValues values(DirectLightPass::parameters(), {"shadow_map_size=64"});
+  DirectLightPass direct(TechniqueCreateInfo{*ctx, *compiler, s, gpu, 16, 16, values});
+  const std::string src = R"(#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "shaders/scene.glsl"
+#include "shaders/sampling.glsl"
+#include "passes/direct_light_shared.h"
+layout(local_size_x = 64) in;
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 0) readonly buffer AreaLights { GpuAreaLight area_lights[]; };
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 1) readonly buffer ParticleTree { GpuBvhNode particle_tree[]; };
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 2) readonly buffer ParticleClusters { vec4 particle_clusters[]; };
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 3) readonly buffer StageRoots { uint stage_roots[]; };
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 4) readonly buffer Points { vec4 points[]; };
+layout(std430, binding = GIQ_SCENE_BINDING_COUNT + 5) writeonly buffer Importance { vec4 importance[]; };
+#include "techniques/gi1/gi1_particle_importance.glsl"
+layout(push_constant) uniform Push { uint light, count; float near; } pc;
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.count) return;
+  GpuAreaLight a = area_lights[pc.light];
+  uint slot = uint(a.extent.w) - 1u;
+  importance[i] = vec4(gi1_particle_importance(a, slot, points[i].xyz, pc.near, 1e-6),
+                       gi1_particle_importance(a, slot, points[i].xyz, pc.near, kGi1ParticleImportanceCut),
+                       kGi1ParticleImportanceCut, 0.0);
+}
+)";
+  auto bindings = SceneGpu::binding_types();
+  bindings.insert(bindings.end(), 6, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  struct Push {
+    uint32_t light, count;
+    float near;
+  };
+  Pipeline pipeline = Pipeline::compute(*ctx, compiler->compile_source("tests/gi1_particle_importance.comp", src), bindings, sizeof(Push));
+  const std::vector<gpu::GpuVertex> vertices = test::vertex_rows(gpu.vertices());
+  const uint32_t first_vertex = gpu.first_particle_vertex();
+  const glm::vec3 lo = s.bounds.lo - 0.5f, hi = s.bounds.hi + 0.5f;
+  std::vector<glm::vec4> points;
+  for (int z = 0; z < 5; ++z)
+    for (int y = 0; y < 5; ++y)
+      for (int x = 0; x < 5; ++x) points.emplace_back(glm::mix(lo, hi, glm::vec3(x, y, z) / 4.0f), 0.0f);
+  const Buffer point_buffer = Buffer::storage(*ctx, points);
+  Buffer out(*ctx, points.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  const float near = 1e-3f;
+  size_t stages = 0, clustered = 0;
+  double worst = 0.0;
+  for (uint32_t i = 0; i < s.area_lights.size(); ++i) {
+    const scenes::Mesh& mesh = s.meshes[s.area_lights[i].mesh];
+    const gpu::GpuAreaLight& l = direct.area_lights()[i];
+    if (mesh.emitter < 0 || mesh.particles == 0) continue;
+    ASSERT_GT(l.extent.w, 0.0f) << "light " << i;
+    ++stages;
+    ctx->submit_and_wait([&](VkCommandBuffer cmd) {
+      pipeline.bind(cmd);
+      auto d = gpu.descriptors();
+      d.push_back(Descriptor::storage(direct.area_light_buffer()));
+      for (const Descriptor& x : direct.particle_tree_descriptors()) d.push_back(x);
+      d.insert(d.end(), {Descriptor::storage(point_buffer), Descriptor::storage(out)});
+      pipeline.push_descriptors(cmd, d);
+      const Push push{i, uint32_t(points.size()), near};
+      pipeline.push_constants(cmd, &push, sizeof(push));
+      vkCmdDispatch(cmd, uint32_t(points.size() + 63) / 64, 1, 1);
+    });
+    std::vector<glm::vec4> got(points.size());
+    std::memcpy(got.data(), out.download().data(), got.size() * sizeof(got[0]));
+    const double c = got[0].z, bound = c * c + c * c * (2.0 + c) * (2.0 + c) / ((1.0 - c) * (1.0 - c));
+    const glm::dvec3 radiance(l.particle);
+    const double r = l.particle.w, per_particle = glm::dot(radiance, glm::dvec3(0.2126, 0.7152, 0.0722)) * std::sqrt(3.0) * r * r * (l.extent.y != 0.0f ? 2.0 : 1.0);
+    const uint32_t first = (l.range.z - first_vertex) / 6;
+    for (size_t k = 0; k < points.size(); ++k) {
+      double want = 0.0;
+      for (uint32_t j = first; j < first + l.range.w; ++j) {
+        const glm::dvec3 centre = 0.5 * (glm::dvec3(vertices[first_vertex + 6 * j].position) + glm::dvec3(vertices[first_vertex + 6 * j + 1].position));
+        const glm::dvec3 to = centre - glm::dvec3(points[k]);
+        want += per_particle / std::max(glm::dot(to, to), double(near) * near);
+      }
+      EXPECT_NEAR(got[k].x, want, 0x1p-23 * double(l.range.w) * want) << "light " << i << ", point " << k;
+      EXPECT_NEAR(got[k].y, want, bound * want) << "light " << i << ", point " << k;
+      worst = std::max(worst, std::abs(got[k].y - want) / want);
+      clustered += got[k].y != got[k].x;
+    }
+  }
+  std::printf("largest relative error at the grid's cut: %.2e\n", worst);
+  EXPECT_GE(stages, 3u);
+  EXPECT_GT(clustered, points.size());  // points where clusters were taken whole
 }
 
 }  // namespace

@@ -180,7 +180,7 @@ class Gi1 : public IndirectLight {
       b.insert(b.end(), extra.begin(), extra.end());
       return b;
     };
-    light_grid_pass_ = compile("gi1_light_grid.comp", with_common({s, s, s}));
+    light_grid_pass_ = compile("gi1_light_grid.comp", with_common({s, s, s, s, s, s}));
     trace_ = compile("gi1_trace.comp", receiver({s, s, s, s, s, s, s, s, s, s, s, img, s, s, s, s, s}));
     reservoir_store_ = compile("gi1_reservoir_store.comp", {s, s, s, s});
     update_ = compile("gi1_cache_update.comp", {s, s, s, s});
@@ -280,6 +280,7 @@ class Gi1 : public IndirectLight {
       d.insert(d.end(), {Descriptor::storage(frame.direct_light().area_light_buffer()),
                          Descriptor::storage(frame.direct_light().area_triangle_buffer()),
                          Descriptor::storage(light_grid_)});
+      for (const Descriptor& x : frame.direct_light().particle_tree_descriptors()) d.push_back(x);
       light_grid_pass_.push_descriptors(cmd, d);
       vkCmdDispatch(cmd, f.grid_cells.x * f.grid_cells.y, f.grid_cells.z, 1);  // a workgroup a cell
       full_barrier(cmd);

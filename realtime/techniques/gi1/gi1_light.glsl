@@ -20,31 +20,4 @@ vec3 gi1_environment_mean() {
   return sum / 6.0;
 }
 
-// How much light l deposits at point c, as luminance (the grid's importance, section 2.3.2):
-// a spot counts as a point light (its cone may cross a cell between its corners), an area
-// light as its triangles' power towards c with the inverse-square law, no closer than
-// `near` (a corner on the light), the environment as pi times its mean radiance.
-float gi1_light_importance(uint l, vec3 c, float near) {
-  if (l < gi1.counts.x) {
-    GpuLight s = scene_lights[l];
-    if (int(s.position.w) == GIQ_LIGHT_DIRECTIONAL) return luminance(s.radiant.rgb);
-    vec3 d = s.position.xyz - c;
-    float d2 = max(dot(d, d), near * near);
-    return luminance(s.radiant.rgb) * range_window(sqrt(d2), s.direction.w) / d2;
-  }
-  if (gi1_is_environment(l)) return PI * luminance(gi1_environment_mean());
-  GpuAreaLight a = area_lights[l - gi1.counts.x];
-  float sum = 0.0;
-  for (uint k = 0u; k < a.range.y; ++k) {
-    GpuAreaTriangle t = area_triangle(a, k);
-    vec3 n2 = cross(t.b.xyz - t.a.xyz, t.c.xyz - t.a.xyz);  // twice the area along the normal
-    vec3 to = c - (t.a.xyz + t.b.xyz + t.c.xyz) / 3.0;
-    float d2 = max(dot(to, to), near * near);
-    float cos_area = dot(n2, to) / sqrt(d2);  // cos x twice the area
-    if (t.a.w != 0.0) cos_area = abs(cos_area);
-    sum += luminance(t.radiance.rgb) * 0.5 * max(cos_area, 0.0) / d2;
-  }
-  return sum;
-}
-
 #endif

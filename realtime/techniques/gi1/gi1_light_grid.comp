@@ -7,8 +7,8 @@
 // Equation 1); a light that deposits nothing (behind a one-sided emitter at every corner) is
 // left out. A cell's list is the top of the order (deposit descending, light index ascending
 // among equals). One workgroup a cell: its 64 lanes evaluate 8 lights at 8 corners at a time
-// (an area light's importance sums over its triangles, and a particle stage is one light of
-// hundreds of them), one lane per light keeps a list of the lights it summed, and the first
+// (an area light's importance sums over its triangles, a particle stage's over its light
+// tree's clusters), one lane per light keeps a list of the lights it summed, and the first
 // lane merges the lists. Every sum is taken in the order one invocation going through the
 // lights and corners would take, so the list is the same on every run and the same bits as
 // that (which took 2.0 ms on the H200 for `dynamic`'s particles).
@@ -34,9 +34,44 @@ layout(local_size_x = 64) in;
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 0) readonly buffer AreaLights { GpuAreaLight area_lights[]; };
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 1) readonly buffer AreaTriangles { GpuAreaTriangle area_triangles[]; };
 layout(std430, binding = GIQ_GI1_BINDING_COUNT + 2) writeonly buffer LightGrid { uint light_grid[]; };
+// The particles' light tree (DirectLightPass::particle_tree_descriptors).
+layout(std430, binding = GIQ_GI1_BINDING_COUNT + 3) readonly buffer ParticleTree { GpuBvhNode particle_tree[]; };
+layout(std430, binding = GIQ_GI1_BINDING_COUNT + 4) readonly buffer ParticleClusters { vec4 particle_clusters[]; };
+layout(std430, binding = GIQ_GI1_BINDING_COUNT + 5) readonly buffer StageRoots { uint stage_roots[]; };
 
 #include "passes/area_light_parts.glsl"
 #include "techniques/gi1/gi1_light.glsl"
+#include "techniques/gi1/gi1_particle_importance.glsl"
+
+// How much light l deposits at point c, as luminance (the grid's importance, section 2.3.2):
+// a spot counts as a point light (its cone may cross a cell between its corners), an area
+// light as its triangles' power towards c with the inverse-square law, no closer than
+// `near` (a corner on the light), a stage of particles in the light tree by its clusters, the
+// environment as pi times its mean radiance.
+float gi1_light_importance(uint l, vec3 c, float near) {
+  if (l < gi1.counts.x) {
+    GpuLight s = scene_lights[l];
+    if (int(s.position.w) == GIQ_LIGHT_DIRECTIONAL) return luminance(s.radiant.rgb);
+    vec3 d = s.position.xyz - c;
+    float d2 = max(dot(d, d), near * near);
+    return luminance(s.radiant.rgb) * range_window(sqrt(d2), s.direction.w) / d2;
+  }
+  if (gi1_is_environment(l)) return PI * luminance(gi1_environment_mean());
+  GpuAreaLight a = area_lights[l - gi1.counts.x];
+  uint slot = uint(a.extent.w);
+  if (slot > 0u && lit_particles(a) > 0u) return gi1_particle_importance(a, slot - 1u, c, near, kGi1ParticleImportanceCut);
+  float sum = 0.0;
+  for (uint k = 0u; k < a.range.y; ++k) {
+    GpuAreaTriangle t = area_triangle(a, k);
+    vec3 n2 = cross(t.b.xyz - t.a.xyz, t.c.xyz - t.a.xyz);  // twice the area along the normal
+    vec3 to = c - (t.a.xyz + t.b.xyz + t.c.xyz) / 3.0;
+    float d2 = max(dot(to, to), near * near);
+    float cos_area = dot(n2, to) / sqrt(d2);  // cos x twice the area
+    if (t.a.w != 0.0) cos_area = abs(cos_area);
+    sum += luminance(t.radiance.rgb) * 0.5 * max(cos_area, 0.0) / d2;
+  }
+  return sum;
+}
 
 #define GIQ_GI1_MAX_CELL_LIGHTS 64u
 
