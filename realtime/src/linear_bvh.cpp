@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "giq/realtime/context.h"
@@ -35,7 +36,8 @@ constexpr uint64_t kLeafBoxBytes = 32, kInnerBytes = 80;
 
 }  // namespace
 
-LinearBvh::LinearBvh(Context& ctx, ShaderCompiler& compiler, uint32_t max_leaves, uint32_t per_leaf, bool lights)
+LinearBvh::LinearBvh(Context& ctx, ShaderCompiler& compiler, uint32_t max_leaves, uint32_t per_leaf, bool lights,
+                     const LinearBvh* scratch_of)
     : max_leaves_(max_leaves), per_leaf_(per_leaf), lights_(lights) {
   const std::vector<VkDescriptorType> bindings(lights ? kLightBindings : kBindings, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   for (int p = 0; p < kPasses; ++p) {
@@ -43,14 +45,17 @@ LinearBvh::LinearBvh(Context& ctx, ShaderCompiler& compiler, uint32_t max_leaves
     if (lights) defines.push_back({"GIQ_LBVH_LIGHTS", "1"});
     passes_[p] = Pipeline::compute(ctx, compiler.compile("shaders/linear_bvh.comp", defines), bindings, sizeof(Push));
   }
+  if (scratch_of) {
+    if (scratch_of->max_leaves_ < max_leaves) throw std::logic_error("LinearBvh: shared scratch for fewer leaves");
+    scratch_ = scratch_of->scratch_;
+    return;
+  }
   const uint64_t n = std::max<uint32_t>(max_leaves, 1);
   constexpr VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-  keys_ = Buffer(ctx, std::bit_ceil(n) * 2 * sizeof(uint32_t), usage);
-  leaves_ = Buffer(ctx, n * kLeafBoxBytes, usage);
-  inner_ = Buffer(ctx, n * kInnerBytes, usage);
-  parents_ = Buffer(ctx, 2 * n * sizeof(uint32_t), usage);
-  centres_ = Buffer(ctx, 6 * sizeof(uint32_t), usage);
-  visits_ = Buffer(ctx, n * sizeof(uint32_t), usage);
+  scratch_ = std::make_shared<const Scratch>(Scratch{
+      Buffer(ctx, std::bit_ceil(n) * 2 * sizeof(uint32_t), usage), Buffer(ctx, n * kLeafBoxBytes, usage),
+      Buffer(ctx, n * kInnerBytes, usage), Buffer(ctx, 2 * n * sizeof(uint32_t), usage),
+      Buffer(ctx, 6 * sizeof(uint32_t), usage), Buffer(ctx, n * sizeof(uint32_t), usage)});
 }
 
 LinearBvh::LightTree LinearBvh::make_light_tree(Context& ctx) const {
@@ -95,8 +100,9 @@ void LinearBvh::record_lights(VkCommandBuffer cmd, const Buffer& vertices, const
 void LinearBvh::build(VkCommandBuffer cmd, std::vector<Descriptor> d, uint32_t first_triangle, uint32_t leaves,
                       uint32_t stage_material, GpuTimer* timer, const std::vector<Descriptor>& light_outputs) const {
   leaves = std::min(leaves, max_leaves_);
-  d.insert(d.end(), {Descriptor::storage(keys_), Descriptor::storage(leaves_), Descriptor::storage(inner_),
-                     Descriptor::storage(parents_), Descriptor::storage(centres_), Descriptor::storage(visits_)});
+  const Scratch& s = *scratch_;
+  d.insert(d.end(), {Descriptor::storage(s.keys), Descriptor::storage(s.leaves), Descriptor::storage(s.inner),
+                     Descriptor::storage(s.parents), Descriptor::storage(s.centres), Descriptor::storage(s.visits)});
   d.insert(d.end(), light_outputs.begin(), light_outputs.end());
   const uint32_t node_base = lights_ ? 0 : node_base_, prim_base = lights_ ? 0 : prim_base_;
   Push push{first_triangle, leaves, per_leaf_, node_base, prim_base, std::bit_ceil(std::max(leaves, 1u)), 0, 0, stage_material};
@@ -110,8 +116,8 @@ void LinearBvh::build(VkCommandBuffer cmd, std::vector<Descriptor> d, uint32_t f
   if (leaves > 0) {
     if (timer) timer->begin(cmd, "particle bvh keys");
     // The centres' box starts empty: lo at the largest ordered value, hi at the smallest.
-    vkCmdFillBuffer(cmd, centres_.handle(), 0, 3 * sizeof(uint32_t), 0xffffffffu);
-    vkCmdFillBuffer(cmd, centres_.handle(), 3 * sizeof(uint32_t), 3 * sizeof(uint32_t), 0u);
+    vkCmdFillBuffer(cmd, s.centres.handle(), 0, 3 * sizeof(uint32_t), 0xffffffffu);
+    vkCmdFillBuffer(cmd, s.centres.handle(), 3 * sizeof(uint32_t), 3 * sizeof(uint32_t), 0u);
     full_barrier(cmd);
     run(1, leaves);
     run(2, push.padded);
@@ -130,7 +136,7 @@ void LinearBvh::build(VkCommandBuffer cmd, std::vector<Descriptor> d, uint32_t f
     }
     if (timer) timer->end(cmd), timer->begin(cmd, "particle bvh nodes");
     run(4, leaves - 1);
-    vkCmdFillBuffer(cmd, visits_.handle(), 0, uint64_t(leaves) * sizeof(uint32_t), 0u);
+    vkCmdFillBuffer(cmd, s.visits.handle(), 0, uint64_t(leaves) * sizeof(uint32_t), 0u);
     full_barrier(cmd);
     run(5, leaves);
   } else if (timer) {

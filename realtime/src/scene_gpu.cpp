@@ -144,7 +144,7 @@ SceneGpu::SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& 
     }
     stage_material_ = uint32_t(scene.emitters.front().first_material);
     if (glows && stages <= LinearBvh::kLightStages) {
-      light_bvh_ = std::make_unique<LinearBvh>(ctx, compiler, most_particles, scenes::kParticleTriangles, true);
+      light_bvh_ = std::make_unique<LinearBvh>(ctx, compiler, most_particles, scenes::kParticleTriangles, true, particle_bvh_.get());
       light_tree_ = light_bvh_->make_light_tree(ctx);
     }
   }

@@ -8,6 +8,7 @@
 // tree the CPU built over the other triangles; every traversal then sees one tree.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "giq/realtime/bvh.h"
@@ -23,8 +24,11 @@ class ShaderCompiler;
 class LinearBvh {
  public:
   // Room for `max_leaves` leaves of `per_leaf` triangles each; `lights`: the light tree's
-  // builder (record_lights), not the scene's.
-  LinearBvh(Context& ctx, ShaderCompiler& compiler, uint32_t max_leaves, uint32_t per_leaf, bool lights = false);
+  // builder (record_lights), not the scene's. With `scratch_of` (a builder of as many leaves)
+  // the two share their working buffers (about 130 bytes a leaf): their builds must not
+  // overlap, as one after the other in a command buffer do not (each ends with a barrier).
+  LinearBvh(Context& ctx, ShaderCompiler& compiler, uint32_t max_leaves, uint32_t per_leaf, bool lights = false,
+            const LinearBvh* scratch_of = nullptr);
 
   // Makes `nodes` and `prims` (a tree in shaders/bvh.glsl's layout, possibly empty) the
   // arrays both trees live in: a root at node 0 over that tree, moved to node 1 on (its right
@@ -68,7 +72,10 @@ class LinearBvh {
   bool lights_;
   uint32_t node_base_ = 0, prim_base_ = 0;  // where place_beside() left room
   Pipeline passes_[7];
-  Buffer keys_, leaves_, inner_, parents_, centres_, visits_;
+  struct Scratch {
+    Buffer keys, leaves, inner, parents, centres, visits;
+  };
+  std::shared_ptr<const Scratch> scratch_;
 };
 
 }  // namespace giq::realtime
