@@ -155,7 +155,7 @@ SceneGpu::SceneGpu(Context& ctx, ShaderCompiler& compiler, const scenes::Scene& 
   prepare_particles(scene);
   if (deformer_ || !particles_.empty())
     ctx.submit_and_wait([&](VkCommandBuffer cmd) {
-      record_particles(cmd);
+      record_particles(cmd, scene);
       record_deformation(cmd, false, true);
     });
   upload_lights(scene);
@@ -262,7 +262,7 @@ SceneChange SceneGpu::update(const scenes::Scene& posed) {
   // Every frame, moved or not, so that the previous vertices become the current ones.
   if (deformer_ || !particles_.empty())
     ctx_->submit_and_wait([&](VkCommandBuffer cmd) {
-      record_particles(cmd);
+      record_particles(cmd, posed);
       record_deformation(cmd, keep_deformed, file_moved);
     });
   if (upload_lights(posed) && change == SceneChange::None) change = SceneChange::Lights;

@@ -1,5 +1,7 @@
 // SceneGpu's particles (scene_gpu.h): where each stage's particles go in the scene's arrays,
 // the passes that write them there, and what comes back from the GPU about where they are.
+#include <algorithm>
+#include <limits>
 #include <numbers>
 
 #include "giq/realtime/scene_gpu.h"
@@ -63,7 +65,7 @@ double SceneGpu::place_particle_stages(const scenes::Scene& scene, uint32_t fixe
   return power;
 }
 
-void SceneGpu::record_particles(VkCommandBuffer cmd) {
+void SceneGpu::record_particles(VkCommandBuffer cmd, const scenes::Scene& posed) {
   if (particles_.empty()) return;
   const ParticleSystem::SceneArrays arrays{vertices_, previous_vertices_, triangles_, indices_, emissive_};
   std::vector<ParticleBounds::Range> ranges;
@@ -76,17 +78,22 @@ void SceneGpu::record_particles(VkCommandBuffer cmd) {
   const uint32_t particles = (triangle_count_ - fixed_triangles_) / scenes::kParticleTriangles;
   particle_bvh_->record(cmd, vertices_, triangles_, nodes_, prims_, fixed_triangles_, particles);
   if (light_bvh_) light_bvh_->record_lights(cmd, vertices_, triangles_, light_tree_, fixed_triangles_, particles, stage_material_);
-  particle_bounds_->record(cmd, vertices_, ranges);
+  std::vector<glm::vec4> points;
+  for (const scenes::Light& l : posed.lights) points.emplace_back(l.position, l.type == scenes::LightType::Directional ? 0.0f : 1.0f);
+  particle_bounds_->record(cmd, vertices_, ranges, points);
 }
 
 void SceneGpu::complete(scenes::Scene& posed) {
   if (!particle_bounds_) return;
   const std::vector<ParticleBounds::Stage> stages = particle_bounds_->read();
+  particle_light_distance_.assign(posed.lights.size(), std::numeric_limits<float>::infinity());
   for (size_t k = 0; k < stages.size() && k < stage_mesh_.size(); ++k) {
     const ParticleBounds::Stage& st = stages[k];
     if (st.particles == 0) continue;
     posed.bounds.extend(st.lo);
     posed.bounds.extend(st.hi);
+    for (size_t i = 0; i < st.nearest.size() && i < particle_light_distance_.size(); ++i)
+      particle_light_distance_[i] = std::min(particle_light_distance_[i], st.nearest[i]);
     for (scenes::AreaLight& l : posed.area_lights) {
       if (l.mesh != stage_mesh_[k]) continue;
       // A cloud of octahedra is closed (scenes::Scene::derive_area_lights): its representative

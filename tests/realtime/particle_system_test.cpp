@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <set>
 
 #include "giq/realtime/context.h"
@@ -23,6 +24,7 @@
 #include "giq/realtime/scene_gpu.h"
 #include "scene_gpu_checks.h"
 #include "shaders/scene_shared.h"
+#include "techniques/vct/voxel_scale.h"
 #include "test_scenes.h"
 
 namespace giq::realtime {
@@ -296,6 +298,98 @@ TEST_F(ParticleSystemTest, ACountedSceneIsCompletedFromTheGpusParticles) {
   e.max_particles = uint32_t(std::floor(e.rate * e.lifetime) + 1.0);
   expect_completed_like_placed(*ctx, *compiler, fountain, {90, 91}, most);
   EXPECT_GT(most, 4096u);
+}
+
+// How near the particles come to each punctual light, from where the GPU drew them
+// (SceneGpu::particle_light_distances), is the least over the particles of the bound the
+// shader takes for each octahedron (particle_bounds.comp): the larger of |q - c| - s and
+// (|q - c|_1 - s) / sqrt(3), worked here in double from the scene library's particles. Each
+// term moves by at most its centre's and size's error (sqrt(3) B each for corners within B per
+// coordinate), so 4 B plus a few roundings of |q - c|. A point light two sizes beside a
+// particle's centre on the x axis is one size from that particle's nearest corner (exactly,
+// by both terms), and no farther from the nearest; one at s (1, 1, 1) from another's centre is
+// exactly 2 s / sqrt(3) from its face, which only the second term sees (the first says
+// (sqrt(3) - 1) s); a directional light has no distance. The fountain at 100 times its rate, so that the minimum runs over
+// chunks. The voxel radiance scale then bounds the irradiance by that distance (voxel_scale.h).
+TEST_F(ParticleSystemTest, TheGpuMeasuresHowNearTheParticlesComeToEachLight) {
+  scenes::Scene fountain = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "fountain.gltf");
+  scenes::Emitter& e = fountain.emitters.at(0);
+  e.rate *= 100.0;
+  e.max_particles = uint32_t(std::floor(e.rate * e.lifetime) + 1.0);
+  const int frame = 90;
+  const scenes::Scene before = fountain.at_frame(frame);
+  const double t = before.time, dt = 1.0 / before.sequence.fps;
+  const scenes::AliveRange alive = scenes::alive_range(e, t);
+  ASSERT_GT(alive.count(), 3 * 4096u);
+  const scenes::Particle near = scenes::particle_at(e, uint32_t(alive.first + alive.count() / 2), t);
+  scenes::Light point;
+  point.position = glm::vec3(near.position + glm::dvec3(2.0 * e.size, 0.0, 0.0));
+  point.intensity = 5.0f;
+  // Off the axes the faces are nearer than the circumsphere says: s (1, 1, 1) from a centre is
+  // 2 s / sqrt(3) from the face x + y + z = s, against sqrt(3) s - s from the sphere.
+  const scenes::Particle other = scenes::particle_at(e, uint32_t(alive.first + alive.count() / 3), t);
+  scenes::Light diagonal = point;
+  diagonal.position = glm::vec3(other.position + glm::dvec3(e.size));
+  scenes::Light sun;
+  sun.type = scenes::LightType::Directional;
+  scenes::Light spot;
+  spot.type = scenes::LightType::Spot;
+  spot.position = glm::vec3(before.bounds.hi) + glm::vec3(1.0f);
+  fountain.add_light(point, "a point light beside a particle");
+  fountain.add_light(diagonal, "a point light off a particle's face");
+  fountain.add_light(sun, "a sun");
+  fountain.add_light(spot, "a spot light beyond the bounds");
+  const size_t first = fountain.lights.size() - 4;
+
+  scenes::Scene counted = fountain.at_frame(frame, scenes::ParticleDetail::Counted);
+  SceneGpu gpu(*ctx, *compiler, counted);
+  gpu.complete(counted);
+  const std::vector<float>& got = gpu.particle_light_distances();
+  ASSERT_EQ(got.size(), fountain.lights.size());
+
+  for (size_t i = first; i < fountain.lights.size(); ++i) {
+    const scenes::Light& l = fountain.lights[i];
+    if (l.type == scenes::LightType::Directional) {
+      EXPECT_TRUE(std::isinf(got[i])) << "light " << i;
+      continue;
+    }
+    const glm::dvec3 q(l.position);
+    double want = std::numeric_limits<double>::infinity(), tol = 0.0;
+    for (uint64_t id = alive.first; id < alive.end; ++id) {
+      const glm::dvec3 c = scenes::particle_at(e, uint32_t(id), t).position, d = glm::abs(q - c);
+      const double bound = std::max({glm::length(d) - e.size, (d.x + d.y + d.z - e.size) / std::sqrt(3.0), 0.0});
+      if (bound < want) {
+        want = bound;
+        tol = 4.0 * corner_bound(e, uint32_t(id), t, dt) + 16.0 * kU * (glm::length(q) + glm::length(c) + e.size);
+      }
+    }
+    EXPECT_NEAR(got[i], want, tol) << "light " << i;
+    // (The lights' positions are floats: within a rounding of |q| per coordinate.)
+    const double placed = 2.0 * kU * glm::length(q);
+    if (i == first) EXPECT_LE(want, e.size + placed) << "the point light two sizes from a particle's centre";
+    if (i == first + 1) EXPECT_LE(want, 2.0 / std::sqrt(3.0) * e.size + placed) << "the point light off a face";
+  }
+
+  // The scale of vct's voxels, 2^floor(log2(pi / E)) for E the bound on irradiance, takes the
+  // point lights' from their distances d to the particles (the basin is farther): E is the
+  // sum of their I / d^2, the sun's irradiance, and the spot's, at most its intensity over
+  // 3 m^2 (it is over 1 m beyond the bounds on each axis), which the scale's rounding down
+  // hardly ever sees. With voxels 4 d wide (d the nearer's) both lights are nearer than half a
+  // voxel: each takes I / (2 d)^2 instead.
+  auto scale_of = [](double irradiance) { return float(std::exp2(std::floor(std::log2(M_PI / irradiance)))); };
+  const double d = std::min(got[first], got[first + 1]);
+  for (double voxel : {1e-3 * d, 4.0 * d}) {
+    double e_points = sun.intensity;
+    for (size_t i : {first, first + 1}) {
+      const double near = std::max(double(got[i]), 0.5 * voxel);
+      e_points += point.intensity / (near * near);
+    }
+    const float scale = voxel_radiance_scale(counted, {}, 1, float(voxel), got);
+    EXPECT_LE(scale, scale_of(e_points)) << "voxel " << voxel;
+    EXPECT_GE(scale, scale_of(e_points + spot.intensity / 3.0)) << "voxel " << voxel;
+  }
+  EXPECT_GE(voxel_radiance_scale(counted, {}, 1, float(1e-3 * d)), 4.0f * voxel_radiance_scale(counted, {}, 1, float(1e-3 * d), got))
+      << "the particles are the nearest surfaces";
 }
 
 }  // namespace

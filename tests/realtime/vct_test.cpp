@@ -205,6 +205,32 @@ TEST_F(VctTest, LightsBeyondFloat16RangeScaleLinearly) {
   EXPECT_GT(sum, 0.0);
 }
 
+// A faint point light a millionth of a voxel above the Cornell box's floor: bounded by its
+// distance to the floor, its irradiance would be millions of times the ceiling light's bound,
+// and the scale as many times smaller: every voxel but those beside the light below 8-bit
+// sRGB's smallest code, the indirect light black. Bounded at half a voxel instead
+// (voxel_scale.h), it leaves the scale to the ceiling light; the voxels beside it clip, and
+// the indirect light changes only there: the mean keeps within 5 % of the box's without it.
+TEST_F(VctTest, ALightOnASurfaceDoesNotDarkenTheOtherVoxels) {
+  const scenes::Scene box = builtin("cornell");
+  scenes::Scene lamp = box;
+  scenes::Light l;
+  l.intensity = 1e-6f;
+  const float voxel = box.bounds.largest_side() / 32.0f;
+  // Near the left wall, clear of the blocks.
+  l.position = glm::vec3(box.bounds.lo.x + 3.0f * voxel, box.bounds.lo.y + 1e-6f * voxel, 0.5f * (box.bounds.lo.z + box.bounds.hi.z));
+  lamp.add_light(l, "a faint lamp on the floor");
+  auto indirect = [&](const scenes::Scene& s) {
+    const image::Image img = render(s, 24, {"voxel_resolution=32"});
+    double sum = 0.0;
+    for (int c = 0; c < 3; ++c) sum += mean(img, layer("indirect", c));
+    return sum;
+  };
+  const double without = indirect(box), with = indirect(lamp);
+  ASSERT_GT(without, 0.0);
+  EXPECT_NEAR(with / without, 1.0, 0.05);
+}
+
 TEST_F(VctTest, APersistentInstanceFollowsTheMovingLight) {
   // One vct instance through three frames of `movinglight` (re-voxelised every frame, no
   // temporal blend) gives at every frame the bits of an instance created for that pose alone:

@@ -102,7 +102,7 @@ class Vct : public IndirectLight {
         Buffer(ci.ctx, std::max<uint64_t>(16, emitters_.size() * sizeof(gpu::VctEmitter)),
                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::Upload);
     upload_emitters();
-    scale_ = voxel_radiance_scale(ci.scene, emitters_, int(bounces_));
+    scale_ = voxel_radiance_scale(ci.scene, emitters_, int(bounces_), grid_.origin.w, scene_gpu_.particle_light_distances());
 
     const auto defines = feature_defines(ci.scene.features);
     clear_ = Pipeline::compute(ci.ctx, ci.compiler.compile("techniques/vct/voxel_clear.comp"),
@@ -136,7 +136,7 @@ class Vct : public IndirectLight {
         emitters_ = voxel_emitters(in.scene);
         upload_emitters();
       }
-      scale_ = voxel_radiance_scale(in.scene, emitters_, int(bounces_));
+      scale_ = voxel_radiance_scale(in.scene, emitters_, int(bounces_), grid_.origin.w, scene_gpu_.particle_light_distances());
     }
     for (uint32_t b = 0; b < bounces_; ++b) record_voxels(in, b);
     record_cones(in, frame);

@@ -53,9 +53,10 @@ std::vector<gpu::VctEmitter> voxel_emitters(const scenes::Scene& scene) {
 }
 
 float voxel_radiance_scale(const scenes::Scene& scene, const std::vector<gpu::VctEmitter>& emitters,
-                           int bounces) {
+                           int bounces, float voxel, const std::vector<float>& particle_distance) {
   double irradiance = 0.0;
-  for (const auto& l : scene.lights) {
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const scenes::Light& l = scene.lights[i];
     const float intensity = max_channel(l.radiant());
     if (!(intensity > 0.0f)) continue;
     if (l.type == scenes::LightType::Directional) {
@@ -67,9 +68,11 @@ float voxel_radiance_scale(const scenes::Scene& scene, const std::vector<gpu::Vc
       for (const auto& t : mesh.triangles)
         d2 = std::min(d2, distance2_to_triangle(l.position, mesh.positions[t.x],
                                                 mesh.positions[t.y], mesh.positions[t.z]));
-    // A light on a surface: no finite bound; the smallest normal float keeps the scale finite
-    // (the voxels right at the light clip, every other is still represented).
-    irradiance += double(intensity) / std::max(double(d2), 1e-30);
+    if (i < particle_distance.size()) d2 = std::min(d2, particle_distance[i] * particle_distance[i]);
+    // Nearer than half a voxel, the voxels clip (voxel_scale.h); the smallest normal float
+    // keeps the scale finite for a voxel of no size.
+    const double near = 0.5 * double(voxel);
+    irradiance += double(intensity) / std::max({double(d2), near * near, 1e-30});
   }
   for (const auto& e : emitters)
     if (e.power.w > 0.0f)

@@ -6,8 +6,12 @@
 // lights, the largest irradiance each can deliver to a surface of the scene, times the
 // largest diffuse BRDF (1/pi):
 //   directional: its irradiance;
-//   point/spot: intensity / d_min^2, d_min the distance from the light to the nearest
-//     triangle (no surface is closer);
+//   point/spot: intensity / d^2, d the distance from the light to the nearest triangle (no
+//     surface is closer), or to the nearest particle, which the GPU drew where the host may
+//     hold none (SceneGpu::particle_light_distances); but at least half a voxel. A surface
+//     nearer than that clips its voxels (at most those within half a voxel of the light,
+//     where no cone resolves the light's falloff anyway) rather than have one lamp in its
+//     bulb, or a spark passing through a lamp, scale the rest of the scene down to black;
 //   emissive mesh: P / (A / pi) = pi times its area-weighted mean radiance (the cosine
 //     emitter's on-axis limit in voxel_light.comp).
 
@@ -26,7 +30,9 @@ std::vector<gpu::VctEmitter> voxel_emitters(const scenes::Scene& scene);
 // when nothing emits. A power of two changes only when the bound changes by a factor 2, so a
 // moving light rarely restarts the temporal blend, and a light 2^k times brighter stores
 // exactly the same codes (its radiances are exactly 2^k times larger).
+// `voxel`: the voxels' side; `particle_distance`: per light of the scene, at most its
+// distance to the particles (empty: none).
 float voxel_radiance_scale(const scenes::Scene& scene, const std::vector<gpu::VctEmitter>& emitters,
-                           int bounces);
+                           int bounces, float voxel, const std::vector<float>& particle_distance = {});
 
 }  // namespace giq::realtime

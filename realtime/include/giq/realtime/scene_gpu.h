@@ -146,6 +146,11 @@ class SceneGpu {
   uint32_t particle_light_slot(uint32_t material) const { return material - stage_material_; }
   const FlatGeometry& geometry() const { return geometry_; }
   const scenes::Bounds& bounds() const { return bounds_; }  // of the geometry now uploaded
+  // After complete(): per light of the scene (scenes::Scene::lights), at most the distance
+  // from it to the nearest particle's surface as the GPU drew them, infinity for a
+  // directional light; empty without particles. What bounds the irradiance a particle
+  // receives, which the host cannot take from particles it only counted.
+  const std::vector<float>& particle_light_distances() const { return particle_light_distance_; }
   // The FeatureSet the scene was uploaded for; passes compile their shaders with its defines.
   const scenes::FeatureSet& features() const { return features_; }
   uint32_t texture_count() const { return texture_count_; }
@@ -184,8 +189,9 @@ class SceneGpu {
   bool holds_file(const scenes::Scene& posed) const;
   // Brings each emitter's GPU particles to `posed`'s time.
   void prepare_particles(const scenes::Scene& posed);
-  // The particle passes, then their tree (LinearBvh) and their stages' bounds (ParticleBounds).
-  void record_particles(VkCommandBuffer cmd);
+  // The particle passes, then their tree (LinearBvh) and their stages' bounds (ParticleBounds),
+  // with how near they come to `posed`'s punctual lights.
+  void record_particles(VkCommandBuffer cmd, const scenes::Scene& posed);
 
   Context* ctx_;
   ShaderCompiler* compiler_;
@@ -205,6 +211,7 @@ class SceneGpu {
   std::vector<VkBufferCopy> rigid_ranges_;  // bytes of the GpuVertex array that no deformation writes
   FlatGeometry geometry_;
   scenes::Bounds bounds_;
+  std::vector<float> particle_light_distance_;  // per light (particle_light_distances())
   scenes::FeatureSet features_;
   Bvh bvh_;
   double built_cost_ = 0.0;  // sah_cost(bvh_) when last built
