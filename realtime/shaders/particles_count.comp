@@ -4,8 +4,9 @@
 //   phase 0, before simulating: the last frame's alive list becomes this frame's input;
 //   phase 1, before emitting: as many particles as requested, at most as many as are dead
 //            (the simulation has just freed this frame's deaths);
-//   phase 2, after emitting: the octahedra pass's arguments, a group per GIQ_PARTICLES_GROUP
-//            alive particles.
+//   phase 2, after emitting: the octahedra pass's arguments, eight invocations a particle
+//            (particles_vertices.comp) in groups over two dimensions, each at most 65535
+//            (Vulkan's least maxComputeWorkGroupCount).
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/particles_bindings.glsl"
@@ -28,7 +29,8 @@ void main() {
     uvec3 g = groups(n);
     indirect[GIQ_PARTICLES_EMIT_ARGS] = g.x, indirect[GIQ_PARTICLES_EMIT_ARGS + 1u] = g.y, indirect[GIQ_PARTICLES_EMIT_ARGS + 2u] = g.z;
   } else {
-    uvec3 g = groups(counters[GIQ_PARTICLES_OUT]);
+    uint n = groups(counters[GIQ_PARTICLES_OUT] * 8u).x, x = min(n, 65535u);
+    uvec3 g = uvec3(x, x == 0u ? 0u : (n + x - 1u) / x, 1u);
     indirect[GIQ_PARTICLES_VERTICES_ARGS] = g.x, indirect[GIQ_PARTICLES_VERTICES_ARGS + 1u] = g.y, indirect[GIQ_PARTICLES_VERTICES_ARGS + 2u] = g.z;
   }
 }

@@ -26,41 +26,46 @@ layout(std430, binding = 14) writeonly buffer Indices { uint indices[]; };
 layout(std430, binding = 15) writeonly buffer Emissive { GpuEmissive emissive[]; };
 layout(push_constant) uniform Push { float frame_seconds; };
 
+// Eight invocations a particle, one a face (and the first six a vertex each), so that the
+// invocations of a subgroup write neighbouring records together: a particle's records lie
+// side by side, and the particles of the alive list mostly do too. One invocation writing a
+// particle's 1.1 kB strided its stores a record apart across the subgroup. The groups run over
+// two dimensions (particles_count.comp), since 2^22 particles need more than 65535 of them.
 void main() {
-  uint i = gl_GlobalInvocationID.x;
+  uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+  uint i = group * (GIQ_PARTICLES_GROUP / 8u) + gl_LocalInvocationID.x / 8u;
+  uint f = gl_LocalInvocationID.x % 8u;
   if (i >= counters[GIQ_PARTICLES_OUT]) return;
   uint slot = alive_out[i];
   vec4 position = particles[slot].position;  // w: age
   uint stage = floatBitsToUint(particles[slot].velocity.w);
   vec4 birth = particles[slot].birth_position;
   uint id = floatBitsToUint(birth.w);
-  vec3 was, v;
-  particle_state(birth.xyz, particles[slot].birth_velocity.xyz, position.w - frame_seconds, was, v);
   GpuParticleStage st = stages[stage];
   uint place = id - st.first.y;  // the particle's place in its stage
   uint first = st.first.x + 6u * place;
-  float size = emitter.motion.w;
-  for (uint k = 0u; k < 6u; ++k) {
-    vec3 axis = kParticleAxes[k];
-    uint row = 2u * (first + k);
+  if (f < 6u) {
+    vec3 was, v;
+    particle_state(birth.xyz, particles[slot].birth_velocity.xyz, position.w - frame_seconds, was, v);
+    float size = emitter.motion.w;
+    vec3 axis = kParticleAxes[f];
+    uint row = 2u * (first + f);
     vertices[row] = vec4(position.xyz + size * axis, 1.0);
     vertices[row + 1u] = vec4(axis, 0.0);
     previous[row] = vec4(was + size * axis, 1.0);
     previous[row + 1u] = vec4(axis, 0.0);
   }
-  for (uint f = 0u; f < 8u; ++f) {
-    uint tri = st.first.z + 8u * place + f;
-    uvec3 v = kParticleFaces[f] + first;
-    uint e = st.first.w == 0u ? 0u : st.first.w + 8u * place + f;  // emissive index + 1
-    triangles[tri].v = uvec4(v, st.triangle.x);
-    triangles[tri].extra = uvec4(e, st.triangle.y, st.triangle.z, 0u);
-    indices[3u * tri] = v.x;
-    indices[3u * tri + 1u] = v.y;
-    indices[3u * tri + 2u] = v.z;
-    if (e == 0u) continue;
-    uint j = 8u * place + f;  // the stage's j-th emissive triangle
-    emissive[e - 1u].triangle = uvec4(tri, 0u, 0u, 0u);
-    emissive[e - 1u].radiance = st.radiance;
-    emissive[e - 1u].sampling = vec4(e == st.triangle.w ? 1.0 : min(st.sampling.x + float(j + 1u) * st.sampling.y, 1.0), st.sampling.y, 0.0, 0.0);
-  }
+  uint tri = st.first.z + 8u * place + f;
+  uvec3 v = kParticleFaces[f] + first;
+  uint e = st.first.w == 0u ? 0u : st.first.w + 8u * place + f;  // emissive index + 1
+  triangles[tri].v = uvec4(v, st.triangle.x);
+  triangles[tri].extra = uvec4(e, st.triangle.y, st.triangle.z, 0u);
+  indices[3u * tri] = v.x;
+  indices[3u * tri + 1u] = v.y;
+  indices[3u * tri + 2u] = v.z;
+  if (e == 0u) return;
+  uint j = 8u * place + f;  // the stage's j-th emissive triangle
+  emissive[e - 1u].triangle = uvec4(tri, 0u, 0u, 0u);
+  emissive[e - 1u].radiance = st.radiance;
+  emissive[e - 1u].sampling = vec4(e == st.triangle.w ? 1.0 : min(st.sampling.x + float(j + 1u) * st.sampling.y, 1.0), st.sampling.y, 0.0, 0.0);
 }
