@@ -163,6 +163,32 @@ void refit_bvh(Bvh& bvh, const std::vector<glm::vec3>& positions, const std::vec
   }
 }
 
+void refit_bvh(Bvh& bvh, const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles,
+               const std::vector<uint8_t>& moved, std::vector<uint32_t>& refitted) {
+  refitted.clear();
+  std::vector<uint8_t> dirty(bvh.nodes.size(), 0);
+  for (size_t i = bvh.nodes.size(); i-- > 0;) {
+    BvhNode& n = bvh.nodes[i];
+    Box b;
+    if (n.count > 0) {
+      bool any = false;
+      for (uint32_t k = n.index; k < n.index + n.count && !any; ++k) any = moved[bvh.prims[k]] != 0;
+      if (!any) continue;
+      for (uint32_t k = n.index; k < n.index + n.count; ++k) {
+        const glm::uvec3 t = triangles[bvh.prims[k]];
+        b.extend(positions[t.x]), b.extend(positions[t.y]), b.extend(positions[t.z]);
+      }
+    } else {
+      if (!dirty[i + 1] && !dirty[n.index]) continue;
+      for (const BvhNode* c : {&bvh.nodes[i + 1], &bvh.nodes[n.index]}) b.extend(Box{c->lo, c->hi});
+    }
+    n.lo = b.lo, n.hi = b.hi;
+    dirty[i] = 1;
+    refitted.push_back(uint32_t(i));
+  }
+  std::reverse(refitted.begin(), refitted.end());
+}
+
 double sah_cost(const Bvh& bvh, const BvhOptions& options) {
   if (bvh.nodes.empty()) return 0.0;
   const double root = Box{bvh.nodes[0].lo, bvh.nodes[0].hi}.area();

@@ -97,6 +97,23 @@ void Buffer::upload_ranges(const void* image, const std::vector<VkBufferCopy>& g
   ctx_->submit_and_wait([&](VkCommandBuffer cmd) { vkCmdCopyBuffer(cmd, staging.handle(), buffer_, uint32_t(ranges.size()), ranges.data()); });
 }
 
+void Buffer::upload_pieces(const void* packed, uint64_t packed_bytes, const std::vector<VkBufferCopy>& given) {
+  std::vector<VkBufferCopy> ranges;
+  for (const VkBufferCopy& r : given) {
+    if (r.dstOffset + r.size > size_ || r.srcOffset + r.size > packed_bytes) throw std::logic_error("Buffer::upload_pieces: a range past the end");
+    if (r.size > 0) ranges.push_back(r);
+  }
+  if (ranges.empty()) return;
+  const char* bytes = static_cast<const char*>(packed);
+  if (alloc_.mapped) {
+    for (const VkBufferCopy& r : ranges) std::memcpy(static_cast<char*>(alloc_.mapped) + r.dstOffset, bytes + r.srcOffset, r.size);
+    return;
+  }
+  Buffer staging(*ctx_, packed_bytes, 0, MemoryUsage::Upload);
+  std::memcpy(staging.mapped(), packed, packed_bytes);
+  ctx_->submit_and_wait([&](VkCommandBuffer cmd) { vkCmdCopyBuffer(cmd, staging.handle(), buffer_, uint32_t(ranges.size()), ranges.data()); });
+}
+
 std::vector<uint8_t> Buffer::download() const {
   std::vector<uint8_t> out(size_);
   if (alloc_.mapped) {

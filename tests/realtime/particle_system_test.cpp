@@ -366,8 +366,12 @@ TEST_F(ParticleSystemTest, TheGpuMeasuresHowNearTheParticlesComeToEachLight) {
     EXPECT_NEAR(got[i], want, tol) << "light " << i;
     // (The lights' positions are floats: within a rounding of |q| per coordinate.)
     const double placed = 2.0 * kU * glm::length(q);
-    if (i == first) EXPECT_LE(want, e.size + placed) << "the point light two sizes from a particle's centre";
-    if (i == first + 1) EXPECT_LE(want, 2.0 / std::sqrt(3.0) * e.size + placed) << "the point light off a face";
+    if (i == first) {
+      EXPECT_LE(want, e.size + placed) << "the point light two sizes from a particle's centre";
+    }
+    if (i == first + 1) {
+      EXPECT_LE(want, 2.0 / std::sqrt(3.0) * e.size + placed) << "the point light off a face";
+    }
   }
 
   // The scale of vct's voxels, 2^floor(log2(pi / E)) for E the bound on irradiance, takes the

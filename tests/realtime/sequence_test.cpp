@@ -244,6 +244,85 @@ TEST_F(SequenceTest, UpdateReportsWhatMoved) {
   EXPECT_EQ(gpu.previous_vertices().download(), gpu.vertices().download());
 }
 
+// Meshes turned a quarter about the vertical through their first vertex, one set per update,
+// with the file's layout kept: only they go up (SceneGpu::upload_meshes), and the GPU then
+// holds what uploading the whole pose would have given. Its vertices are the pose's, to the
+// bit; their previous vertices are the last pose's (a mesh that moved at the last update but
+// not at this one: its vertices); a turned mesh's tangents turned with it; the tree is the
+// one the CPU refitted over the moved triangles alone, which is refit_bvh's over all of them
+// (bit for bit: min and max round nothing), every box exactly its triangles' on the GPU. The
+// Cornell box's two blocks, then the textured room's wall, which has tangents.
+TEST_F(SequenceTest, OnlyTheMeshesThatMovedGoUp) {
+  auto turn = [](scenes::Mesh& m) {
+    const glm::vec3 c = m.positions.at(0);
+    auto quarter = [](glm::vec3 v) { return glm::vec3(-v.z, v.y, v.x); };
+    for (glm::vec3& p : m.positions) p = c + quarter(p - c);
+    for (glm::vec3& n : m.normals) n = quarter(n);
+    for (glm::vec4& t : m.tangents) t = glm::vec4(quarter(glm::vec3(t)), t.w);
+  };
+  auto rows = [](const scenes::Scene& s) {
+    std::vector<gpu::GpuVertex> out;
+    const FlatGeometry g = flatten(s);
+    for (size_t i = 0; i < g.positions.size(); ++i) out.push_back({glm::vec4(g.positions[i], 1.0f), glm::vec4(g.normals[i], 0.0f)});
+    return out;
+  };
+  auto expect_rows = [](const std::vector<gpu::GpuVertex>& got, const std::vector<gpu::GpuVertex>& want, const std::string& what) {
+    ASSERT_GE(got.size(), want.size()) << what;
+    for (size_t i = 0; i < want.size(); ++i)
+      ASSERT_TRUE(got[i].position == want[i].position && got[i].normal == want[i].normal) << what << ", vertex " << i;
+  };
+  struct Case {
+    std::string name;
+    scenes::Scene scene;
+    std::vector<std::vector<size_t>> steps;  // the meshes turned at each update
+  };
+  std::vector<Case> cases;
+  cases.push_back({"cornell", test::cornell_box(), {{kTallBlockFirstMesh, kTallBlockFirstMesh + 1}, {kTallBlockFirstMesh - 1}, {}}});
+  scenes::Scene room = scenes::load(std::filesystem::path(GIQ_TEST_DATA) / "scenes" / "textured_room.gltf");
+  size_t wall = 0;
+  while (wall < room.meshes.size() && room.meshes[wall].tangents.empty()) ++wall;
+  ASSERT_LT(wall, room.meshes.size());
+  cases.push_back({"textured_room", room, {{wall}, {}}});
+
+  for (const Case& c : cases) {
+    SceneGpu gpu(*ctx, *compiler, c.scene);
+    scenes::Scene before = c.scene;
+    int step = 0;
+    for (const std::vector<size_t>& meshes : c.steps) {
+      const std::string what = c.name + " step " + std::to_string(step++);
+      scenes::Scene now = before;
+      for (size_t m : meshes) turn(now.meshes.at(m));
+      now.derive();
+      const Bvh built = gpu.bvh();
+      EXPECT_EQ(gpu.update(now), meshes.empty() ? SceneChange::None : SceneChange::Geometry) << what;
+      expect_rows(test::vertex_rows(gpu.vertices()), rows(now), what + ", vertices");
+      // Unmoved meshes' previous vertices are their vertices; a moved one's its last pose's.
+      expect_rows(test::vertex_rows(gpu.previous_vertices()), rows(meshes.empty() ? now : before), what + ", previous vertices");
+      if (!meshes.empty()) {
+        EXPECT_EQ(gpu.last_bvh_update(), SceneGpu::BvhUpdate::Refitted) << what;
+        Bvh full = built;
+        const FlatGeometry g = flatten(now);
+        refit_bvh(full, g.positions, g.triangles);
+        ASSERT_EQ(full.nodes.size(), gpu.bvh().nodes.size()) << what;
+        EXPECT_EQ(std::memcmp(full.nodes.data(), gpu.bvh().nodes.data(), full.nodes.size() * sizeof(BvhNode)), 0) << what;
+      }
+      test::expect_tree_exact(gpu, what);
+      for (size_t m : meshes) {
+        const scenes::Mesh& mesh = now.meshes[m];
+        if (mesh.tangents.empty()) continue;
+        const std::vector<uint8_t> bytes = gpu.vertex_extra().download();
+        const size_t first = gpu.geometry().mesh_first_vertex[m];
+        for (size_t i = 0; i < mesh.tangents.size(); ++i) {
+          gpu::GpuVertexExtra e;
+          std::memcpy(&e, bytes.data() + (first + i) * sizeof(e), sizeof(e));
+          ASSERT_EQ(e.tangent, mesh.tangents[i]) << what << ", vertex " << i;
+        }
+      }
+      before = now;
+    }
+  }
+}
+
 // A technique that lives through the sequence gives, at every frame, what a technique created
 // for that frame's pose alone gives: `direct` on the moving light of `movinglight` (its cube
 // shadow map must follow the light). Same commands on the same data: identical bits.

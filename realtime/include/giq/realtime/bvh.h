@@ -39,6 +39,13 @@ Bvh build_bvh(const std::vector<glm::vec3>& positions, const std::vector<glm::uv
 // recomputed bottom-up, the topology kept. A refit costs one pass over the triangles and the
 // nodes; the tree was chosen for the old positions, so its SAH cost grows with the motion.
 void refit_bvh(Bvh& bvh, const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles);
+// The same where only some triangles moved (`moved[t]` nonzero): only the leaves that hold one
+// and the nodes above them are recomputed, the rest kept, which gives refit_bvh's tree to the
+// bit (a box is the min and max of its triangles' vertices, in any order). The nodes
+// recomputed go to `refitted`, ascending. A pass over the prims and the nodes to find them,
+// the arithmetic only where something moved.
+void refit_bvh(Bvh& bvh, const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles,
+               const std::vector<uint8_t>& moved, std::vector<uint32_t>& refitted);
 
 // The tree's expected cost of a random ray by the surface area heuristic: the traversal and
 // intersection costs of every node weighted by its area relative to the root's.

@@ -45,6 +45,10 @@ class Buffer {
   // Copies the given byte ranges of `image` (the whole buffer's contents as the host holds
   // them) to the same offsets, leaving the rest as it is; one staging copy when not mapped.
   void upload_ranges(const void* image, const std::vector<VkBufferCopy>& ranges);
+  // Copies each range's bytes from `packed` (`packed_bytes` long: pieces gathered one after
+  // another) at its srcOffset to its dstOffset, leaving the rest as it is; one staging copy of
+  // the pieces alone when not mapped.
+  void upload_pieces(const void* packed, uint64_t packed_bytes, const std::vector<VkBufferCopy>& ranges);
   // Copies the buffer out (blocking; through a read-back buffer when not mapped).
   std::vector<uint8_t> download() const;
 

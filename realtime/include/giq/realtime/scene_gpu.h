@@ -184,9 +184,25 @@ class SceneGpu {
   // from the host's. Sets emissive_count_; returns the power of all emissive triangles.
   double place_particle_stages(const scenes::Scene& scene, uint32_t fixed, double power);
   bool upload_lights(const scenes::Scene& scene);  // false when nothing changed
-  // Whether `posed`'s file meshes (all but the particles') are those in geometry_: the same
-  // vertices, normals, triangles, materials and object ids in the same places.
-  bool holds_file(const scenes::Scene& posed) const;
+  // What of `posed`'s file meshes (all but the particles') differs from geometry_. `layout`:
+  // the same meshes with the same vertex counts, triangles, materials and object ids in the
+  // same places; then `moved` lists those whose vertices or normals moved (in mesh order).
+  struct FileChange {
+    bool layout = false;
+    std::vector<uint32_t> moved;
+  };
+  FileChange file_change(const scenes::Scene& posed) const;
+  // For a file whose layout held: `meshes`' vertices and normals into geometry_, and the CPU's
+  // tree refitted over their triangles alone (refitted_nodes_). False when the emissive
+  // triangles listed changed, or the refit left the tree over kMaxRefitCost times as costly
+  // as built: then the whole file goes up again.
+  bool refit_meshes(const scenes::Scene& posed, const std::vector<uint32_t>& meshes);
+  // Uploads what refit_meshes changed: the meshes' vertex rows (not those the deformation
+  // pass writes), their tangents, and the refitted nodes.
+  void upload_meshes(const scenes::Scene& posed, const std::vector<uint32_t>& meshes);
+  // The byte ranges of `meshes`' rows in the GpuVertex arrays (not those the deformation
+  // pass writes).
+  std::vector<VkBufferCopy> mesh_rows(const scenes::Scene& posed, const std::vector<uint32_t>& meshes) const;
   // Brings each emitter's GPU particles to `posed`'s time.
   void prepare_particles(const scenes::Scene& posed);
   // The particle passes, then their tree (LinearBvh) and their stages' bounds (ParticleBounds),
@@ -216,7 +232,11 @@ class SceneGpu {
   Bvh bvh_;
   double built_cost_ = 0.0;  // sah_cost(bvh_) when last built
   BvhUpdate last_bvh_update_ = BvhUpdate::Built;
-  bool file_moved_last_ = false;  // the file's meshes moved at the last update
+  bool file_moved_last_ = false;  // the whole file went up at the last update
+  std::vector<uint32_t> meshes_moved_last_;  // or these meshes of it alone (upload_meshes)
+  std::vector<glm::uvec2> emissive_listed_;  // the file's emissive triangles listed (mesh, triangle)
+  std::vector<uint8_t> moved_triangles_;     // refit_meshes' working arrays
+  std::vector<uint32_t> refitted_nodes_;
   // What the vertex and light buffers hold (gpu::GpuVertex, gpu::GpuLight as vec4 rows).
   std::vector<glm::vec4> vertices_host_, lights_host_;
   Buffer vertices_, triangles_, materials_, nodes_, prims_, lights_, emissive_, indices_, previous_vertices_;
