@@ -176,8 +176,12 @@ void world_bounds(const SceneSource& src, const NodePose& nodes, glm::dvec3& lo,
   }
 }
 
-void pose(const SceneSource& src, const NodePose& nodes, Scene& out) {
+void pose(const SceneSource& src, const NodePose& nodes, Scene& out, const NodePose* was) {
   const std::vector<glm::dmat4>& world = nodes.world;
+  // A still level under a walking character: its meshes are kept, not emitted anew each frame.
+  std::vector<Mesh> before;
+  if (was && was->world.size() == world.size()) before.swap(out.meshes);
+  size_t next = 0;  // the mesh of `before` that the next one emitted was
   out.meshes.clear();
   out.lights.clear();
   out.views.clear();
@@ -196,6 +200,15 @@ void pose(const SceneSource& src, const NodePose& nodes, Scene& out) {
       for (size_t instance = 0; instance < n.instance_count(); ++instance)
         for (size_t k = 0; k < prims.size(); ++k) {
           if (prims[k].dropped) continue;
+          const size_t j = next++;
+          if (j < before.size() && !prims[k].deformation && was->world[size_t(i)] == M && before[j].node == i &&
+              before[j].mesh == n.mesh && before[j].primitive == int(k) && before[j].emitter < 0) {
+            // What emit_mesh counted: the source's collapsed triangles and the faces it dropped
+            // (all of them dropped: a mesh that nothing deforms keeps no degenerate face).
+            out.stats.degenerate_triangles_dropped += prims[k].collapsed_triangles + (prims[k].triangles.size() - before[j].triangles.size());
+            out.meshes.push_back(std::move(before[j]));
+            continue;
+          }
           Mesh m;
           m.name = node_label(src, i);
           m.node = i;

@@ -247,7 +247,10 @@ void Scene::at(double t, ParticleDetail particles, Scene& s) const {
   const bool animated = source_ && sequence.animation >= 0;
   if (!animated && emitters.empty()) return;
   if (animated) {
-    pose(*source_, pose_nodes(*source_, sequence.animation, t), s);
+    // This scene's meshes are its pose at its own time: the meshes whose nodes are where they
+    // were then are kept.
+    const NodePose was = pose_nodes(*source_, sequence.animation, time);
+    pose(*source_, pose_nodes(*source_, sequence.animation, t), s, &was);
     s.lights.insert(s.lights.end(), added_lights_.begin(), added_lights_.end());
     s.views.insert(s.views.end(), added_views_.begin(), added_views_.end());
   } else {

@@ -125,6 +125,10 @@ void world_bounds(const SceneSource& src, const NodePose& nodes, glm::dvec3& lo,
 
 // Fills out.meshes, out.lights and out.views (camera nodes, then extra_views) and
 // out.stats.degenerate_triangles_dropped from the posed nodes, relative to out.origin.
-void pose(const SceneSource& src, const NodePose& nodes, Scene& out);
+// `was`: the nodes out.meshes were posed with (they are a pose of the same source, the
+// particles' meshes after them); a mesh whose node's world transform is the same in both,
+// and that neither skin nor morph targets deform, is then kept as it is instead of emitted
+// anew, which gives the same mesh (emitting depends on nothing else).
+void pose(const SceneSource& src, const NodePose& nodes, Scene& out, const NodePose* was = nullptr);
 
 }  // namespace giq::scenes

@@ -264,5 +264,49 @@ TEST(Particles, PosingIntoAPosedSceneGivesTheFreshPose) {
   }
 }
 
+// Posing keeps the meshes whose nodes are where they were when the scene being posed was
+// (pose's `was`): the room of `dynamic` stays while its walker walks. Kept or emitted anew, a
+// mesh is the same: `dynamic` posed at a frame from scenes posed at other frames (other
+// meshes kept) equals it posed from the loaded scene, to the bit, degenerate triangles
+// counted alike; one whose node moved is where the node puts it. A kept mesh is the same
+// object: its arrays do not move.
+TEST(Particles, PosingKeepsTheMeshesWhoseNodesStayed) {
+  const Scene s = load(std::filesystem::path(GIQ_SCENES_DIR) / "dynamic.gltf");
+  for (int frame : {5, 64, 119}) {
+    const double t = frame / s.sequence.fps;
+    const Scene direct = s.at(t, ParticleDetail::Counted);
+    for (int from : {0, 30, 118}) {
+      SCOPED_TRACE("frame " + std::to_string(frame) + " from frame " + std::to_string(from));
+      const Scene mid = s.at_frame(from, ParticleDetail::Counted);
+      const Scene posed = mid.at(t, ParticleDetail::Counted);
+      ASSERT_EQ(posed.meshes.size(), direct.meshes.size());
+      for (size_t m = 0; m < direct.meshes.size(); ++m) {
+        const Mesh &a = posed.meshes[m], &b = direct.meshes[m];
+        EXPECT_TRUE(a.name == b.name && a.node == b.node && a.material == b.material && a.object_id == b.object_id &&
+                    a.positions == b.positions && a.normals == b.normals && a.tangents == b.tangents && a.uvs == b.uvs &&
+                    a.triangles == b.triangles && a.deformation.has_value() == b.deformation.has_value())
+            << "mesh " << m;
+      }
+      EXPECT_EQ(posed.stats.degenerate_triangles_dropped, direct.stats.degenerate_triangles_dropped);
+    }
+    // A mesh whose node moved is where the node now puts it: the lamp steps from (3.6, 2.4, 3)
+    // to (5.4, 2.4, 2.4) at 0.98 s (within float rounding of the local frame's coordinates).
+    size_t lamp = 0;
+    while (lamp < s.meshes.size() && s.meshes[lamp].name != "lamp") ++lamp;
+    ASSERT_LT(lamp, s.meshes.size());
+    const glm::vec3 step = t > 0.99 ? glm::vec3(1.8f, 0.0f, -0.6f) : glm::vec3(0.0f);
+    for (size_t i = 0; i < s.meshes[lamp].positions.size(); ++i)
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(direct.meshes[lamp].positions[i][k] - s.meshes[lamp].positions[i][k], step[k], 1e-5f) << "frame " << frame;
+  }
+  // The room's floor (a node no animation moves) kept, posing into a scene posed before.
+  Scene into = s.at_frame(10, ParticleDetail::Counted);
+  size_t floor = 0;
+  while (floor < into.meshes.size() && into.meshes[floor].name != "room_floor") ++floor;
+  ASSERT_LT(floor, into.meshes.size());
+  const glm::vec3* where = into.meshes[floor].positions.data();
+  s.at(20 / s.sequence.fps, ParticleDetail::Counted, into);
+  EXPECT_EQ(into.meshes[floor].positions.data(), where);
+}
+
 }  // namespace
 }  // namespace giq::scenes
