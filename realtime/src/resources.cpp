@@ -79,26 +79,17 @@ void Buffer::upload(const void* data, uint64_t bytes, uint64_t offset) {
   });
 }
 
-void Buffer::upload_ranges(const void* image, const std::vector<VkBufferCopy>& given) {
-  std::vector<VkBufferCopy> ranges;  // without empty ones, which a copy command may not hold
+void Buffer::upload_ranges(const void* image, const std::vector<VkBufferCopy>& ranges) {
   uint64_t end = 0;
-  for (const VkBufferCopy& r : given) {
-    if (r.srcOffset != r.dstOffset || r.dstOffset + r.size > size_) throw std::logic_error("Buffer::upload_ranges: a range past the end or moved");
-    if (r.size > 0) ranges.push_back(r), end = std::max(end, r.dstOffset + r.size);
+  for (const VkBufferCopy& r : ranges) {
+    if (r.srcOffset != r.dstOffset) throw std::logic_error("Buffer::upload_ranges: a range moved");
+    end = std::max(end, r.dstOffset + r.size);
   }
-  if (ranges.empty()) return;
-  const char* bytes = static_cast<const char*>(image);
-  if (alloc_.mapped) {
-    for (const VkBufferCopy& r : ranges) std::memcpy(static_cast<char*>(alloc_.mapped) + r.dstOffset, bytes + r.srcOffset, r.size);
-    return;
-  }
-  Buffer staging(*ctx_, end, 0, MemoryUsage::Upload);
-  for (const VkBufferCopy& r : ranges) std::memcpy(static_cast<char*>(staging.mapped()) + r.srcOffset, bytes + r.srcOffset, r.size);
-  ctx_->submit_and_wait([&](VkCommandBuffer cmd) { vkCmdCopyBuffer(cmd, staging.handle(), buffer_, uint32_t(ranges.size()), ranges.data()); });
+  upload_pieces(image, end, ranges);
 }
 
 void Buffer::upload_pieces(const void* packed, uint64_t packed_bytes, const std::vector<VkBufferCopy>& given) {
-  std::vector<VkBufferCopy> ranges;
+  std::vector<VkBufferCopy> ranges;  // without empty ones, which a copy command may not hold
   for (const VkBufferCopy& r : given) {
     if (r.dstOffset + r.size > size_ || r.srcOffset + r.size > packed_bytes) throw std::logic_error("Buffer::upload_pieces: a range past the end");
     if (r.size > 0) ranges.push_back(r);
@@ -109,8 +100,9 @@ void Buffer::upload_pieces(const void* packed, uint64_t packed_bytes, const std:
     for (const VkBufferCopy& r : ranges) std::memcpy(static_cast<char*>(alloc_.mapped) + r.dstOffset, bytes + r.srcOffset, r.size);
     return;
   }
+  // Only the ranges' bytes are staged, at their offsets in `packed`.
   Buffer staging(*ctx_, packed_bytes, 0, MemoryUsage::Upload);
-  std::memcpy(staging.mapped(), packed, packed_bytes);
+  for (const VkBufferCopy& r : ranges) std::memcpy(static_cast<char*>(staging.mapped()) + r.srcOffset, bytes + r.srcOffset, r.size);
   ctx_->submit_and_wait([&](VkCommandBuffer cmd) { vkCmdCopyBuffer(cmd, staging.handle(), buffer_, uint32_t(ranges.size()), ranges.data()); });
 }
 
