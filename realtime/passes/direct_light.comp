@@ -12,7 +12,6 @@
 // light is shadowed by its cube shadow map from the representative point (hard shadows) or,
 // with area_shadow_rays, by rays to points on it (soft shadows: area_visibility).
 #extension GL_GOOGLE_include_directive : require
-#extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
 
 #include "shaders/scene.glsl"
@@ -124,123 +123,52 @@ vec3 particle_light(GpuParticleLight particle, Surface s, vec3 p, vec3 wo) {
   return f * particle.radiance.rgb * e;
 }
 
-// A stage's particles through the light tree, a lightcut (Walter et al. 2005, "Lightcuts",
-// section 3): a cluster whose box lies wholly in front of the surface and is smaller than
-// pc.particle_cut times its distance lights as its count of particles at their centroid; a box
-// wholly behind the surface sends nothing (no particle in it reaches above the plane); the
-// others are opened, down to single particles, lit as in the loop. The centroid makes the
-// error second order: the first-order terms of the particles' offsets from it sum to zero, so
-// a cluster's relative error is of order cut^2. The specular part takes the cluster as one
-// particle at its centroid, and a leaf is its particle at its box's centre.
-// A subgroup walks one cut, the union of its pixels' (a node is opened unless each pixel
-// takes it whole or sees none of it): each pixel still lights only clusters that meet its own
-// criterion, so the bound holds per pixel, and the invocations read the same nodes together
-// instead of scattering over the tree. Every invocation of the subgroup must call these, those
-// whose pixel takes no part (`shading` false) too: they see no node.
-
-// Whether node b, with its particles' centroid and count c, is seen from the pixel at all, and
-// whether whole: the particles it sends at c.xyz.
-float cluster_count(GpuBvhNode b, vec4 c, bool shading, Surface s, vec3 p, out bool opened) {
-  // The box's highest and lowest corner over the surface's plane.
-  bvec3 up = greaterThanEqual(s.n, vec3(0.0));
-  vec3 lo = b.lo - p, hi = b.hi - p;
-  bool seen = shading && dot(s.n, mix(lo, hi, up)) > 0.0;
-  opened = false;
-  if (b.count > 0u) return seen ? 1.0 : 0.0;
-  vec3 size = b.hi - b.lo, to = c.xyz - p;
-  bool whole = seen && dot(s.n, mix(hi, lo, up)) > 0.0 && dot(size, size) < pc.particle_cut * pc.particle_cut * dot(to, to);
-  opened = !subgroupAll(whole || !seen);
-  return whole && !opened ? c.w : 0.0;
-}
-
-vec3 cluster_light(GpuAreaLight l, vec4 c, float count, Surface s, vec3 p, vec3 wo) {
-  GpuParticleLight q;
-  q.centre = vec4(c.xyz, l.particle.w);
-  q.radiance = vec4(l.particle.rgb, 0.0);
-  return count * particle_light(q, s, p, wo);
-}
-
-// The subtree from `root` walked node by node. It needs no stack: in the depth-first layout a
-// node of n particles spans the 2n - 1 nodes from it, so the node after them is where the walk
-// goes on when it is not opened, and its first child, the next node, when it is. But each
-// step waits on the node it loaded before it knows where to go (on an H100, a step costs as
-// much as about four particles lit one by one; bench/results/particle-tree-h100.md).
-vec3 particle_subtree_light(GpuAreaLight l, uint root, bool shading, Surface s, vec3 p, vec3 wo) {
+// A stage's particles through its subtree of the light tree, a lightcut (Walter et al. 2005,
+// "Lightcuts", section 3): a cluster whose box lies wholly in front of the surface and is
+// smaller than pc.particle_cut times its distance lights as its count of particles at their
+// centroid; a box wholly behind the surface sends nothing (no particle in it reaches above the
+// plane); the others are opened, down to single particles, lit as in the loop. The centroid
+// makes the error second order: the first-order terms of the particles' offsets from it sum
+// to zero, so a cluster's relative error is of order cut^2. The specular part takes the
+// cluster as one particle at its centroid, and a leaf is its particle at its box's centre.
+// The walk needs no stack: in the depth-first layout a node of n particles spans the 2n - 1
+// nodes from it, so the node after them is where the walk goes on when it is not opened, and
+// its first child, the next node, when it is. A subgroup walks one cut, the union of its
+// pixels' (a node is opened unless each pixel takes it whole or sees none of it): each pixel
+// still lights only clusters that meet its own criterion, so the bound holds per pixel, and
+// the invocations load the same node together instead of scattering over the tree (on an
+// H100 a third less time at 48k particles, bench/results/particle-tree-h100.md).
+vec3 particle_tree_light(GpuAreaLight l, uint root, Surface s, vec3 p, vec3 wo) {
   vec3 sum = vec3(0.0);
+  float cut2 = pc.particle_cut * pc.particle_cut;
+  bvec3 up = greaterThanEqual(s.n, vec3(0.0));
   uint node = root, end = root + 2u * uint(particle_clusters[root].w) - 1u;
   while (node < end) {
+    GpuBvhNode b = particle_tree[node];
     vec4 c = particle_clusters[node];
-    bool opened;
-    float count = cluster_count(particle_tree[node], c, shading, s, p, opened);
-    if (count > 0.0) sum += cluster_light(l, c, count, s, p, wo);
-    node += opened ? 1u : 2u * uint(c.w) - 1u;
-  }
-  return sum;
-}
-
-// The root of a stage's subtree when its particles are lit through the light tree, else ~0.
-uint particle_tree_root(GpuAreaLight l) {
-  uint slot = uint(l.extent.w);
-  return slot > 0u && lit_particles(l) > 0u ? stage_roots[slot - 1u] : 0xffffffffu;
-}
-
-// The walk in batches: the subgroup keeps the subtrees still to walk on a stack in shared
-// memory, its invocations load as many of them at once as there are invocations, and then
-// all test the batch's nodes one after another from shared memory, pushing the children of
-// those opened. A batch waits on memory once instead of once a node. When the stack is full,
-// an opened node's subtree is walked node by node (particle_subtree_light) instead.
-// GIQ_WALK_STACK (the particle_stack parameter) entries are shared by a workgroup's subgroups:
-// at most 2048, which with the batches' 3.3 kB stays within the 16 kB of shared memory every
-// Vulkan device has.
-const uint WALK_GROUP = 64u;  // invocations of a workgroup (local_size)
-const uint WALK_STACK = GIQ_WALK_STACK;
-shared uint walk_stack[WALK_STACK];
-shared uint walk_ids[WALK_GROUP];
-shared GpuBvhNode walk_nodes[WALK_GROUP];
-shared vec4 walk_clusters[WALK_GROUP];
-
-vec3 particle_tree_light(GpuAreaLight l, uint root, bool shading, Surface s, vec3 p, vec3 wo) {
-  uint width = min(gl_SubgroupSize, WALK_GROUP / gl_NumSubgroups);
-  uint batch = gl_SubgroupID * (WALK_GROUP / gl_NumSubgroups);
-  uint cap = WALK_STACK / gl_NumSubgroups, bottom = gl_SubgroupID * cap;
-  uint lane = gl_SubgroupInvocationID;
-  vec3 sum = vec3(0.0);
-  if (subgroupElect()) walk_stack[bottom] = root;
-  uint top = 1u;  // the same in every invocation
-  subgroupMemoryBarrierShared();
-  subgroupBarrier();
-  while (top > 0u) {
-    uint m = min(top, width);
-    top -= m;
-    if (lane < m) {
-      uint node = walk_stack[bottom + top + lane];
-      walk_ids[batch + lane] = node;
-      walk_nodes[batch + lane] = particle_tree[node];
-      walk_clusters[batch + lane] = particle_clusters[node];
-    }
-    subgroupMemoryBarrierShared();
-    subgroupBarrier();
-    for (uint j = 0u; j < m; ++j) {
-      GpuBvhNode b = walk_nodes[batch + j];
-      vec4 c = walk_clusters[batch + j];
-      bool opened;
-      float count = cluster_count(b, c, shading, s, p, opened);
-      if (count > 0.0) sum += cluster_light(l, c, count, s, p, wo);
-      if (!opened) continue;
-      uint node = walk_ids[batch + j];
-      if (top + 2u > cap) {
-        sum += particle_subtree_light(l, node + 1u, shading, s, p, wo) + particle_subtree_light(l, b.index, shading, s, p, wo);
-        continue;
+    uint next = node + 2u * uint(c.w) - 1u;
+    // The box's highest and lowest corner over the surface's plane.
+    vec3 lo = b.lo - p, hi = b.hi - p;
+    bool seen = dot(s.n, mix(lo, hi, up)) > 0.0;
+    float count = 0.0;  // of particles lit at c.xyz
+    if (b.count > 0u) {
+      if (seen) count = 1.0;
+    } else {
+      vec3 size = b.hi - b.lo, to = c.xyz - p;
+      bool whole = seen && dot(s.n, mix(hi, lo, up)) > 0.0 && dot(size, size) < cut2 * dot(to, to);
+      if (subgroupAll(whole || !seen)) {
+        if (whole) count = c.w;
+      } else {
+        next = node + 1u;  // opened
       }
-      // Its children: the first right after it, the second where its index points.
-      if (subgroupElect()) {
-        walk_stack[bottom + top] = b.index;
-        walk_stack[bottom + top + 1u] = node + 1u;
-      }
-      top += 2u;
     }
-    subgroupMemoryBarrierShared();
-    subgroupBarrier();
+    if (count > 0.0) {
+      GpuParticleLight q;
+      q.centre = vec4(c.xyz, l.particle.w);
+      q.radiance = vec4(l.particle.rgb, 0.0);
+      sum += count * particle_light(q, s, p, wo);
+    }
+    node = next;
   }
   return sum;
 }
@@ -249,8 +177,13 @@ vec3 area_light(GpuAreaLight l, Surface s, vec3 p, vec3 wo) {
   vec3 sum = vec3(0.0);
   vec3 incident = vec3(0.0);  // sum of radiance x irradiance over the triangles (declared shapes)
   int shape = int(l.shape.w);
-  if (uint(l.extent.w) == 0u)
+  uint slot = uint(l.extent.w);
+  if (slot > 0u && lit_particles(l) > 0u) {
+    uint root = stage_roots[slot - 1u];
+    if (root != 0xffffffffu) sum += particle_tree_light(l, root, s, p, wo);
+  } else {
     for (uint k = 0u; k < lit_particles(l); ++k) sum += particle_light(stage_particle(l, k), s, p, wo);
+  }
   uint triangles = lit_triangles(l);
   for (uint k = 0u; k < triangles; ++k) {
     GpuAreaTriangle t = area_triangle(l, k);
@@ -349,29 +282,26 @@ float area_visibility(GpuAreaLight l, uint light, vec3 p_off, vec3 n, vec3 ng, u
 
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-  // Every invocation goes on to the end, those outside the image and those that shade nothing
-  // too: the particles' walk is the subgroup's (particle_tree_light).
-  bool inside = all(lessThan(uvec2(px), pc.size));
-  Receiver r = load_receiver(inside ? px : ivec2(0));
-  bool shading = inside && r.lit;  // the back of a one-sided material is black
+  if (any(greaterThanEqual(uvec2(px), pc.size))) return;
+  Receiver r = load_receiver(px);
   vec3 radiance = vec3(0.0);
-  Surface s;
-  vec3 p = r.x, n = r.n, wo = vec3(0.0), ng = vec3(0.0);
-  float normal_offset = pc.normal_offset;
-  int pcf = int(pc.pcf_radius);
-  if (inside && !r.hit) {
+  if (!r.hit) {
     // The camera sees the environment directly, in the direction of the pixel's centre.
     radiance = environment_radiance(pc.environment, camera_ray_direction(pc.camera, vec2(px) + 0.5, vec2(pc.size)));
-  } else if (shading) {
+  } else if (r.lit) {  // the back of a one-sided material is black
     GpuMaterial mat = scene_materials[r.material];
-    wo = camera_to_eye(pc.camera, p);
+    vec3 p = r.x;
+    vec3 n = r.n;
+    vec3 wo = camera_to_eye(pc.camera, p);
     // The geometric normal on the viewer's side: light from below it would leak through the
     // surface, whatever the (interpolated or mapped) shading normal says; the reference
     // drops it too.
-    ng = receiver_geometric_normal(r);
+    vec3 ng = receiver_geometric_normal(r);
     // Textured materials are looked up at the G-buffer point (deferred texturing).
     if (mat.emissive.w != 0.0) radiance += emission_at(mat, r.tri, r.bary.x, r.bary.y, r.footprint);
-    s = receiver_surface(r);
+    Surface s = receiver_surface(r);
+    float normal_offset = pc.normal_offset;
+    int pcf = int(pc.pcf_radius);
     for (uint i = 0u; i < pc.light_count; ++i) {
       vec3 wi;
       float dist;
@@ -383,17 +313,14 @@ void main() {
                       : shadow_cube(light_shadow_layer[i], scene_lights[i].position.xyz, p, n, normal_offset, pcf);
       radiance += brdf_eval(s, wo, wi) * e * cos_i * vis;
     }
+    for (uint i = 0u; i < pc.area_light_count; ++i) {
+      GpuAreaLight l = area_lights[i];
+      vec3 c = area_light(l, s, p, wo);
+      if (all(equal(c, vec3(0.0)))) continue;
+      radiance += c * (pc.area_shadow_rays > 0u
+                           ? area_visibility(l, i, offset_ray(p, ng), n, ng, uvec2(px))
+                           : shadow_cube(uint(l.position.w), l.position.xyz, p, n, normal_offset, pcf));
+    }
   }
-  for (uint i = 0u; i < pc.area_light_count; ++i) {
-    GpuAreaLight l = area_lights[i];
-    uint root = particle_tree_root(l);
-    vec3 c = root != 0xffffffffu ? particle_tree_light(l, root, shading, s, p, wo) : vec3(0.0);
-    if (!shading) continue;
-    c += area_light(l, s, p, wo);
-    if (all(equal(c, vec3(0.0)))) continue;
-    radiance += c * (pc.area_shadow_rays > 0u
-                         ? area_visibility(l, i, offset_ray(p, ng), n, ng, uvec2(px))
-                         : shadow_cube(uint(l.position.w), l.position.xyz, p, n, normal_offset, pcf));
-  }
-  if (inside) imageStore(out_direct, px, vec4(radiance, 1.0));
+  imageStore(out_direct, px, vec4(radiance, 1.0));
 }

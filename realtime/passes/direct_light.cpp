@@ -28,10 +28,6 @@ std::vector<Parameter> DirectLightPass::parameters() {
           {"particle_cut", 0.05, 0, 1, false,
            "a cluster of glowing particles lights as one, from its centroid, where its box is smaller than this "
            "times its distance (relative error of order its square); 0: every particle alone"},
-          {"particle_stack", 1024, 16, 2048, true,
-           "entries of the stack on which a workgroup's subgroups keep the parts of the light tree still to walk "
-           "(shared memory, 4 bytes each); a walk that fills its share goes on node by node: slower, the same light "
-           "up to rounding"},
           {"area_shadow_rays", 0, 0, 1024, true,
            "0: an area light casts hard shadows from its representative point (its cube shadow map); N: soft "
            "shadows from N rays a pixel to points on the light, the share of its light they reach"},
@@ -64,10 +60,9 @@ DirectLightPass::DirectLightPass(const TechniqueCreateInfo& ci)
                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                    VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-  std::vector<ShaderDefine> defines = feature_defines(ci.scene.features);
-  defines.push_back({"GIQ_WALK_STACK", std::to_string(ci.parameters.get_int("particle_stack"))});
-  pipeline_ = Pipeline::compute(ci.ctx, ci.compiler.compile("passes/direct_light.comp", defines), bindings,
-                                sizeof(gpu::DirectPush));
+  pipeline_ = Pipeline::compute(
+      ci.ctx, ci.compiler.compile("passes/direct_light.comp", feature_defines(ci.scene.features)), bindings,
+      sizeof(gpu::DirectPush));
 }
 
 void DirectLightPass::declare_shadows(const scenes::Scene& scene) {

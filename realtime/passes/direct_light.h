@@ -27,9 +27,8 @@ class GBufferPass;
 class DirectLightPass {
  public:
   // The parameters this pass reads (shadow_map_size, pcf_radius, normal_offset,
-  // cascade_split_lambda, cache_static_shadows, particle_lights, particle_cut, particle_stack,
-  // area_shadow_rays, particle_shadow_map_size, shadow_maps_ray_traced); a technique lists them
-  // among its own.
+  // cascade_split_lambda, cache_static_shadows, particle_lights, particle_cut, area_shadow_rays,
+  // particle_shadow_map_size, shadow_maps_ray_traced); a technique lists them among its own.
   static std::vector<Parameter> parameters();
 
   explicit DirectLightPass(const TechniqueCreateInfo& ci);

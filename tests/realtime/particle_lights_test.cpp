@@ -262,8 +262,7 @@ TEST_F(ParticleLightsTest, ACubeInTheCornerOfLargerLayersGivesTheSameBits) {
 // particle_tree_light) against one by one (particle_cut=0), on the fountain at 10 times its
 // rate (about 1,300 particles at frame 20), lit by nothing else. A cut of 1e-6 opens every
 // cluster but those of coinciding particles: the same sum in another order, within float
-// rounding (1e-5 of a pixel's light), whether the walk keeps its subtrees on its stack or,
-// with a stack too small, walks them node by node. With a cut c, a cluster of particles in a box of
+// rounding (1e-5 of a pixel's light). With a cut c, a cluster of particles in a box of
 // diagonal D < c d, d from its centroid, lights as all of them at the centroid, whose
 // first-order error cancels. The second-order remainder of a point's irradiance cos / r^2,
 // whose Hessian is at most 13 / r^4 times its projected area, with r >= d (1 - c) and a mean
@@ -286,13 +285,10 @@ TEST_F(ParticleLightsTest, ClustersOfParticlesErrOnlyInTheSecondOrder) {
   s.features.animation = false;  // this frame alone
   ASSERT_FALSE(s.features.specular);
   const int size = 64;
-  auto direct = [&](const std::string& cut, const std::string& stack = "1024") {
-    return render(s, "direct", size,
-                  {"shadow_map_size=256", "area_shadow_rays=0", "particle_cut=" + cut, "particle_stack=" + stack});
+  auto direct = [&](const std::string& cut) {
+    return render(s, "direct", size, {"shadow_map_size=256", "area_shadow_rays=0", "particle_cut=" + cut});
   };
   const image::Image exact = direct("0"), opened = direct("0.000001"), coarse = direct("0.2"), fine = direct("0.1");
-  // A stack of 16 entries fills at once, and the walks go on node by node from there.
-  const image::Image opened_unstacked = direct("0.000001", "16");
   double error_coarse = 0.0, error_fine = 0.0;
   size_t lit = 0;
   for (int y = 0; y < size; ++y)
@@ -300,7 +296,6 @@ TEST_F(ParticleLightsTest, ClustersOfParticlesErrOnlyInTheSecondOrder) {
       for (const char* c : {"R", "G", "B"}) {
         const float b = exact.at(c, x, y);
         EXPECT_LE(std::abs(opened.at(c, x, y) - b), 1e-5f * b + 1e-9f) << c << " at " << x << "," << y;
-        EXPECT_LE(std::abs(opened_unstacked.at(c, x, y) - b), 1e-5f * b + 1e-9f) << c << " at " << x << "," << y;
         for (auto [cut, image, sum] : {std::tuple{0.2, &coarse, &error_coarse}, std::tuple{0.1, &fine, &error_fine}}) {
           const double err = std::abs(double(image->at(c, x, y)) - double(b));
           EXPECT_LE(err, 13.0 / 8.0 * cut * cut / std::pow(1.0 - cut, 4.0) * b + 1e-9) << c << " at " << x << "," << y << " cut " << cut;
