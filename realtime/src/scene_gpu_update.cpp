@@ -60,7 +60,6 @@ bool SceneGpu::refit_meshes(const scenes::Scene& posed, const std::vector<uint32
 void SceneGpu::upload_meshes(const scenes::Scene& posed, const std::vector<uint32_t>& meshes) {
   using namespace gpu;
   // Rows: the deformation pass writes its meshes' own.
-  std::vector<VkBufferCopy> rows;
   for (uint32_t m : meshes) {
     if (deformer_ && posed.meshes[m].deformation) continue;
     const uint32_t first = geometry_.mesh_first_vertex[m], n = uint32_t(posed.meshes[m].positions.size());
@@ -68,9 +67,8 @@ void SceneGpu::upload_meshes(const scenes::Scene& posed, const std::vector<uint3
       vertices_host_[2 * size_t(i)] = glm::vec4(geometry_.positions[i], 1.0f);
       vertices_host_[2 * size_t(i) + 1] = glm::vec4(geometry_.normals[i], 0.0f);
     }
-    rows.push_back({uint64_t(first) * sizeof(GpuVertex), uint64_t(first) * sizeof(GpuVertex), uint64_t(n) * sizeof(GpuVertex)});
   }
-  vertices_.upload_ranges(vertices_host_.data(), rows);
+  vertices_.upload_ranges(vertices_host_.data(), mesh_rows(posed, meshes));
   if (needs_textures(posed.features)) {
     // Tangents turn with their meshes; the rest of a vertex's extras does not move.
     std::vector<GpuVertexExtra> packed;
