@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -33,6 +34,22 @@ uint64_t unsigned_property(const Document& d, const nlohmann::json& o, const cha
     if (x >= 0.0 && x < 9.0e15 && x == double(uint64_t(x))) return uint64_t(x);
   }
   throw InputError(d.file, where + "." + key, "is " + v->dump() + "; expected a non-negative integer");
+}
+
+std::string stand_in(const std::vector<unsigned char>& bytes) {
+  if (bytes.empty()) return "the file is empty";
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), std::min<size_t>(bytes.size(), 256));
+  // git-lfs's pointer format (docs/spec.md in git-lfs): its first line names the spec.
+  if (text.starts_with("version https://git-lfs.github.com/spec/"))
+    return "the file is a Git LFS pointer, not the data itself: fetch it with 'git lfs pull'";
+  const size_t first = text.find_first_not_of(" \t\r\n");
+  if (first != std::string_view::npos && text[first] == '<') {
+    std::string lower(text.substr(first, 64));
+    for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (lower.starts_with("<!doctype html") || lower.starts_with("<html") || lower.starts_with("<?xml"))
+      return "the file is an HTML or XML page, not the data itself (a web page saved in place of the file?)";
+  }
+  return "";
 }
 
 namespace {
@@ -304,9 +321,12 @@ void check_binary_data(Document& d, Hasher& hash) {
     if (!uri->is_string()) throw InputError(d.file, where + ".uri", "must be a string");
     std::vector<unsigned char> data;
     const std::string path = resolve_uri(d, uri->get<std::string>(), where + ".uri", data);
-    if (data.size() != declared)
+    if (data.size() != declared) {
+      const std::string what = stand_in(data);
       throw InputError(d.file, where + ".byteLength", "declares " + std::to_string(declared) + " bytes but '" + uri->get<std::string>().substr(0, 64) +
-                                                          "' holds " + std::to_string(data.size()) + "; they must be equal");
+                                                          "' holds " + std::to_string(data.size()) + "; they must be equal" +
+                                                          (what.empty() ? "" : "; " + what));
+    }
     if (!path.empty()) hash.add(path.substr(d.folder.string().size())).add(data.data(), data.size());
   }
   const json& views = array_of_objects(d, "bufferViews");
@@ -500,6 +520,28 @@ Document read_document(const fs::path& path) {
   d.folder = fs::canonical(fs::absolute(path, ec).parent_path(), ec);
   if (ec) throw InputError(d.file, "", "cannot resolve the scene's folder: " + ec.message());
   d.binary = d.bytes.size() >= 4 && std::memcmp(d.bytes.data(), "glTF", 4) == 0;
+  if (!d.binary) {
+    // A file that is neither binary glTF nor JSON is refused with what it is, not in the JSON
+    // parser's words; JSON named .glb still loads.
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const bool glb = ext == ".glb";
+    const std::string what = stand_in(d.bytes);
+    if (!what.empty())
+      throw InputError(d.file, glb ? "glb header.magic" : "JSON",
+                       what + (glb ? "; expected binary glTF, beginning with the 4 bytes \"glTF\"" : "; expected a glTF 2.0 JSON object"));
+    size_t at = d.bytes.size() >= 3 && std::memcmp(d.bytes.data(), "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;  // a UTF-8 byte-order mark
+    while (at < d.bytes.size() && std::isspace(d.bytes[at])) ++at;
+    if (glb && (at == d.bytes.size() || d.bytes[at] != '{')) {
+      std::string begins;
+      for (size_t i = 0; i < std::min<size_t>(d.bytes.size(), 4); ++i) {
+        char c[8];
+        std::snprintf(c, sizeof c, std::isprint(d.bytes[i]) ? "%c" : "\\x%02x", d.bytes[i]);
+        begins += c;
+      }
+      throw InputError(d.file, "glb header.magic", "begins with \"" + begins + "\"; expected binary glTF, beginning with the 4 bytes \"glTF\"");
+    }
+  }
   if (d.binary) {
     read_glb_layout(d);
   } else {

@@ -45,6 +45,11 @@ const nlohmann::json* member(const nlohmann::json& o, const char* key);
 uint64_t unsigned_property(const Document& d, const nlohmann::json& o, const char* key, const std::string& where,
                            bool required, uint64_t fallback = 0);
 
+// What a file holds instead of the data it stands for, when that is a common mistake: nothing
+// ("the file is empty"), a Git LFS pointer (a repository cloned without its LFS objects), or
+// an HTML page (a web page saved in place of the file); empty when none of them.
+std::string stand_in(const std::vector<unsigned char>& bytes);
+
 // Reads `path`, checks the container, the JSON and every buffer and image URI, and computes
 // the content hash. Throws InputError.
 Document read_document(const std::filesystem::path& path);

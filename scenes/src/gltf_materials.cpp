@@ -192,8 +192,10 @@ class TextureTable : public TextureDecoding {
     const int n = int(bytes.size());
     Header h;
     int comp = 0;
-    if (!stbi_info_from_memory(bytes.data(), n, &h.width, &h.height, &comp))
-      ctx_.fail(where, "cannot decode the image (" + decode_failure() + "); expected a PNG or JPEG file");
+    if (!stbi_info_from_memory(bytes.data(), n, &h.width, &h.height, &comp)) {
+      const std::string what = stand_in(bytes);
+      ctx_.fail(where, (what.empty() ? "cannot decode the image (" + decode_failure() + ")" : what) + "; expected a PNG or JPEG file");
+    }
     if (h.width < 1 || h.height < 1 || h.width > kMaxImageSide || h.height > kMaxImageSide || int64_t(h.width) * h.height > kMaxImageTexels)
       ctx_.fail(where, std::to_string(h.width) + "x" + std::to_string(h.height) + " image; expected sides of 1 to " + std::to_string(kMaxImageSide) +
                            " pixels and at most " + std::to_string(kMaxImageTexels) + " pixels in all");

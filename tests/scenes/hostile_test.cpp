@@ -9,6 +9,7 @@
 
 #include "giq/base/error.h"
 #include "giq/scenes/scene.h"
+#include "support/scratch.h"
 #include "test_paths.h"
 
 namespace giq::scenes {
@@ -52,6 +53,39 @@ TEST(Hostile, EachFileGivesItsError) {
       EXPECT_EQ(what.find('\n'), std::string::npos);
       EXPECT_EQ(what.rfind(path.string() + ": " + field + ": ", 0), 0u) << what;
     }
+  }
+}
+
+// What arrives in place of a model is named in the error, not left to the JSON or image
+// decoder's words.
+TEST(Hostile, StandInsSayWhatTheyAre) {
+  const std::map<std::string, std::string> says = {
+      {"empty.glb", "the file is empty"},
+      {"lfs_pointer.glb", "Git LFS pointer"},
+      {"lfs_buffer.gltf", "Git LFS pointer"},
+      {"lfs_texture.gltf", "Git LFS pointer"},
+      {"html_page.gltf", "an HTML or XML page"},
+      {"zip_named_glb.glb", "begins with \"PK\\x03\\x04\""},
+  };
+  for (const auto& [name, phrase] : says) {
+    SCOPED_TRACE(name);
+    try {
+      load(test::data("hostile/" + name));
+      ADD_FAILURE() << "loaded without error";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+    }
+  }
+}
+
+// glTF's JSON form under a .glb name, with or without a byte-order mark, is still read.
+TEST(Hostile, JsonNamedGlbLoads) {
+  const giq::test::ScratchDir dir("hostile_json_glb");
+  const std::string json = giq::test::slurp(test::data("transforms.gltf"));
+  for (const std::string& prefix : {std::string(), std::string("\xEF\xBB\xBF\n ")}) {
+    const std::filesystem::path path = dir.path / "transforms.glb";
+    std::ofstream(path, std::ios::binary) << prefix << json;
+    EXPECT_EQ(load(path).meshes.size(), load(test::data("transforms.gltf")).meshes.size());
   }
 }
 

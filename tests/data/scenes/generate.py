@@ -655,6 +655,11 @@ def minimal(**patch):
     return d
 
 
+# A Git LFS pointer (git-lfs's docs/spec.md) to a file that is not there.
+LFS_POINTER = (b"version https://git-lfs.github.com/spec/v1\n"
+               b"oid sha256:4d7a214614ab2935c943f9e0ff69d22eadbb8f32b1258daaa5e2ca24d17e2393\nsize 162852\n")
+
+
 def hostile():
     cases = []  # (file name, expected field, content: dict = JSON, bytes = raw)
 
@@ -839,6 +844,15 @@ def hostile():
     bad_chunk = bytearray(tri_glb)
     struct.pack_into("<I", bad_chunk, 12, 1 << 30)  # JSON chunk length far beyond the file
     case("bad_chunk.glb", "glb chunk[0].chunkLength", bytes(bad_chunk))
+
+    # What arrives in place of a model: nothing, a Git LFS pointer (a clone without its LFS
+    # objects), a web page, another format under the model's name.
+    case("empty.glb", "glb header.magic", b"")
+    case("lfs_pointer.glb", "glb header.magic", LFS_POINTER)
+    case("html_page.gltf", "JSON", b'<!DOCTYPE html>\n<html lang="en">\n<head><title>Not Found</title></head>\n<body>404</body>\n</html>\n')
+    case("zip_named_glb.glb", "glb header.magic", b"PK\x03\x04\x14\x00\x00\x00")
+    case("lfs_buffer.gltf", "buffers[0].byteLength", minimal(a=setp(("buffers", 0, "uri"), "lfs_buffer.bin")))
+    case("lfs_texture.gltf", "images[0]", minimal(a=texture(LFS_POINTER)))
     return cases
 
 
@@ -879,6 +893,8 @@ def main():
     if os.path.lexists(link):
         os.remove(link)
     os.symlink("../external data.bin", link)
+    with open(os.path.join(HOSTILE, "lfs_buffer.bin"), "wb") as f:
+        f.write(LFS_POINTER)
     with open(os.path.join(HOSTILE, "expected.tsv"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
