@@ -3,31 +3,39 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdint>
+#include <utility>
 
 namespace giq::scenes {
 namespace {
 
-// Maps an integer texel coordinate (held in a double so that any finite uv is safe) onto
-// [0, n) following the glTF sampler wrap mode (glTF 2.0 spec, 5.26 "Sampler": wrapS/wrapT
-// take the OpenGL REPEAT, CLAMP_TO_EDGE and MIRRORED_REPEAT meanings).
-int wrap_index(double i, int n, Wrap mode) {
-  const double nd = double(n);
-  double w = 0.0;
+// Maps an integer texel coordinate onto [0, n) following the glTF sampler wrap mode (glTF 2.0
+// spec, 5.26 "Sampler": wrapS/wrapT take the OpenGL REPEAT, CLAMP_TO_EDGE and MIRRORED_REPEAT
+// meanings). The coordinate is floor(uv x size) with |uv| <= 1e6, so it fits int64 and the
+// modulo is exact (and cheaper than floating-point division, which texture lookups did four
+// times each).
+int wrap_index(int64_t i, int n, Wrap mode) {
   switch (mode) {
-    case Wrap::Repeat:
-      w = i - nd * std::floor(i / nd);
-      break;
+    case Wrap::Repeat: {
+      const int64_t m = i % n;
+      return int(m < 0 ? m + n : m);
+    }
     case Wrap::ClampToEdge:
-      w = std::clamp(i, 0.0, nd - 1.0);
-      break;
+      return int(std::clamp<int64_t>(i, 0, n - 1));
     case Wrap::MirroredRepeat: {
-      const double m = i - 2.0 * nd * std::floor(i / (2.0 * nd));
-      w = m < nd ? m : 2.0 * nd - 1.0 - m;
-      break;
+      int64_t m = i % (2 * int64_t(n));
+      if (m < 0) m += 2 * int64_t(n);
+      return int(m < n ? m : 2 * int64_t(n) - 1 - m);
     }
   }
-  // Rounding in the divisions above can land exactly on n for huge |i|.
-  return std::clamp(int(w), 0, n - 1);
+  return 0;
+}
+
+// The wrapped indices of i and i + 1, the two texels a bilinear lookup blends along one axis.
+std::pair<int, int> wrap_pair(int64_t i, int n, Wrap mode) {
+  const int a = wrap_index(i, n, mode);
+  if (mode == Wrap::Repeat) return {a, a + 1 == n ? 0 : a + 1};
+  return {a, wrap_index(i + 1, n, mode)};
 }
 
 }  // namespace
@@ -73,16 +81,16 @@ glm::vec4 Texture::sample(glm::vec2 uv) const {
   const double u = std::isfinite(uv.x) ? std::clamp(double(uv.x), -1e6, 1e6) : 0.0;
   const double v = std::isfinite(uv.y) ? std::clamp(double(uv.y), -1e6, 1e6) : 0.0;
   if (filter == Filter::Nearest) {
-    const int x = wrap_index(std::floor(u * width), width, wrap_s);
-    const int y = wrap_index(std::floor(v * height), height, wrap_t);
+    const int x = wrap_index(int64_t(std::floor(u * width)), width, wrap_s);
+    const int y = wrap_index(int64_t(std::floor(v * height)), height, wrap_t);
     return texel(x, y);
   }
   // Bilinear between the four nearest texel centres, which sit at (i + 0.5) / size.
   const double x = u * width - 0.5, y = v * height - 0.5;
   const double x0 = std::floor(x), y0 = std::floor(y);
   const float fx = float(x - x0), fy = float(y - y0);
-  const int xa = wrap_index(x0, width, wrap_s), xb = wrap_index(x0 + 1.0, width, wrap_s);
-  const int ya = wrap_index(y0, height, wrap_t), yb = wrap_index(y0 + 1.0, height, wrap_t);
+  const auto [xa, xb] = wrap_pair(int64_t(x0), width, wrap_s);
+  const auto [ya, yb] = wrap_pair(int64_t(y0), height, wrap_t);
   const glm::vec4 top = texel(xa, ya) * (1.0f - fx) + texel(xb, ya) * fx;
   const glm::vec4 bottom = texel(xa, yb) * (1.0f - fx) + texel(xb, yb) * fx;
   return top * (1.0f - fy) + bottom * fy;

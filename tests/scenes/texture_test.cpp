@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "giq/scenes/texture.h"
 
@@ -53,6 +56,53 @@ TEST(Texture, RowsRunAlongV) {
   t.filter = Filter::Nearest;
   EXPECT_FLOAT_EQ(t.sample({0.5f, 0.1f}).g, 0.25f);  // first row = v 0
   EXPECT_FLOAT_EQ(t.sample({0.5f, 0.9f}).g, 0.75f);
+}
+
+// Every wrap mode against OpenGL's definition (4.6 core, 8.14.2, Table 8.20; glTF's sampler
+// takes its meaning), on a 5 x 3 texture whose texels hold their own indices: nearest lookups
+// at texel centres from -3 to 3 periods and near the 1e6 bound on |uv|, bilinear halfway
+// between neighbouring centres.
+TEST(Texture, WrapModesFollowOpenGlsDefinition) {
+  constexpr int w = 5, h = 3;
+  std::vector<glm::vec4> texels;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) texels.emplace_back(float(x), float(y), 0.0f, 1.0f);
+  const auto positive_mod = [](int64_t a, int64_t n) { return ((a % n) + n) % n; };
+  const auto wrapped = [&](int64_t i, int64_t n, Wrap mode) -> int64_t {
+    switch (mode) {
+      case Wrap::Repeat: return positive_mod(i, n);
+      case Wrap::ClampToEdge: return std::clamp<int64_t>(i, 0, n - 1);
+      case Wrap::MirroredRepeat: {
+        const int64_t a = positive_mod(i, 2 * n) - n;
+        return (n - 1) - (a >= 0 ? a : -(1 + a));
+      }
+    }
+    return -1;
+  };
+  std::vector<int64_t> indices;
+  for (int64_t i = -3 * 2 * w; i <= 3 * 2 * w; ++i) indices.push_back(i);
+  for (int64_t k : {1, 2, 3, 7}) indices.push_back(1000000 * w - k), indices.push_back(-1000000 * w + k - 1);
+  for (Wrap mode : {Wrap::Repeat, Wrap::ClampToEdge, Wrap::MirroredRepeat}) {
+    Texture t;
+    t.assign(w, h, texels);
+    t.wrap_s = t.wrap_t = mode;
+    t.filter = Filter::Nearest;
+    for (int64_t i : indices) {
+      const glm::vec4 c = t.sample({float((double(i) + 0.5) / w), 0.5f / h});
+      EXPECT_EQ(c.x, float(wrapped(i, w, mode))) << "u index " << i << " mode " << int(mode);
+      const int64_t j = std::abs(i) < 1000 ? i : (i > 0 ? 1000000 * h - 1 : -1000000 * h);  // within |v| <= 1e6
+      EXPECT_EQ(t.sample({0.5f / w, float((double(j) + 0.5) / h)}).y, float(wrapped(j, h, mode))) << "v index " << j << " mode " << int(mode);
+    }
+    t.filter = Filter::Linear;
+    for (int64_t i = -3 * 2 * w; i <= 3 * 2 * w; ++i) {
+      // Halfway between centres i and i + 1 along u, on row 1's centre along v; u rounded to
+      // float is off by at most |u| 2^-24, a blend weight by w times that.
+      const glm::vec4 c = t.sample({float(double(i + 1) / w), 1.5f / h});
+      EXPECT_NEAR(c.x, 0.5f * float(wrapped(i, w, mode)) + 0.5f * float(wrapped(i + 1, w, mode)), (w - 1) * 64 * 0x1p-24)
+          << "u index " << i << " mode " << int(mode);
+      EXPECT_NEAR(c.y, 1.0f, 1e-6f);
+    }
+  }
 }
 
 TEST(Texture, HostileCoordinatesStayInside) {
