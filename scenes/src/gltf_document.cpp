@@ -257,7 +257,17 @@ std::string resolve_uri(Document& d, const std::string& uri, const std::string& 
   if (ec || !inside(d.folder, target))
     throw InputError(d.file, field, "URI '" + uri + "' resolves outside the scene's folder '" + d.folder.string() + "'; refused");
   auto it = d.files.find(target.string());
-  if (it == d.files.end()) it = d.files.emplace(target.string(), read_file(d.file, target, field)).first;
+  if (it == d.files.end()) {
+    // Files saved under their URI's undecoded name ("a%20b.png" on disk for the URI
+    // "a%20b.png", which names "a b.png") are common where models pass through web tools: read
+    // in the decoded file's place, with a warning, when only the literal one exists.
+    const fs::path literal = fs::weakly_canonical(d.folder / uri, ec);
+    const bool fallback = decoded != uri && !fs::exists(target, ec) && !ec && inside(d.folder, literal) && fs::is_regular_file(literal, ec);
+    it = d.files.emplace(target.string(), read_file(d.file, fallback ? literal : target, field)).first;
+    if (fallback)
+      d.warnings.push_back(field + ": no file '" + decoded + "' (the URI percent-decoded, as glTF URIs are); read '" + uri +
+                           "' instead, the file named exactly as the URI is written");
+  }
   data = it->second;
   return target.string();
 }

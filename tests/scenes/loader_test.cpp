@@ -526,5 +526,37 @@ TEST(Loader, ContentHashCoversReferencedFiles) {
   fs::remove_all(dir);
 }
 
+// A buffer saved under its URI's undecoded name ("external%20data.bin" on disk for the URI
+// "external%20data.bin", which names "external data.bin") is read with a warning; where the
+// decoded name exists too, it is the one read.
+TEST(Loader, FileNamedAsItsUndecodedUriIsReadWithAWarning) {
+  namespace fs = std::filesystem;
+  const Scene original = load(data("external.gltf"));
+  EXPECT_TRUE(original.warnings.empty());
+  const fs::path dir = fs::temp_directory_path() / ("giq_scenes_literal_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy_file(data("external.gltf"), dir / "external.gltf");
+  fs::copy_file(data("external data.bin"), dir / "external%20data.bin");
+  const Scene literal = load(dir / "external.gltf");
+  ASSERT_EQ(literal.meshes.size(), original.meshes.size());
+  EXPECT_EQ(literal.meshes[0].positions, original.meshes[0].positions);
+  EXPECT_EQ(literal.content_hash, original.content_hash);  // the same bytes under the same URI
+  ASSERT_EQ(literal.warnings.size(), 1u);
+  EXPECT_NE(literal.warnings[0].find("buffers[0].uri: no file 'external data.bin'"), std::string::npos) << literal.warnings[0];
+  // The decoded name wins where both exist: one byte too many there fails the byteLength check.
+  {
+    std::ofstream f(dir / "external data.bin", std::ios::binary);
+    f << std::ifstream(data("external data.bin"), std::ios::binary).rdbuf() << '\0';
+  }
+  try {
+    load(dir / "external.gltf");
+    ADD_FAILURE() << "loaded the literal file where the decoded one exists";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "buffers[0].byteLength") << e.what();
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace giq::scenes
