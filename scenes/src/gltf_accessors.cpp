@@ -182,9 +182,18 @@ AccessorData read_accessor(const Context& ctx, int index, const std::string& fie
 
   if (auto it = ctx.decoded_accessors.find(index); it != ctx.decoded_accessors.end()) {
     if (a.sparse.isSparse) ctx.fail(where + ".sparse", "is given for an accessor of a Draco-compressed primitive; expected none");
-    if (it->second.count != a.count || it->second.components != comps)
-      ctx.fail(where + ".count", "is " + std::to_string(a.count) + " " + type_name(a.type) + "; the Draco data decodes to " +
-                                     std::to_string(it->second.count) + " elements of " + std::to_string(it->second.components) + " components");
+    if (it->second.components != comps)
+      ctx.fail(where + ".type", "is " + std::string(type_name(a.type)) + "; the Draco data decodes to elements of " +
+                                    std::to_string(it->second.components) + " components");
+    // The extension asks that the accessors match the decompressed data, and lets a loader
+    // render that data directly; encoders that dedupe or split vertices differently leave
+    // counts that do not match (a Rhino exporter's 80004 for 80124). The decoded points and
+    // faces are used, with a warning; attributes outside the Draco data (morph targets,
+    // uncompressed sets) must still have the decoded count, which the primitive's checks
+    // require.
+    if (it->second.count != a.count)
+      ctx.warn("draco count", where + ".count is " + std::to_string(a.count) + "; the Draco data decodes to " +
+                                  std::to_string(it->second.count) + " elements, which are used");
     return it->second;
   }
   AccessorData out;

@@ -123,7 +123,8 @@ std::filesystem::path write_meshopt(const Grid& g, const std::filesystem::path& 
 }
 
 // The Draco layout: one buffer view holds the mesh; the primitive's accessors have no view.
-std::filesystem::path write_draco(const Grid& g, const std::filesystem::path& dir, bool damage = false) {
+// `miscount` is added to every accessor's count, which then no longer matches the data.
+std::filesystem::path write_draco(const Grid& g, const std::filesystem::path& dir, bool damage = false, size_t miscount = 0) {
   draco::TriangleSoupMeshBuilder b;
   const int faces = int(g.idx.size() / 3);
   b.Start(faces);
@@ -156,16 +157,16 @@ std::filesystem::path write_draco(const Grid& g, const std::filesystem::path& di
   const int v = d.view({{"buffer", 0}, {"byteOffset", d.append(bytes.data(), bytes.size())}, {"byteLength", bytes.size()}});
   const size_t points = back->num_points();
   auto placeholder = [&](int ct, const char* type, bool normalized) {
-    return d.accessor({{"componentType", ct}, {"count", points}, {"type", type}, {"normalized", normalized}});
+    return d.accessor({{"componentType", ct}, {"count", points + miscount}, {"type", type}, {"normalized", normalized}});
   };
   const int p = placeholder(5126, "VEC3", false), nm = placeholder(5126, "VEC3", false), uv = placeholder(5126, "VEC2", false),
             c = placeholder(5121, "VEC4", true);
-  const int i = d.accessor({{"componentType", 5125}, {"count", back->num_faces() * 3}, {"type", "SCALAR"}});
+  const int i = d.accessor({{"componentType", 5125}, {"count", back->num_faces() * 3 + miscount}, {"type", "SCALAR"}});
   const auto id = [&](int att) { return mesh->attribute(att)->unique_id(); };
   d.primitive({{"POSITION", p}, {"NORMAL", nm}, {"TEXCOORD_0", uv}, {"COLOR_0", c}}, i,
               {{"KHR_draco_mesh_compression",
                 {{"bufferView", v}, {"attributes", {{"POSITION", id(ap)}, {"NORMAL", id(an)}, {"TEXCOORD_0", id(at)}, {"COLOR_0", id(ac)}}}}}});
-  return d.write(dir, damage ? "damaged_draco.gltf" : "draco.gltf", false);
+  return d.write(dir, damage ? "damaged_draco.gltf" : miscount ? "miscounted_draco.gltf" : "draco.gltf", false);
 }
 
 // A triangle's corners in world space, with their attributes.
@@ -248,6 +249,18 @@ TEST_F(Compression, DracoLoadsWithinItsQuantisation) {
   // 16-bit positions over the grid's largest side (2 m): within one step of 2/65535 m, as
   // the quantisation rounds to the nearest of them; the unquantised rest exactly.
   expect_same_triangles(packed, plain, 2.0 / 65535.0, 0.0f);
+}
+
+// Accessors whose counts do not match the Draco data (as some encoders write them): the
+// decoded points and faces are what the extension describes, so they are used, with a warning.
+TEST_F(Compression, DracoCountsThatDoNotMatchTheDataTakeTheDecodedData) {
+  const Scene plain = load(write_plain(grid, dir));
+  const Scene packed = load(write_draco(grid, dir, false, 7));
+  expect_same_triangles(packed, plain, 2.0 / 65535.0, 0.0f);
+  ASSERT_FALSE(packed.warnings.empty());
+  EXPECT_NE(packed.warnings[0].find("the Draco data decodes to"), std::string::npos) << packed.warnings[0];
+  EXPECT_NE(packed.warnings[0].find("(5 times in the file)"), std::string::npos) << packed.warnings[0];  // 4 attributes and the indices
+  EXPECT_TRUE(load(write_draco(grid, dir)).warnings.empty());
 }
 
 // The same grid compressed once and kept in tests/data (as .glb files, a self-contained seed
