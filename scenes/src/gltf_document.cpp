@@ -483,13 +483,59 @@ std::vector<unsigned char> with_json(const Document& d, std::string text) {
   return out;
 }
 
+// The JSON text with every byte of its strings that is not part of a well-formed UTF-8
+// sequence (RFC 3629, section 4: no overlong forms, no surrogates, nothing above U+10FFFF), and
+// every raw control character and every backslash that starts no escape (RFC 8259, section 7),
+// replaced by U+FFFD; the count replaced. Bytes outside strings are left to the parser.
+// Exporters write names in legacy encodings (whose two-byte characters may end in 0x5C, a
+// backslash); names are all such strings hold that giq reads, so the file is not refused.
+size_t repair_strings(std::string& text) {
+  std::string out;     // built only once something is replaced
+  size_t copied = 0;   // text before this is in `out`
+  size_t replaced = 0;
+  bool in_string = false;
+  const auto byte = [&](size_t i) { return i < text.size() ? static_cast<unsigned char>(text[i]) : 0u; };
+  for (size_t i = 0; i < text.size();) {
+    const unsigned char c = byte(i);
+    const bool escape = in_string && c == '\\';
+    if (escape && std::strchr("\"\\/bfnrtu", int(byte(i + 1))) != nullptr && byte(i + 1) != 0) {
+      i += 2;  // an escape (a \u's digits are the parser's to judge)
+      continue;
+    }
+    if (!escape && (!in_string || (c >= 0x20 && c < 0x80))) {
+      if (c == '"') in_string = !in_string;
+      ++i;
+      continue;
+    }
+    // A sequence's length from its lead byte, and the range its second byte must fall in.
+    size_t n = 0;
+    unsigned lo = 0x80, hi = 0xBF;
+    if (c >= 0xC2 && c <= 0xDF) n = 2;
+    else if (c >= 0xE0 && c <= 0xEF) n = 3, lo = c == 0xE0 ? 0xA0 : 0x80, hi = c == 0xED ? 0x9F : 0xBF;
+    else if (c >= 0xF0 && c <= 0xF4) n = 4, lo = c == 0xF0 ? 0x90 : 0x80, hi = c == 0xF4 ? 0x8F : 0xBF;
+    bool ok = n > 0 && byte(i + 1) >= lo && byte(i + 1) <= hi;
+    for (size_t k = 2; ok && k < n; ++k) ok = byte(i + k) >= 0x80 && byte(i + k) <= 0xBF;
+    if (ok) {
+      i += n;
+      continue;
+    }
+    out.append(text, copied, i - copied);
+    out += "\xEF\xBF\xBD";
+    copied = ++i;
+    ++replaced;
+  }
+  if (replaced) text = out.append(text, copied, std::string::npos);
+  return replaced;
+}
+
 // What glTF allows but tinygltf 2.7 refuses, patched in the copy it parses; nothing patched
 // is read from that copy (the views and accessors concerned are decoded instead):
 //  - a buffer without data (a placeholder) would be refused, or in a .glb given the BIN
 //    chunk: it gets three zero bytes;
 //  - an indices accessor without a buffer view (a Draco-compressed primitive's) would be
 //    refused: it gets a one-byte view of such a buffer.
-// The patched JSON, or nothing when the document needs no patch (the usual case: no copy).
+// The patched JSON (the repaired one when only its strings were repaired), or nothing when the
+// document needs no patch (the usual case: no copy).
 std::optional<json> patch_for_tinygltf(const Document& d) {
   std::vector<size_t> viewless;
   const json* meshes = member(d.json, "meshes");
@@ -507,7 +553,7 @@ std::optional<json> patch_for_tinygltf(const Document& d) {
       }
     }
   const bool placeholders = std::find(d.placeholder_buffers.begin(), d.placeholder_buffers.end(), true) != d.placeholder_buffers.end();
-  if (!placeholders && viewless.empty()) return std::nullopt;
+  if (!placeholders && viewless.empty()) return d.strings_repaired ? std::optional<json>(d.json) : std::nullopt;
   const json kEmpty = {{"uri", "data:application/octet-stream;base64,AAAA"}, {"byteLength", 3}};
   json j = d.json;
   for (size_t i = 0; i < d.placeholder_buffers.size(); ++i)
@@ -558,9 +604,14 @@ Document read_document(const fs::path& path) {
     d.json_offset = 0;
     d.json_size = d.bytes.size();
   }
-  const char* text = reinterpret_cast<const char*>(d.bytes.data()) + d.json_offset;
+  std::string text(reinterpret_cast<const char*>(d.bytes.data()) + d.json_offset, d.json_size);
+  if (const size_t replaced = repair_strings(text)) {
+    d.strings_repaired = true;
+    d.warnings.push_back("JSON: " + std::to_string(replaced) + " byte" + (replaced == 1 ? "" : "s") +
+                         " in strings that are not UTF-8 (or raw control characters) replaced by U+FFFD; glTF's JSON is UTF-8");
+  }
   // Depth-limited before tinygltf sees it: its conversion of `extras` recurses.
-  d.json = parse_json(std::string_view(text, d.json_size), d.file);
+  d.json = parse_json(text, d.file);
   if (!d.json.is_object()) throw InputError(d.file, "JSON", "top level must be an object");
   const json* asset = member(d.json, "asset");
   const json* version = asset ? member(*asset, "version") : nullptr;

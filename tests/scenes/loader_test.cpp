@@ -10,6 +10,7 @@
 
 #include "giq/base/error.h"
 #include "giq/scenes/scene.h"
+#include "support/scratch.h"
 #include "test_paths.h"
 
 namespace giq::scenes {
@@ -555,6 +556,40 @@ TEST(Loader, FileNamedAsItsUndecodedUriIsReadWithAWarning) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.field(), "buffers[0].byteLength") << e.what();
   }
+  fs::remove_all(dir);
+}
+
+// Names in a legacy encoding (glTF's JSON is UTF-8): bytes of no UTF-8 sequence, a raw control
+// character and a backslash that starts no escape (GBK's two-byte characters may end in 0x5C)
+// are each replaced by U+FFFD, with a warning that counts them; well-formed UTF-8 (two-, three-
+// and four-byte sequences) and escapes are kept as they are.
+TEST(Loader, StringsThatAreNotUtf8AreRepaired) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("giq_scenes_utf8_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string json = giq::test::slurp(data("transforms.gltf"));
+  const auto with_name = [&](const std::string& name) {
+    // The first node's name, which its mesh takes.
+    const size_t key = json.find("\"name\"", json.find("\"nodes\""));
+    const size_t open = json.find('"', json.find(':', key)) + 1, close = json.find('"', open);
+    std::string text = json;
+    text.replace(open, close - open, name);
+    std::ofstream(dir / "named.gltf", std::ios::binary) << text;
+    return load(dir / "named.gltf");
+  };
+  const Scene good = with_name("Caf\xC3\xA9 \xE2\x82\xAC \xF0\x9F\x94\xA5 \\\" \\u00e9");
+  EXPECT_TRUE(good.warnings.empty());
+  EXPECT_EQ(good.meshes[0].name, "Caf\xC3\xA9 \xE2\x82\xAC \xF0\x9F\x94\xA5 \" \xC3\xA9");
+  // 0xF3 0x77: a lead byte without its continuation; 0x17: a control character; 0xB9 0x5C 0x17:
+  // GBK's two-byte character ending in a backslash, then what would be escaped; 0xC0 0x80: an
+  // overlong NUL; 0xED 0xA0 0x80: a surrogate.
+  const Scene bad = with_name("M\xF3w\x17 \xB9\\\x17 \xC0\x80 \xED\xA0\x80");
+  ASSERT_EQ(bad.warnings.size(), 1u);
+  EXPECT_EQ(bad.warnings[0].rfind("JSON: 10 bytes in strings that are not UTF-8", 0), 0u) << bad.warnings[0];
+  const std::string r = "\xEF\xBF\xBD";
+  EXPECT_EQ(bad.meshes[0].name, "M" + r + "w" + r + " " + r + r + r + " " + r + r + " " + r + r + r);
+  EXPECT_EQ(bad.meshes.size(), good.meshes.size());
   fs::remove_all(dir);
 }
 
