@@ -261,8 +261,9 @@ std::string resolve_uri(Document& d, const std::string& uri, const std::string& 
     // Files saved under their URI's undecoded name ("a%20b.png" on disk for the URI
     // "a%20b.png", which names "a b.png") are common where models pass through web tools: read
     // in the decoded file's place, with a warning, when only the literal one exists.
-    const fs::path literal = fs::weakly_canonical(d.folder / uri, ec);
-    const bool fallback = decoded != uri && !fs::exists(target, ec) && !ec && inside(d.folder, literal) && fs::is_regular_file(literal, ec);
+    std::error_code lec;
+    const fs::path literal = decoded != uri ? fs::weakly_canonical(d.folder / uri, lec) : fs::path();
+    const bool fallback = !literal.empty() && !lec && !fs::exists(target, ec) && inside(d.folder, literal) && fs::is_regular_file(literal, lec);
     it = d.files.emplace(target.string(), read_file(d.file, fallback ? literal : target, field)).first;
     if (fallback)
       d.warnings.push_back(field + ": no file '" + decoded + "' (the URI percent-decoded, as glTF URIs are); read '" + uri +
@@ -608,7 +609,7 @@ Document read_document(const fs::path& path) {
   if (const size_t replaced = repair_strings(text)) {
     d.strings_repaired = true;
     d.warnings.push_back("JSON: " + std::to_string(replaced) + " byte" + (replaced == 1 ? "" : "s") +
-                         " in strings that are not UTF-8 (or raw control characters) replaced by U+FFFD; glTF's JSON is UTF-8");
+                         " in strings replaced by U+FFFD: not UTF-8, control characters or backslashes that start no escape; glTF's JSON is UTF-8");
   }
   // Depth-limited before tinygltf sees it: its conversion of `extras` recurses.
   d.json = parse_json(text, d.file);

@@ -33,9 +33,9 @@ struct Document {
   // Buffers without data (no uri, and not a .glb's BIN chunk): placeholders that only views
   // compressed with EXT_meshopt_compression may name (gltf_meshopt.cpp decodes those views).
   std::vector<bool> placeholder_buffers;
-  // The JSON had bytes in its strings that are not UTF-8 (or raw control characters), which
-  // were replaced before parsing (glTF 2.0 spec, 3.2: JSON is UTF-8): tinygltf then parses
-  // `json` as dumped, not the file's bytes.
+  // The JSON had bytes in its strings that were replaced before parsing (not UTF-8, which
+  // glTF's JSON must be, or control characters, or backslashes that start no escape):
+  // tinygltf then parses `json` as dumped, not the file's bytes.
   bool strings_repaired = false;
 };
 

@@ -586,7 +586,7 @@ TEST(Loader, StringsThatAreNotUtf8AreRepaired) {
   // overlong NUL; 0xED 0xA0 0x80: a surrogate.
   const Scene bad = with_name("M\xF3w\x17 \xB9\\\x17 \xC0\x80 \xED\xA0\x80");
   ASSERT_EQ(bad.warnings.size(), 1u);
-  EXPECT_EQ(bad.warnings[0].rfind("JSON: 10 bytes in strings that are not UTF-8", 0), 0u) << bad.warnings[0];
+  EXPECT_EQ(bad.warnings[0].rfind("JSON: 10 bytes in strings replaced by U+FFFD", 0), 0u) << bad.warnings[0];
   const std::string r = "\xEF\xBF\xBD";
   EXPECT_EQ(bad.meshes[0].name, "M" + r + "w" + r + " " + r + r + r + " " + r + r + " " + r + r + r);
   EXPECT_EQ(bad.meshes.size(), good.meshes.size());
