@@ -12,6 +12,7 @@
 #include "giq/base/error.h"
 #include "giq/base/json.h"
 #include "giq/base/hash.h"
+#include "gltf_bytes.h"
 
 namespace giq::scenes::gltf {
 
@@ -34,22 +35,6 @@ uint64_t unsigned_property(const Document& d, const nlohmann::json& o, const cha
     if (x >= 0.0 && x < 9.0e15 && x == double(uint64_t(x))) return uint64_t(x);
   }
   throw InputError(d.file, where + "." + key, "is " + v->dump() + "; expected a non-negative integer");
-}
-
-std::string stand_in(const std::vector<unsigned char>& bytes) {
-  if (bytes.empty()) return "the file is empty";
-  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), std::min<size_t>(bytes.size(), 256));
-  // git-lfs's pointer format (docs/spec.md in git-lfs): its first line names the spec.
-  if (text.starts_with("version https://git-lfs.github.com/spec/"))
-    return "the file is a Git LFS pointer, not the data itself: fetch it with 'git lfs pull'";
-  const size_t first = text.find_first_not_of(" \t\r\n");
-  if (first != std::string_view::npos && text[first] == '<') {
-    std::string lower(text.substr(first, 64));
-    for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (lower.starts_with("<!doctype html") || lower.starts_with("<html") || lower.starts_with("<?xml"))
-      return "the file is an HTML or XML page, not the data itself (a web page saved in place of the file?)";
-  }
-  return "";
 }
 
 namespace {
@@ -484,59 +469,13 @@ std::vector<unsigned char> with_json(const Document& d, std::string text) {
   return out;
 }
 
-// The JSON text with every byte of its strings that is not part of a well-formed UTF-8
-// sequence (RFC 3629, section 4: no overlong forms, no surrogates, nothing above U+10FFFF), and
-// every raw control character and every backslash that starts no escape (RFC 8259, section 7),
-// replaced by U+FFFD; the count replaced. Bytes outside strings are left to the parser.
-// Exporters write names in legacy encodings (whose two-byte characters may end in 0x5C, a
-// backslash); names are all such strings hold that giq reads, so the file is not refused.
-size_t repair_strings(std::string& text) {
-  std::string out;     // built only once something is replaced
-  size_t copied = 0;   // text before this is in `out`
-  size_t replaced = 0;
-  bool in_string = false;
-  const auto byte = [&](size_t i) { return i < text.size() ? static_cast<unsigned char>(text[i]) : 0u; };
-  for (size_t i = 0; i < text.size();) {
-    const unsigned char c = byte(i);
-    const bool escape = in_string && c == '\\';
-    if (escape && std::strchr("\"\\/bfnrtu", int(byte(i + 1))) != nullptr && byte(i + 1) != 0) {
-      i += 2;  // an escape (a \u's digits are the parser's to judge)
-      continue;
-    }
-    if (!escape && (!in_string || (c >= 0x20 && c < 0x80))) {
-      if (c == '"') in_string = !in_string;
-      ++i;
-      continue;
-    }
-    // A sequence's length from its lead byte, and the range its second byte must fall in.
-    size_t n = 0;
-    unsigned lo = 0x80, hi = 0xBF;
-    if (c >= 0xC2 && c <= 0xDF) n = 2;
-    else if (c >= 0xE0 && c <= 0xEF) n = 3, lo = c == 0xE0 ? 0xA0 : 0x80, hi = c == 0xED ? 0x9F : 0xBF;
-    else if (c >= 0xF0 && c <= 0xF4) n = 4, lo = c == 0xF0 ? 0x90 : 0x80, hi = c == 0xF4 ? 0x8F : 0xBF;
-    bool ok = n > 0 && byte(i + 1) >= lo && byte(i + 1) <= hi;
-    for (size_t k = 2; ok && k < n; ++k) ok = byte(i + k) >= 0x80 && byte(i + k) <= 0xBF;
-    if (ok) {
-      i += n;
-      continue;
-    }
-    out.append(text, copied, i - copied);
-    out += "\xEF\xBF\xBD";
-    copied = ++i;
-    ++replaced;
-  }
-  if (replaced) text = out.append(text, copied, std::string::npos);
-  return replaced;
-}
-
 // What glTF allows but tinygltf 2.7 refuses, patched in the copy it parses; nothing patched
 // is read from that copy (the views and accessors concerned are decoded instead):
 //  - a buffer without data (a placeholder) would be refused, or in a .glb given the BIN
 //    chunk: it gets three zero bytes;
 //  - an indices accessor without a buffer view (a Draco-compressed primitive's) would be
 //    refused: it gets a one-byte view of such a buffer.
-// The patched JSON (the repaired one when only its strings were repaired), or nothing when the
-// document needs no patch (the usual case: no copy).
+// The patched JSON, or nothing when the document needs no patch (the usual case: no copy).
 std::optional<json> patch_for_tinygltf(const Document& d) {
   std::vector<size_t> viewless;
   const json* meshes = member(d.json, "meshes");
@@ -554,7 +493,7 @@ std::optional<json> patch_for_tinygltf(const Document& d) {
       }
     }
   const bool placeholders = std::find(d.placeholder_buffers.begin(), d.placeholder_buffers.end(), true) != d.placeholder_buffers.end();
-  if (!placeholders && viewless.empty()) return d.strings_repaired ? std::optional<json>(d.json) : std::nullopt;
+  if (!placeholders && viewless.empty()) return std::nullopt;
   const json kEmpty = {{"uri", "data:application/octet-stream;base64,AAAA"}, {"byteLength", 3}};
   json j = d.json;
   for (size_t i = 0; i < d.placeholder_buffers.size(); ++i)
@@ -636,8 +575,10 @@ tinygltf::Model parse_model(Document& d) {
   const std::string base = d.folder.string();
   const std::vector<unsigned char>* bytes = &d.bytes;
   std::vector<unsigned char> rewritten;
-  if (const std::optional<json> patched = patch_for_tinygltf(d)) {
-    rewritten = with_json(d, patched->dump());
+  // Patched, or with its strings repaired: tinygltf parses the JSON giq parsed, not the file's.
+  const std::optional<json> patched = patch_for_tinygltf(d);
+  if (patched || d.strings_repaired) {
+    rewritten = with_json(d, (patched ? *patched : d.json).dump());
     bytes = &rewritten;
   }
   const bool ok =

@@ -33,9 +33,8 @@ struct Document {
   // Buffers without data (no uri, and not a .glb's BIN chunk): placeholders that only views
   // compressed with EXT_meshopt_compression may name (gltf_meshopt.cpp decodes those views).
   std::vector<bool> placeholder_buffers;
-  // The JSON had bytes in its strings that were replaced before parsing (not UTF-8, which
-  // glTF's JSON must be, or control characters, or backslashes that start no escape):
-  // tinygltf then parses `json` as dumped, not the file's bytes.
+  // The JSON had bytes in its strings that were replaced before parsing (repair_strings,
+  // gltf_bytes.h): tinygltf then parses `json` as dumped, not the file's bytes.
   bool strings_repaired = false;
 };
 
@@ -48,11 +47,6 @@ const nlohmann::json* member(const nlohmann::json& o, const char* key);
 // and not required. Throws InputError naming where.key.
 uint64_t unsigned_property(const Document& d, const nlohmann::json& o, const char* key, const std::string& where,
                            bool required, uint64_t fallback = 0);
-
-// What a file holds instead of the data it stands for, when that is a common mistake: nothing
-// ("the file is empty"), a Git LFS pointer (a repository cloned without its LFS objects), or
-// an HTML page (a web page saved in place of the file); empty when none of them.
-std::string stand_in(const std::vector<unsigned char>& bytes);
 
 // Reads `path`, checks the container, the JSON and every buffer and image URI, and computes
 // the content hash. Throws InputError.

@@ -13,6 +13,7 @@
 #include <thread>
 #include <tuple>
 
+#include "gltf_bytes.h"
 #include "png_texels.h"
 
 namespace giq::scenes::gltf {
