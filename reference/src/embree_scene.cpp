@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "giq/reference/ray_offset.h"
+
 namespace giq::reference {
 
 struct EmbreeScene::AlphaMask {
@@ -83,7 +85,7 @@ EmbreeScene::EmbreeScene(const scenes::Scene& scene, glm::vec3 centre, bool alph
     for (const glm::uvec3& t : mesh.triangles) {
       const glm::vec3 c = glm::cross(pos[t.y] - pos[t.x], pos[t.z] - pos[t.x]);
       const float len = glm::length(c);
-      shapes_[m].push_back({c / len, 0.5f * len});
+      shapes_[m].push_back({c / len, 0.5f * len, ray_offset(pos[t.x], pos[t.y], pos[t.z])});
     }
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     // Embree reads vertex buffers with 16-byte loads: the last vertex needs 4 bytes of padding,

@@ -27,11 +27,13 @@ struct Hit {
 };
 
 // What every hit needs of its triangle beyond the vertices, computed once at build: the unit
-// geometric normal (glTF front face: counter-clockwise winding) and the area. A degenerate
-// triangle has area 0 and a non-finite normal; Embree never reports hits on one.
+// geometric normal (glTF front face: counter-clockwise winding), the area and the distance
+// that rays leaving it are lifted by (ray_offset.h). A degenerate triangle has area 0 and a
+// non-finite normal; Embree never reports hits on one.
 struct TriangleShape {
   glm::vec3 normal{0.0f};
   float area = 0.0f;
+  float offset = 0.0f;
 };
 
 // A ray as the integrators traced it, for giq-bench-reference's raw Embree rate

@@ -25,6 +25,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <limits>
@@ -474,7 +475,7 @@ class LaneIntegrator {
           continue;
         }
       }
-      const LightSample one = c_.lights.sample<F>(get(p, l), u.u[2][l], u.u[3][l], {u.u[0][l], u.u[1][l]});
+      const LightSample one = c_.lights.sample<F>(get(p, l), std::array<float, 4>{u.u[0][l], u.u[1][l], u.u[2][l], u.u[3][l]});
       set(ls.wi, l, one.wi), set(ls.radiance, l, one.radiance), set(ls.point, l, one.point), set(ls.normal, l, one.normal);
       ls.distance[l] = one.distance, ls.pdf[l] = one.pdf, ls.offset[l] = one.offset;
       ls.delta[l] = one.delta ? -1 : 0, ls.area[l] = one.area ? -1 : 0;

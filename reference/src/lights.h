@@ -43,10 +43,13 @@ class LightSampler {
 
   bool empty() const { return table_.empty(); }
 
-  // One light sample towards the point p. u_pick, u_alias pick the light; u places it.
+  // One light sample towards the point p from the four numbers u[0] to u[3] (anything with
+  // operator[], such as PathSampler::Group): u[2] and u[3] pick the light, u[0] and u[1] place
+  // it. A number is read only where it is used: a scene's only light needs no pick, a punctual
+  // light no point, and the Sobol sampler computes each number when asked for it.
   // Returns a sample with pdf 0 when the light does not face p.
-  template <unsigned F>
-  LightSample sample(glm::vec3 p, float u_pick, float u_alias, glm::vec2 u) const;
+  template <unsigned F, class U>
+  LightSample sample(glm::vec3 p, const U& u) const;
 
   // An emissive triangle as sample() reads it, set up once instead of per sample.
   struct Emitter {
@@ -111,16 +114,17 @@ glm::vec3 emitted_radiance(const scenes::Scene& scene, const scenes::Material& m
 }
 
 
-template <unsigned F>
-LightSample LightSampler::sample(glm::vec3 p, float u_pick, float u_alias, glm::vec2 u) const {
+template <unsigned F, class U>
+LightSample LightSampler::sample(glm::vec3 p, const U& u) const {
   LightSample s;
-  const AliasTable::Pick pick = table_.sample(u_pick, u_alias);
+  // One light: the table would pick it whatever the numbers (its one bin keeps its entry).
+  const AliasTable::Pick pick = table_.size() == 1 ? AliasTable::Pick{0, table_.pmf(0)} : table_.sample(u[2], u[3]);
   const Entry& e = entries_[pick.index];
   s.kind = e.kind;
   if constexpr (has(F, kEmissive)) {
     if (e.kind == LightKind::Triangle) {
       const Emitter& em = emitters_[e.index];
-      const glm::vec2 b = square_to_triangle_barycentrics(u);
+      const glm::vec2 b = square_to_triangle_barycentrics({u[0], u[1]});
       s.point = (1.0f - b.x - b.y) * em.p0 + b.x * em.p1 + b.y * em.p2;
       const float area = em.area;
       s.offset = em.offset;
@@ -153,12 +157,12 @@ LightSample LightSampler::sample(glm::vec3 p, float u_pick, float u_alias, glm::
     if (e.kind == LightKind::Environment) {
       s.distance = std::numeric_limits<float>::infinity();
       if (environment_map_.empty()) {
-        s.wi = square_to_uniform_sphere(u);
+        s.wi = square_to_uniform_sphere({u[0], u[1]});
         s.radiance = scene_.environment;
         s.pdf = pick.pmf * kUniformSpherePdf;
       } else {
         float pdf = 0.0f;
-        s.wi = environment_map_.sample(u, pdf);
+        s.wi = environment_map_.sample({u[0], u[1]}, pdf);
         s.radiance = scene_.environment_radiance(s.wi);
         s.pdf = pick.pmf * pdf;
       }

@@ -117,8 +117,7 @@ class PathIntegrator {
 
       // Next-event estimation: one light sample.
       if (!c_.lights.empty()) {
-        const PathSampler::Group u = s.get(D::light(depth));
-        const LightSample ls = c_.lights.sample<F>(sf.p, u[2], u[3], {u[0], u[1]});
+        const LightSample ls = c_.lights.sample<F>(sf.p, s.get(D::light(depth)));
         const bool use = ls.delta || rs.estimator != Estimator::BsdfOnly;
         if (use && ls.pdf > 0.0f && glm::dot(ls.wi, sf.ng) > 0.0f && ls.radiance != glm::vec3(0.0f)) {
           const BsdfEval e = bsdf_evaluate<kSpec>(sf.bsdf, wo_l, frame.to_local(ls.wi));
@@ -133,7 +132,9 @@ class PathIntegrator {
       // BSDF sampling continues the path.
       glm::vec3 wi_l;
       const PathSampler::Group u = s.get(D::bsdf(depth));
-      if (!bsdf_sample<kSpec>(sf.bsdf, wo_l, kSpec ? u[2] : 0.0f, {u[0], u[1]}, wi_l))
+      // The lobe's number only where there is a lobe to choose (bsdf_sample reads it there alone).
+      const float u_lobe = kSpec && sf.bsdf.specular_lobe ? u[2] : 0.0f;
+      if (!bsdf_sample<kSpec>(sf.bsdf, wo_l, u_lobe, {u[0], u[1]}, wi_l))
         break;
       const glm::vec3 wi = frame.to_world(wi_l);
       // Reflection only: a direction below the geometric surface would leak through it.

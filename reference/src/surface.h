@@ -35,8 +35,8 @@ Surface make_surface(const RenderContext& ctx, const Hit& hit, glm::vec3 dir) {
   const float b1 = hit.b1, b2 = hit.b2, b0 = 1.0f - b1 - b2;
   const glm::vec3 p0 = pos[tri.x], p1 = pos[tri.y], p2 = pos[tri.z];
   s.p = b0 * p0 + b1 * p1 + b2 * p2;
-  s.offset = ray_offset(p0, p1, p2);
   const TriangleShape& shape = ctx.bvh.shapes()[hit.mesh][hit.triangle];
+  s.offset = shape.offset;
   s.area = shape.area;
   glm::vec3 ng = shape.normal;
   const float cos_ray = glm::dot(ng, dir);
