@@ -60,17 +60,26 @@ Surface make_surface(const RenderContext& ctx, const Hit& hit, glm::vec3 dir) {
     // The material's first texture-coordinate mapping, and its second where a slot reads it.
     uv = mesh.uv_at(tri, b1, b2);
     const glm::vec2 uv2 = m.uv2_slots ? mesh.uv_at(tri, b1, b2, true) : uv;
-    const auto tex = [&](int i, scenes::TextureSlot slot) {
-      return ctx.scene.textures[size_t(i)].sample(m.uv2_slots & slot ? uv2 : uv);
+    // Every lookup is located before any is fetched, so that their waits on memory overlap
+    // (Texture::locate).
+    using Footprint = scenes::Texture::Footprint;
+    const auto locate = [&](int i, scenes::TextureSlot slot) {
+      return i >= 0 ? ctx.scene.textures[size_t(i)].locate(m.uv2_slots & slot ? uv2 : uv) : Footprint{};
     };
-    if (m.base_color_texture >= 0) base *= glm::vec3(tex(m.base_color_texture, scenes::kBaseColorSlot));
+    const Footprint f_base = locate(m.base_color_texture, scenes::kBaseColorSlot);
+    const Footprint f_mr = locate(m.metallic_roughness_texture, scenes::kMetallicRoughnessSlot);
+    const Footprint f_normal = locate(m.normal_texture, scenes::kNormalSlot);
+    const Footprint f_spec = locate(m.specular_texture, scenes::kSpecularSlot);
+    const Footprint f_spec_color = locate(m.specular_color_texture, scenes::kSpecularColorSlot);
+    const auto tex = [&](int i, const Footprint& f) { return ctx.scene.textures[size_t(i)].fetch(f); };
+    if (m.base_color_texture >= 0) base *= glm::vec3(tex(m.base_color_texture, f_base));
     base *= glm::vec3(mesh.color_at(tri, b1, b2));
     if (m.metallic_roughness_texture >= 0) {
-      const glm::vec4 t = tex(m.metallic_roughness_texture, scenes::kMetallicRoughnessSlot);  // glTF: G = roughness, B = metallic
+      const glm::vec4 t = tex(m.metallic_roughness_texture, f_mr);  // glTF: G = roughness, B = metallic
       roughness *= t.g, metallic *= t.b;
     }
-    if (m.specular_texture >= 0) specular *= tex(m.specular_texture, scenes::kSpecularSlot).a;
-    if (m.specular_color_texture >= 0) specular_color *= glm::vec3(tex(m.specular_color_texture, scenes::kSpecularColorSlot));
+    if (m.specular_texture >= 0) specular *= tex(m.specular_texture, f_spec).a;
+    if (m.specular_color_texture >= 0) specular_color *= glm::vec3(tex(m.specular_color_texture, f_spec_color));
     const std::vector<glm::vec2>& normal_uvs = m.uv2_slots & scenes::kNormalSlot ? mesh.uvs2 : mesh.uvs;
     if (m.normal_texture >= 0 && !normal_uvs.empty()) {
       // Tangent frame: the mesh's tangents (the file's, else MikkTSpace's from the scene library),
@@ -94,7 +103,7 @@ Surface make_surface(const RenderContext& ctx, const Hit& hit, glm::vec3 dir) {
       if (tl > 0.0f && std::isfinite(tl)) {
         t /= tl;
         const glm::vec3 b = sign * glm::cross(glm::normalize(ns), t);
-        glm::vec3 n = glm::vec3(tex(m.normal_texture, scenes::kNormalSlot)) * 2.0f - 1.0f;  // glTF: [0,1] -> [-1,1]
+        glm::vec3 n = glm::vec3(tex(m.normal_texture, f_normal)) * 2.0f - 1.0f;  // glTF: [0,1] -> [-1,1]
         n.x *= m.normal_scale, n.y *= m.normal_scale;
         ns = t * n.x + b * n.y + glm::normalize(ns) * n.z;
       }
@@ -111,7 +120,10 @@ Surface make_surface(const RenderContext& ctx, const Hit& hit, glm::vec3 dir) {
   s.ng = ng;
   s.ns = ns;
 
-  s.bsdf = bsdf_params<F>(m, base, metallic, roughness, specular, specular_color);
+  if constexpr (has(F, kTextures))
+    s.bsdf = bsdf_params<F>(m, base, metallic, roughness, specular, specular_color);
+  else
+    s.bsdf = ctx.material_bsdf[size_t(mesh.material)];  // the same values, computed once
   if constexpr (has(F, kEmissive)) {
     if (m.is_emissive()) s.emission = emitted_radiance<F>(ctx.scene, m, m.uv2_slots & scenes::kEmissiveSlot ? mesh.uv_at(tri, b1, b2, true) : uv);
   }

@@ -55,16 +55,7 @@ bool Texture::valid() const {
   return width > 0 && height > 0 && words && words->size() >= size_t(width) * size_t(height) * words_per_texel(format);
 }
 
-glm::vec4 Texture::texel(int x, int y) const {
-  const size_t i = size_t(y) * size_t(width) + size_t(x);
-  const auto& w = *words;
-  if (format == TexelFormat::Rgba32F)
-    return {std::bit_cast<float>(w[4 * i]), std::bit_cast<float>(w[4 * i + 1]), std::bit_cast<float>(w[4 * i + 2]),
-            std::bit_cast<float>(w[4 * i + 3])};
-  const auto& t = decode_table();
-  const uint32_t p = w[i], colour = format == TexelFormat::Rgba8Srgb ? 256u : 0u;
-  return {t[colour + (p & 255u)], t[colour + (p >> 8 & 255u)], t[colour + (p >> 16 & 255u)], t[p >> 24]};
-}
+glm::vec4 Texture::texel(int x, int y) const { return decode(size_t(y) * size_t(width) + size_t(x)); }
 
 void Texture::assign(int w, int h, const std::vector<glm::vec4>& rgba) {
   auto out = std::make_shared<std::vector<uint32_t>>();
@@ -74,26 +65,52 @@ void Texture::assign(int w, int h, const std::vector<glm::vec4>& rgba) {
   width = w, height = h, format = TexelFormat::Rgba32F, words = std::move(out);
 }
 
-glm::vec4 Texture::sample(glm::vec2 uv) const {
-  if (!valid()) return glm::vec4(0.0f);
+Texture::Footprint Texture::locate(glm::vec2 uv) const {
+  Footprint f;
+  if (!valid()) return f;
+  f.valid = true;
   // Beyond |uv| = 1e6 a float uv cannot address a texel anyway; bounding it keeps the index
   // arithmetic below finite.
   const double u = std::isfinite(uv.x) ? std::clamp(double(uv.x), -1e6, 1e6) : 0.0;
   const double v = std::isfinite(uv.y) ? std::clamp(double(uv.y), -1e6, 1e6) : 0.0;
+  const size_t stride = size_t(words_per_texel(format)), w = size_t(width);
   if (filter == Filter::Nearest) {
     const int x = wrap_index(int64_t(std::floor(u * width)), width, wrap_s);
     const int y = wrap_index(int64_t(std::floor(v * height)), height, wrap_t);
-    return texel(x, y);
+    f.nearest = true;
+    f.texel[0] = size_t(y) * w + size_t(x);
+    __builtin_prefetch(words->data() + stride * f.texel[0]);
+    return f;
   }
   // Bilinear between the four nearest texel centres, which sit at (i + 0.5) / size.
   const double x = u * width - 0.5, y = v * height - 0.5;
   const double x0 = std::floor(x), y0 = std::floor(y);
-  const float fx = float(x - x0), fy = float(y - y0);
+  f.fx = float(x - x0), f.fy = float(y - y0);
   const auto [xa, xb] = wrap_pair(int64_t(x0), width, wrap_s);
   const auto [ya, yb] = wrap_pair(int64_t(y0), height, wrap_t);
-  const glm::vec4 top = texel(xa, ya) * (1.0f - fx) + texel(xb, ya) * fx;
-  const glm::vec4 bottom = texel(xa, yb) * (1.0f - fx) + texel(xb, yb) * fx;
-  return top * (1.0f - fy) + bottom * fy;
+  f.texel[0] = size_t(ya) * w + size_t(xa), f.texel[1] = size_t(ya) * w + size_t(xb);
+  f.texel[2] = size_t(yb) * w + size_t(xa), f.texel[3] = size_t(yb) * w + size_t(xb);
+  for (size_t t : f.texel) __builtin_prefetch(words->data() + stride * t);
+  return f;
+}
+
+glm::vec4 Texture::fetch(const Footprint& f) const {
+  if (!f.valid) return glm::vec4(0.0f);
+  if (f.nearest) return decode(f.texel[0]);
+  const glm::vec4 t00 = decode(f.texel[0]), t10 = decode(f.texel[1]), t01 = decode(f.texel[2]), t11 = decode(f.texel[3]);
+  const glm::vec4 top = t00 * (1.0f - f.fx) + t10 * f.fx;
+  const glm::vec4 bottom = t01 * (1.0f - f.fx) + t11 * f.fx;
+  return top * (1.0f - f.fy) + bottom * f.fy;
+}
+
+glm::vec4 Texture::decode(size_t i) const {
+  const auto& w = *words;
+  if (format == TexelFormat::Rgba32F)
+    return {std::bit_cast<float>(w[4 * i]), std::bit_cast<float>(w[4 * i + 1]), std::bit_cast<float>(w[4 * i + 2]),
+            std::bit_cast<float>(w[4 * i + 3])};
+  const auto& t = decode_table();
+  const uint32_t p = w[i], colour = format == TexelFormat::Rgba8Srgb ? 256u : 0u;
+  return {t[colour + (p & 255u)], t[colour + (p >> 8 & 255u)], t[colour + (p >> 16 & 255u)], t[p >> 24]};
 }
 
 }  // namespace giq::scenes

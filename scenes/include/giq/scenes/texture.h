@@ -51,9 +51,25 @@ struct Texture {
   // Texel (x, y), decoded; x, y in range.
   glm::vec4 texel(int x, int y) const;
   // Filtered lookup following the sampler's wrap modes; texel centres at (i + 0.5) / size.
-  glm::vec4 sample(glm::vec2 uv) const;
+  glm::vec4 sample(glm::vec2 uv) const { return fetch(locate(uv)); }
+
+  // sample() in two steps, for a caller with several lookups to make: locate() finds the
+  // texels and their weights and asks the memory system for them; fetch() blends them. A path
+  // tracer's hits land anywhere in large images, so nearly every lookup waits on memory;
+  // locating all of a surface's lookups before fetching any lets those waits overlap.
+  struct Footprint {
+    size_t texel[4] = {0, 0, 0, 0};  // (x0, y0), (x1, y0), (x0, y1), (x1, y1); Nearest: the first
+    float fx = 0.0f, fy = 0.0f;      // weights of x1 and y1
+    bool nearest = false;
+    bool valid = false;
+  };
+  Footprint locate(glm::vec2 uv) const;
+  glm::vec4 fetch(const Footprint& f) const;
   // Sets width x height float RGBA texels (Rgba32F): textures built in code.
   void assign(int w, int h, const std::vector<glm::vec4>& rgba);
+
+ private:
+  glm::vec4 decode(size_t texel) const;  // texel number y * width + x
 };
 
 }  // namespace giq::scenes
