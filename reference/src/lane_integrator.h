@@ -83,11 +83,7 @@ struct Frame {
   [[gnu::always_inline]] V3 to_world(V3 v) const { return t * v.x + b * v.y + n * v.z; }
 };
 
-// ray_offset.h's ray_offset and offset_ray_origin.
-[[gnu::always_inline]] inline F ray_offset(V3 p0, V3 p1, V3 p2) {
-  const auto axis = [](F a, F b, F c) { return max(abs(a), max(abs(b), abs(c))); };
-  return (RayOffset::kUnits * 0x1p-24f) * max(axis(p0.x, p1.x, p2.x), max(axis(p0.y, p1.y, p2.y), axis(p0.z, p1.z, p2.z)));
-}
+// ray_offset.h's offset_ray_origin (each triangle's offset is TriangleShape's, from the build).
 [[gnu::always_inline]] inline V3 offset_ray_origin(V3 p, V3 n, F offset) { return p + offset * n; }
 
 // sampling.h's power_heuristic, special cases included.
@@ -402,6 +398,7 @@ class LaneIntegrator {
       set(p0, l, pos[tri.x]), set(p1, l, pos[tri.y]), set(p2, l, pos[tri.z]);
       const TriangleShape& shape = c_.bvh.shapes()[mesh_index][triangle];
       set(ng, l, shape.normal);
+      sf.offset[l] = shape.offset;
       if (!mesh.normals.empty()) {
         normals[l] = -1;
         set(n0, l, mesh.normals[tri.x]), set(n1, l, mesh.normals[tri.y]), set(n2, l, mesh.normals[tri.z]);
@@ -421,7 +418,6 @@ class LaneIntegrator {
     }
     const LF b1 = load(rh.hit.u), b2 = load(rh.hit.v), b0 = 1.0f - b1 - b2;
     sf.p = b0 * p0 + b1 * p1 + b2 * p2;
-    sf.offset = ray_offset(p0, p1, p2);
     const LF cos_ray = dot(ng, s.dir);
     sf.cos_ray = abs(cos_ray);
     const LI back = ~(cos_ray < 0.0f);

@@ -65,6 +65,7 @@ struct Texture {
   };
   Footprint locate(glm::vec2 uv) const;
   glm::vec4 fetch(const Footprint& f) const;
+
   // Sets width x height float RGBA texels (Rgba32F): textures built in code.
   void assign(int w, int h, const std::vector<glm::vec4>& rgba);
 
